@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs every Debian package lc2wf needs. Idempotent: returns at once when all are present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libopencv-dev libopencv-contrib-dev
+  python3-numpy
+)
+# Rendering and pose tools are only needed by the dataset generator (tools/), so they are opt-in.
+if [[ "${LC2WF_WITH_RENDER_TOOLS:-0}" == 1 ]]; then
+  packages+=(blender colmap)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+echo "setup-deps: installing ${missing[*]}" >&2
+sudo_cmd=()
+[[ $(id -u) -ne 0 ]] && sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
