@@ -1,0 +1,45 @@
+// Atomic file writes: write to a temporary file in the same folder, flush, then rename over the target,
+// so a killed process never leaves a truncated checkpoint or dataset file behind.
+#pragma once
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <unistd.h>
+
+namespace lc2wf {
+
+// Calls write(stream) on a temporary sibling of `path`, then renames it to `path`.
+inline void write_file_atomically(const std::filesystem::path& path,
+                                  const std::function<void(std::ostream&)>& write,
+                                  std::ios::openmode mode = std::ios::binary) {
+  namespace fs = std::filesystem;
+  if (path.has_parent_path()) fs::create_directories(path.parent_path());
+  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, mode | std::ios::out | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot open " + tmp.string() + " for writing");
+    write(out);
+    out.flush();
+    if (!out) {
+      out.close();
+      fs::remove(tmp);
+      throw std::runtime_error("failed writing " + tmp.string() + " (disk full?)");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
+  }
+}
+
+inline void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+}  // namespace lc2wf
