@@ -1,0 +1,47 @@
+#include "infer/post_process_options.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace lc2wf {
+namespace {
+
+void require(bool ok, const char* field, const std::string& rule, double value) {
+  if (!ok)
+    throw std::invalid_argument(std::string("PostProcessOptions.") + field + " must be " + rule + ", got " +
+                                std::to_string(value));
+}
+
+bool probability(double p) { return std::isfinite(p) && p >= 0.0 && p <= 1.0; }
+bool positive(double d) { return std::isfinite(d) && d > 0.0; }
+
+}  // namespace
+
+void PostProcessOptions::Check() const {
+  require(positive(junction_nms_radius), "junction_nms_radius", "a positive distance in metres", junction_nms_radius);
+  require(probability(junction_min_confidence), "junction_min_confidence", "in [0, 1]", junction_min_confidence);
+  require(probability(merge_threshold), "merge_threshold", "in [0, 1]", merge_threshold);
+  require(probability(connect_threshold), "connect_threshold", "in [0, 1]", connect_threshold);
+  require(hamming_threshold >= 0, "hamming_threshold", ">= 0", hamming_threshold);
+  require(std::isfinite(junction_merge_distance) && junction_merge_distance >= 0.0, "junction_merge_distance",
+          ">= 0 metres", junction_merge_distance);
+  require(std::isfinite(line_nms_distance) && line_nms_distance >= 0.0, "line_nms_distance", ">= 0 metres",
+          line_nms_distance);
+  if (transfer_edges_on_merge && pruned_junctions_in_merge)
+    throw std::invalid_argument(
+        "PostProcessOptions.pruned_junctions_in_merge cannot be combined with transfer_edges_on_merge: edges would "
+        "move onto junctions deleted by identical-pair pruning");
+}
+
+PostProcessOptions PostProcessOptions::release_quirks() {
+  PostProcessOptions o;
+  o.junction_nms = PointNmsRule::kSuppressor;
+  o.prune_through_deleted = true;
+  o.transfer_edges_on_merge = false;
+  o.pruned_junctions_in_merge = true;
+  o.line_nms_keep_higher = false;
+  return o;
+}
+
+}  // namespace lc2wf

@@ -1,0 +1,42 @@
+// Constants and rule choices of the inference post-processing (reference spec §3.4 and §4), in metres.
+// Defaults are the release's constants with the sound rule wherever the release has a quirk;
+// release_quirks() reproduces the release's behaviour exactly.
+#pragma once
+
+#include "infer/point_nms.h"
+
+namespace lc2wf {
+
+struct PostProcessOptions {
+  // Junction selection before pairing (§3.4).
+  PointNmsRule junction_nms = PointNmsRule::kGreedy;  // release: kSuppressor
+  double junction_nms_radius = 0.25;                  // metres (release: 5 raw)
+  double junction_min_confidence = 0.85;              // keep junctions with c > this
+
+  // Identical-pair pruning (§4 step 2): P(identical) > merge_threshold marks the less confident junction.
+  double merge_threshold = 0.2;
+  // Release true: a junction already marked by an earlier pair still marks its partner, so a chain
+  // A ~ B ~ C deletes C through the deleted B; false skips pairs whose survivor is already deleted.
+  bool prune_through_deleted = false;
+
+  // Candidate edges (§4 step 3): P(connected) > connect_threshold; the probability is the edge score.
+  double connect_threshold = 0.3;
+
+  // Hamming junction merge (§4 step 6): junctions whose adjacency rows differ in < hamming_threshold
+  // entries and that are closer than junction_merge_distance collapse onto the more confident one.
+  int hamming_threshold = 3;
+  double junction_merge_distance = 1.5;  // metres (release: 30 raw)
+  bool transfer_edges_on_merge = true;   // release false: the dropped junction's edges are deleted
+  // Release true: junctions deleted by identical-pair pruning still take part (as rows without edges) and
+  // can absorb a nearby junction of degree < hamming_threshold.
+  bool pruned_junctions_in_merge = false;
+
+  // Line NMS (§4 step 7): edges whose summed endpoint distance (best orientation) is < line_nms_distance.
+  double line_nms_distance = 1.0;    // metres (release: 20 raw)
+  bool line_nms_keep_higher = true;  // release false: edges are visited by ascending score, so the lower one stays
+
+  void Check() const;  // throws std::invalid_argument naming the bad field
+  static PostProcessOptions release_quirks();
+};
+
+}  // namespace lc2wf
