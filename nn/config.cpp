@@ -1,0 +1,212 @@
+#include "nn/config.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "nn/json_fields.h"
+
+namespace lc2wf {
+
+namespace {
+void require(bool ok, const std::string& field, const std::string& rule) {
+  if (!ok) throw std::invalid_argument(field + " " + rule);
+}
+void require_dims(const std::vector<int64_t>& dims, const std::string& field) {
+  require(!dims.empty(), field, "must not be empty");
+  for (int64_t d : dims) require(d > 0, field, "entries must be > 0");
+}
+bool is_probability(double p) { return p >= 0.0 && p < 1.0; }
+}  // namespace
+
+// ------------------------------------------------------------------------------------------ LptConfig
+void LptConfig::Check() const {
+  require(input_dim > 0, "lpt.input_dim", "must be > 0");
+  require(lines_per_patch > 0, "lpt.lines_per_patch", "must be > 0");
+  require(patches > 0, "lpt.patches", "must be > 0");
+  require_dims(mlp_dims, "lpt.mlp_dims");
+  require(hidden_dim > 0, "lpt.hidden_dim", "must be > 0");
+  require(mlp_dims.back() == hidden_dim, "lpt.mlp_dims",
+          "must end with hidden_dim (" + std::to_string(hidden_dim) + ")");
+  require(num_heads > 0 && hidden_dim % num_heads == 0, "lpt.num_heads", "must divide hidden_dim");
+  require(ffn_dim > 0, "lpt.ffn_dim", "must be > 0");
+  require(is_probability(dropout), "lpt.dropout", "must be in [0, 1)");
+  require(is_probability(attn_dropout), "lpt.attn_dropout", "must be in [0, 1)");
+  require(line_layers >= 1, "lpt.line_layers", "must be >= 1");
+  require(patch_layers >= 1, "lpt.patch_layers", "must be >= 1");
+  require(pool == "mean_all" || pool == "mean_valid", "lpt.pool", "must be \"mean_all\" or \"mean_valid\"");
+}
+
+nlohmann::json LptConfig::to_json() const {
+  return {{"input_dim", input_dim},     {"lines_per_patch", lines_per_patch}, {"patches", patches},
+          {"mlp_dims", mlp_dims},       {"hidden_dim", hidden_dim},           {"num_heads", num_heads},
+          {"ffn_dim", ffn_dim},         {"dropout", dropout},                 {"attn_dropout", attn_dropout},
+          {"line_layers", line_layers}, {"patch_layers", patch_layers},       {"pool", pool}};
+}
+
+LptConfig LptConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, LptConfig()); }
+
+LptConfig LptConfig::from_json(const nlohmann::json& j, const std::string& where, LptConfig c) {
+  JsonFields f(j, where);
+  f.read("input_dim", c.input_dim);
+  f.read("lines_per_patch", c.lines_per_patch);
+  f.read("patches", c.patches);
+  f.read("mlp_dims", c.mlp_dims);
+  f.read("hidden_dim", c.hidden_dim);
+  f.read("num_heads", c.num_heads);
+  f.read("ffn_dim", c.ffn_dim);
+  f.read("dropout", c.dropout);
+  f.read("attn_dropout", c.attn_dropout);
+  f.read("line_layers", c.line_layers);
+  f.read("patch_layers", c.patch_layers);
+  f.read("pool", c.pool);
+  f.finish();
+  return c;
+}
+
+// ----------------------------------------------------------------------------------------- HeadConfig
+void HeadConfig::Check() const {
+  require_dims(dims, "head.dims");
+  require(is_probability(dropout), "head.dropout", "must be in [0, 1)");
+}
+
+nlohmann::json HeadConfig::to_json() const { return {{"dims", dims}, {"dropout", dropout}}; }
+
+HeadConfig HeadConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, HeadConfig()); }
+
+HeadConfig HeadConfig::from_json(const nlohmann::json& j, const std::string& where, HeadConfig c) {
+  JsonFields f(j, where);
+  f.read("dims", c.dims);
+  f.read("dropout", c.dropout);
+  f.finish();
+  return c;
+}
+
+// ---------------------------------------------------------------------------------- JunctionNetConfig
+void JunctionNetConfig::Check() const {
+  lpt.Check();
+  head.Check();
+}
+
+nlohmann::json JunctionNetConfig::to_json() const { return {{"lpt", lpt.to_json()}, {"head", head.to_json()}}; }
+
+JunctionNetConfig JunctionNetConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, JunctionNetConfig()); }
+
+JunctionNetConfig JunctionNetConfig::from_json(const nlohmann::json& j, const std::string& where,
+                                               JunctionNetConfig c) {
+  JsonFields f(j, where);
+  f.read_struct("lpt", c.lpt);
+  f.read_struct("head", c.head);
+  f.finish();
+  return c;
+}
+
+// -------------------------------------------------------------------------------------- EdgeNetConfig
+LptConfig EdgeNetConfig::edge_lpt_defaults() {
+  LptConfig c;
+  c.input_dim = 6;
+  c.lines_per_patch = 64;
+  c.patches = 512;
+  return c;
+}
+
+void EdgeNetConfig::Check() const {
+  lpt.Check();
+  head.Check();
+  require(num_classes >= 2, "edge_net.num_classes", "must be >= 2");
+}
+
+nlohmann::json EdgeNetConfig::to_json() const {
+  return {{"lpt", lpt.to_json()}, {"head", head.to_json()}, {"num_classes", num_classes}};
+}
+
+EdgeNetConfig EdgeNetConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, EdgeNetConfig()); }
+
+EdgeNetConfig EdgeNetConfig::from_json(const nlohmann::json& j, const std::string& where, EdgeNetConfig c) {
+  JsonFields f(j, where);
+  f.read_struct("lpt", c.lpt);
+  f.read_struct("head", c.head);
+  f.read("num_classes", c.num_classes);
+  f.finish();
+  return c;
+}
+
+// --------------------------------------------------------------------------------- JunctionLossConfig
+void JunctionLossConfig::Check() const {
+  require(kind == "paper" || kind == "release", "junction_loss.kind", "must be \"paper\" or \"release\"");
+  require(reg_weight >= 0.0, "junction_loss.reg_weight", "must be >= 0");
+}
+
+nlohmann::json JunctionLossConfig::to_json() const { return {{"kind", kind}, {"reg_weight", reg_weight}}; }
+
+JunctionLossConfig JunctionLossConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, JunctionLossConfig()); }
+
+JunctionLossConfig JunctionLossConfig::from_json(const nlohmann::json& j, const std::string& where,
+                                                 JunctionLossConfig c) {
+  JsonFields f(j, where);
+  f.read("kind", c.kind);
+  f.read("reg_weight", c.reg_weight);
+  f.finish();
+  return c;
+}
+
+// ------------------------------------------------------------------------------------- EdgeLossConfig
+void EdgeLossConfig::Check() const {
+  require(!class_weights.empty(), "edge_loss.class_weights", "must not be empty");
+  for (double w : class_weights) require(w >= 0.0, "edge_loss.class_weights", "entries must be >= 0");
+}
+
+nlohmann::json EdgeLossConfig::to_json() const { return {{"class_weights", class_weights}}; }
+
+EdgeLossConfig EdgeLossConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, EdgeLossConfig()); }
+
+EdgeLossConfig EdgeLossConfig::from_json(const nlohmann::json& j, const std::string& where, EdgeLossConfig c) {
+  JsonFields f(j, where);
+  f.read("class_weights", c.class_weights);
+  f.finish();
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------- OptimConfig
+void OptimConfig::Check() const {
+  require(optimizer == "adamw" || optimizer == "sgd", "optim.optimizer", "must be \"adamw\" or \"sgd\"");
+  require(lr > 0.0, "optim.lr", "must be > 0");
+  require(beta1 >= 0.0 && beta1 < 1.0, "optim.beta1", "must be in [0, 1)");
+  require(beta2 >= 0.0 && beta2 < 1.0, "optim.beta2", "must be in [0, 1)");
+  require(eps > 0.0, "optim.eps", "must be > 0");
+  require(momentum >= 0.0 && momentum < 1.0, "optim.momentum", "must be in [0, 1)");
+  require(weight_decay >= 0.0, "optim.weight_decay", "must be >= 0");
+  for (size_t i = 0; i < milestones.size(); ++i) {
+    require(milestones[i] > 0, "optim.milestones", "entries must be > 0");
+    require(i == 0 || milestones[i] > milestones[i - 1], "optim.milestones", "must be strictly increasing");
+  }
+  require(gamma > 0.0, "optim.gamma", "must be > 0");
+  require(clip_grad_norm >= 0.0, "optim.clip_grad_norm", "must be >= 0 (0 disables clipping)");
+}
+
+nlohmann::json OptimConfig::to_json() const {
+  return {{"optimizer", optimizer}, {"lr", lr},
+          {"beta1", beta1},         {"beta2", beta2},
+          {"eps", eps},             {"momentum", momentum},
+          {"weight_decay", weight_decay}, {"milestones", milestones},
+          {"gamma", gamma},         {"clip_grad_norm", clip_grad_norm}};
+}
+
+OptimConfig OptimConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, OptimConfig()); }
+
+OptimConfig OptimConfig::from_json(const nlohmann::json& j, const std::string& where, OptimConfig c) {
+  JsonFields f(j, where);
+  f.read("optimizer", c.optimizer);
+  f.read("lr", c.lr);
+  f.read("beta1", c.beta1);
+  f.read("beta2", c.beta2);
+  f.read("eps", c.eps);
+  f.read("momentum", c.momentum);
+  f.read("weight_decay", c.weight_decay);
+  f.read("milestones", c.milestones);
+  f.read("gamma", c.gamma);
+  f.read("clip_grad_norm", c.clip_grad_norm);
+  f.finish();
+  return c;
+}
+
+}  // namespace lc2wf

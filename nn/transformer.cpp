@@ -1,0 +1,51 @@
+#include "nn/transformer.h"
+
+#include <string>
+
+#include "core/ops.h"
+
+namespace lc2wf {
+
+TransformerEncoderLayer::TransformerEncoderLayer(const EncoderSizes& s, Rng& init_rng)
+    : self_attn_(s.embed_dim, s.num_heads, s.attn_dropout, init_rng),
+      linear1_(s.embed_dim, s.ffn_dim, init_rng, LinearInit::XavierWeight),
+      linear2_(s.ffn_dim, s.embed_dim, init_rng, LinearInit::XavierWeight),
+      norm1_(s.embed_dim),
+      norm2_(s.embed_dim),
+      dropout_(s.dropout),
+      dropout1_(s.dropout),
+      dropout2_(s.dropout) {
+  register_module("self_attn", self_attn_);
+  register_module("linear1", linear1_);
+  register_module("linear2", linear2_);
+  register_module("norm1", norm1_);
+  register_module("norm2", norm2_);
+  register_module("dropout", dropout_);
+  register_module("dropout1", dropout1_);
+  register_module("dropout2", dropout2_);
+}
+
+Tensor TransformerEncoderLayer::forward(const Tensor& x, const Tensor& key_padding_mask, Rng& rng,
+                                        Tensor* attn_weights) {
+  const Tensor attn = self_attn_.forward(norm1_.forward(x), key_padding_mask, rng, attn_weights);
+  const Tensor h = x + dropout1_.forward(attn, rng);
+  const Tensor ffn = linear2_.forward(dropout_.forward(relu(linear1_.forward(norm2_.forward(h))), rng));
+  return h + dropout2_.forward(ffn, rng);
+}
+
+TransformerEncoder::TransformerEncoder(const EncoderSizes& sizes, int64_t num_layers, Rng& init_rng)
+    : norm_(sizes.embed_dim) {
+  for (int64_t i = 0; i < num_layers; ++i) {
+    layers_.push_back(std::make_unique<TransformerEncoderLayer>(sizes, init_rng));
+    register_module("layers." + std::to_string(i), *layers_.back());
+  }
+  register_module("norm", norm_);
+}
+
+Tensor TransformerEncoder::forward(const Tensor& x, const Tensor& key_padding_mask, Rng& rng, Tensor* attn_weights) {
+  Tensor h = x;
+  for (auto& layer : layers_) h = layer->forward(h, key_padding_mask, rng, attn_weights);
+  return norm_.forward(h);
+}
+
+}  // namespace lc2wf
