@@ -68,7 +68,7 @@ class Tensor {
 
   // --- autograd ---
   bool requires_grad() const;
-  Tensor& set_requires_grad(bool requires = true);  // leaves only
+  Tensor& set_requires_grad(bool required = true);  // leaves only
   bool is_leaf() const;
   Tensor grad() const;  // undefined until a backward pass reaches this tensor
   void zero_grad();     // drops the gradient (the next backward starts from zero)
