@@ -97,6 +97,9 @@ void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
   std::unordered_map<Node*, int64_t> deps;
   std::vector<Node*> stack{start};
   deps[start] = 0;
+  // Owns every reachable node until the pass ends: freeing a node's edges must not destroy nodes
+  // that are still queued.
+  std::vector<std::shared_ptr<Node>> keep_alive{impl->grad_fn};
   while (!stack.empty()) {
     Node* n = stack.back();
     stack.pop_back();
@@ -104,7 +107,10 @@ void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
       if (!e.fn) continue;
       auto [it, inserted] = deps.try_emplace(e.fn.get(), 0);
       ++it->second;
-      if (inserted) stack.push_back(e.fn.get());
+      if (inserted) {
+        stack.push_back(e.fn.get());
+        keep_alive.push_back(e.fn);
+      }
     }
   }
 
