@@ -31,7 +31,9 @@ def write_safetensors(path, tensors, metadata=None):
              np.dtype(np.bool_): "BOOL"}
     header, blobs, offset = {}, [], 0
     for name, value in tensors.items():
-        arr = np.ascontiguousarray(value)
+        arr = np.asarray(value)
+        if not arr.flags.c_contiguous:  # (np.ascontiguousarray would turn scalars into shape [1])
+            arr = arr.copy(order="C")
         if arr.dtype not in codes:
             raise ValueError(f"{name}: unsupported dtype {arr.dtype}")
         data = arr.astype(arr.dtype.newbyteorder("<")).tobytes()
