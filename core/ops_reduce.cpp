@@ -31,13 +31,14 @@ void sum_kernel(const T* in, T* out, int64_t outer, int64_t R, int64_t inner) {
       T* acc = partial.data() + t * inner;
       const T* base = in + o * R * inner;
       if (inner == 1) {
-        T lanes[8] = {};
+        // Full reductions (losses, means) accumulate in double: cheap here and far more accurate.
+        double lanes[8] = {};
         int64_t r = r0;
         for (; r + 8 <= r1; r += 8)
           for (int k = 0; k < 8; ++k) lanes[k] += base[r + k];
-        T s = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+        double s = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
         for (; r < r1; ++r) s += base[r];
-        acc[0] = s;
+        acc[0] = static_cast<T>(s);
       } else {
         std::memcpy(acc, base + r0 * inner, sizeof(T) * inner);
         for (int64_t r = r0 + 1; r < r1; ++r) {
