@@ -1,0 +1,60 @@
+// Edge-stage pair labels and pair sampling (release section 3.2-3.4), distances in metres
+// (release raw 7 -> 0.35 m false-positive distance, NMS 5 -> 0.25 m).
+#pragma once
+
+#include <vector>
+
+#include "dataset/geometry.h"
+#include "dataset/patches.h"
+
+namespace lc2wf {
+
+// The five pair classes.
+enum PairClass : int { kPairIdentical = 0, kPairConnected = 1, kPairDistance2 = 2, kPairFarther = 3, kPairFalsePositive = 4 };
+
+struct PairSamplingOptions {
+  int pairs_per_building = 512;     // training: static + dynamic
+  int max_static_pairs = 256;       // GT pairs kept (first ones, class order)
+  int top_k = 100;                  // training: most confident predicted junctions after NMS
+  double nms_radius_m = 0.25;       // point NMS on predicted junctions
+  double fp_distance_m = 0.35;      // a prediction farther than this from every GT junction is a false positive
+  double test_confidence = 0.85;    // test: keep junctions with confidence > this
+  void Check() const;
+};
+
+// Nearest GT junction within fp_distance (strict <), else -1.
+std::vector<int> assign_junction_labels(const std::vector<Vec3>& predicted, const std::vector<Vec3>& gt, double fp_distance_m);
+
+// GT graph adjacency for pair classes.
+class PairClassifier {
+ public:
+  explicit PairClassifier(const Wireframe& gt);
+  // Class of a pair of (assigned) GT labels; -1 labels are false positives.
+  int classify(int label_a, int label_b) const;
+
+ private:
+  int n_;
+  std::vector<std::vector<char>> adj_;
+};
+
+// Predicted junctions with confidences (metres).
+struct PredictedJunctions {
+  std::vector<Vec3> positions;
+  std::vector<double> confidence;
+};
+
+// Training pairs: all GT pairs class-ordered (edges in the wireframe's edge order, then distance-2, then
+// farther, each upper-triangle row-major), first max_static_pairs; then dynamic pairs of the top-k NMS'd
+// predictions, all i<j combinations in confidence order, grouped by class 0,1,2,3,4, cut or cyclically
+// repeated to fill pairs_per_building. With no dynamic pair the static pairs are repeated instead (the
+// release would fail); a GT with fewer than 2 junctions gives an empty list.
+std::vector<JunctionPair> sample_training_pairs(const Wireframe& gt, const PredictedJunctions& predicted,
+                                                const PairSamplingOptions& options);
+
+// Test pairs: NMS, confidence > test_confidence, all i<j pairs (class-ordered when `gt` is given, with
+// labels; otherwise combination order, label -1). Indices refer to `kept` (filled with the surviving
+// prediction indices, most confident first). Fewer than 2 junctions: empty.
+std::vector<JunctionPair> sample_test_pairs(const PredictedJunctions& predicted, const Wireframe* gt,
+                                            const PairSamplingOptions& options, std::vector<int>* kept = nullptr);
+
+}  // namespace lc2wf

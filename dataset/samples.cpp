@@ -1,0 +1,68 @@
+#include "dataset/samples.h"
+
+#include "dataset/errors.h"
+#include "dataset/rng.h"
+
+namespace lc2wf {
+namespace {
+
+void require_segments(const LineCloud& c) {
+  if (c.segments.empty()) throw DataError(c.name.empty() ? "line cloud" : c.name, "empty line cloud (no segments)");
+}
+
+}  // namespace
+
+void JunctionSampleOptions::Check() const {
+  sampling.Check();
+  patch.Check();
+  augment.Check();
+}
+
+void PairSampleOptions::Check() const {
+  pairs.Check();
+  patch.Check();
+  augment.Check();
+}
+
+JunctionPatches make_junction_sample(const LineCloud& cloud, const JunctionSampleOptions& o, uint64_t seed) {
+  o.Check();
+  require_segments(cloud);
+  Rng rng(seed);
+  const Augmentation aug = o.augment_enabled ? draw_augmentation(rng, o.augment, o.patch.frame) : Augmentation{};
+  const std::vector<Vec3> endpoints = segment_endpoints(cloud.segments);
+  const std::vector<int> samples = sample_endpoints(endpoints, o.sampling, &cloud.wireframe.junctions, &rng);
+  std::vector<Segment3> segs = cloud.segments;
+  std::vector<Vec3> gt = cloud.wireframe.junctions;
+  aug.apply(segs);
+  aug.apply(gt);
+  return build_junction_patches(SegmentSet(segs), endpoint_labels(cloud), gt, samples, o.patch);
+}
+
+PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJunctions& predicted,
+                                      const PairSampleOptions& o, uint64_t seed) {
+  o.Check();
+  require_segments(cloud);
+  if (cloud.wireframe.junctions.size() < 2) throw DataError(cloud.name, "fewer than 2 GT junctions: no training pairs");
+  Rng rng(seed);
+  const Augmentation aug = o.augment_enabled ? draw_augmentation(rng, o.augment, o.patch.frame) : Augmentation{};
+  std::vector<JunctionPair> pairs = sample_training_pairs(cloud.wireframe, predicted, o.pairs);
+  for (auto& p : pairs) {
+    p.u = aug.apply(p.u);
+    p.v = aug.apply(p.v);
+  }
+  std::vector<Segment3> segs = cloud.segments;
+  aug.apply(segs);
+  return build_pair_patches(SegmentSet(segs), pairs, o.patch);
+}
+
+PairPatches make_pair_test_sample(const LineCloud& cloud, const PredictedJunctions& predicted, const PairSampleOptions& o,
+                                  std::vector<JunctionPair>* pairs_out, std::vector<int>* kept) {
+  o.Check();
+  require_segments(cloud);
+  const Wireframe* gt = cloud.wireframe.junctions.empty() ? nullptr : &cloud.wireframe;
+  const std::vector<JunctionPair> pairs = sample_test_pairs(predicted, gt, o.pairs, kept);
+  if (pairs_out) *pairs_out = pairs;
+  return build_pair_patches(SegmentSet(cloud.segments), pairs, o.patch);
+}
+
+}  // namespace lc2wf

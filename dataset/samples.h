@@ -1,0 +1,46 @@
+// One building's network input, from a line cloud: sampling, optional augmentation, patches.
+#pragma once
+
+#include <cstdint>
+
+#include "dataset/augmentation.h"
+#include "dataset/line_cloud.h"
+#include "dataset/pair_sampling.h"
+#include "dataset/patches.h"
+#include "dataset/sampling.h"
+
+namespace lc2wf {
+
+struct JunctionSampleOptions {
+  SamplingOptions sampling;
+  PatchOptions patch;
+  AugmentOptions augment;
+  bool augment_enabled = false;  // training only, as the release
+  void Check() const;
+};
+
+// Sample points are chosen on the un-augmented cloud (the release computes density seeds before
+// augmentation; FPS is invariant to the similarity transform), then segments and GT are augmented and
+// patched. Deterministic for a seed. Throws DataError naming the cloud when it has no segments.
+JunctionPatches make_junction_sample(const LineCloud& cloud, const JunctionSampleOptions& options, uint64_t seed);
+
+struct PairSampleOptions {
+  PairSamplingOptions pairs;
+  PatchOptions patch;
+  AugmentOptions augment;
+  bool augment_enabled = false;
+  void Check() const;
+};
+
+// Training: GT + predicted pairs (release 3.3), augmentation applied jointly to segments, GT and
+// predictions. `predicted` positions in metres.
+PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJunctions& predicted,
+                                      const PairSampleOptions& options, uint64_t seed);
+
+// Test: all pairs of the kept predictions (release 3.4); `pairs` receives them (with labels when the
+// cloud has a GT wireframe). Fewer than 2 kept junctions: an empty PairPatches (num_pairs = 0).
+PairPatches make_pair_test_sample(const LineCloud& cloud, const PredictedJunctions& predicted,
+                                  const PairSampleOptions& options, std::vector<JunctionPair>* pairs = nullptr,
+                                  std::vector<int>* kept = nullptr);
+
+}  // namespace lc2wf

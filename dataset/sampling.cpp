@@ -1,0 +1,123 @@
+#include "dataset/sampling.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+#include "dataset/point_nms.h"
+#include "dataset/rng.h"
+#include "dataset/spatial_grid.h"
+
+namespace lc2wf {
+
+void SamplingOptions::Check() const {
+  if (num_samples < 1) throw std::invalid_argument("SamplingOptions.num_samples must be >= 1");
+  if (!(density_radius_m > 0)) throw std::invalid_argument("SamplingOptions.density_radius_m must be > 0");
+  if (!(density_inner_radius_m > 0 && density_inner_radius_m <= density_radius_m)) {
+    throw std::invalid_argument("SamplingOptions.density_inner_radius_m must be in (0, density_radius_m]");
+  }
+  if (density_min_count < 0) throw std::invalid_argument("SamplingOptions.density_min_count must be >= 0");
+  if (!(density_min_ratio >= 0 && density_min_ratio <= 1)) throw std::invalid_argument("SamplingOptions.density_min_ratio must be in [0, 1]");
+  if (!(density_nms_m >= 0)) throw std::invalid_argument("SamplingOptions.density_nms_m must be >= 0");
+  if (near_gt_samples < 0) throw std::invalid_argument("SamplingOptions.near_gt_samples must be >= 0");
+  if (!(near_gt_radius_m > 0)) throw std::invalid_argument("SamplingOptions.near_gt_radius_m must be > 0");
+}
+
+std::vector<Vec3> segment_endpoints(const std::vector<Segment3>& segments) {
+  std::vector<Vec3> out;
+  out.reserve(2 * segments.size());
+  for (const auto& s : segments) {
+    out.push_back(s.a);
+    out.push_back(s.b);
+  }
+  return out;
+}
+
+std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions& o) {
+  o.Check();
+  if (p.empty()) return {};
+  const SpatialGrid grid(p, o.density_radius_m);
+  std::vector<int> near, cand;
+  std::vector<double> ratio(p.size(), 0.0);
+  const double inner2 = o.density_inner_radius_m * o.density_inner_radius_m;
+  for (size_t i = 0; i < p.size(); ++i) {
+    grid.query(p[i], o.density_radius_m, near);
+    const int a = static_cast<int>(near.size());
+    int b = 0;
+    for (int j : near) b += (p[j] - p[i]).squaredNorm() <= inner2;
+    ratio[i] = b / (a + 1e-3);
+    if (a > o.density_min_count && ratio[i] > o.density_min_ratio) cand.push_back(static_cast<int>(i));
+  }
+  std::vector<Vec3> cp;
+  std::vector<double> cs;
+  for (int i : cand) {
+    cp.push_back(p[i]);
+    cs.push_back(ratio[i]);
+  }
+  std::vector<int> out;
+  for (int k : suppressor_nms(cp, cs, o.density_nms_m)) out.push_back(cand[k]);
+  return out;
+}
+
+std::vector<int> farthest_point_sampling(const std::vector<Vec3>& p, int count, const std::vector<int>& seeds) {
+  const int n = static_cast<int>(p.size());
+  std::vector<int> out;
+  if (n == 0 || count <= 0) return out;
+  if (n <= count) {
+    for (int k = 0; k < count; ++k) out.push_back(k % n);
+    return out;
+  }
+  std::vector<char> taken(n, 0);
+  for (int s : seeds) {
+    if (s < 0 || s >= n) throw std::out_of_range("farthest_point_sampling: seed index out of range");
+    if (!taken[s] && static_cast<int>(out.size()) < count) {
+      taken[s] = 1;
+      out.push_back(s);
+    }
+  }
+  if (out.empty()) {
+    out.push_back(0);
+    taken[0] = 1;
+  }
+  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  auto relax = [&](int s) {
+    for (int i = 0; i < n; ++i) dist[i] = std::min(dist[i], (p[i] - p[s]).squaredNorm());
+  };
+  for (int s : out) relax(s);
+  while (static_cast<int>(out.size()) < count) {
+    int best = 0;
+    for (int i = 1; i < n; ++i) {
+      if (dist[i] > dist[best]) best = i;
+    }
+    out.push_back(best);
+    relax(best);
+  }
+  return out;
+}
+
+std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const SamplingOptions& o,
+                                  const std::vector<Vec3>* gt, Rng* rng) {
+  o.Check();
+  std::vector<int> seeds;
+  if (o.near_gt_samples > 0) {
+    if (!gt || !rng) throw std::invalid_argument("sample_endpoints: near_gt_samples needs GT junctions and a generator");
+    const double r2 = o.near_gt_radius_m * o.near_gt_radius_m;
+    std::vector<int> near;
+    for (size_t i = 0; i < endpoints.size(); ++i) {
+      for (const auto& j : *gt) {
+        if ((endpoints[i] - j).squaredNorm() <= r2) {
+          near.push_back(static_cast<int>(i));
+          break;
+        }
+      }
+    }
+    rng->shuffle(near);
+    if (static_cast<int>(near.size()) > o.near_gt_samples) near.resize(o.near_gt_samples);
+    seeds = std::move(near);
+  }
+  const auto dens = density_seeds(endpoints, o);
+  seeds.insert(seeds.end(), dens.begin(), dens.end());
+  return farthest_point_sampling(endpoints, o.num_samples, seeds);
+}
+
+}  // namespace lc2wf

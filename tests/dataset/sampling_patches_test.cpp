@@ -1,0 +1,342 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "dataset/augmentation.h"
+#include "dataset/errors.h"
+#include "dataset/pair_sampling.h"
+#include "dataset/patches.h"
+#include "dataset/point_nms.h"
+#include "dataset/rng.h"
+#include "dataset/samples.h"
+#include "dataset/sampling.h"
+#include "dataset/synthetic_building.h"
+#include "dataset/synthetic_line_cloud.h"
+
+namespace lc2wf {
+namespace {
+
+PatchOptions unit_frame(int lines, int negative) {
+  PatchOptions o;
+  o.lines_per_patch = lines;
+  o.negative_noise_count = negative;
+  o.frame.centre_m = Vec3::Zero();
+  o.frame.scale_m = 1.0;
+  return o;
+}
+
+TEST(Constants, ReleaseValuesInMetres) {
+  const NetworkFrame f;
+  EXPECT_NEAR(f.scale_m, 13.310675, 1e-6);
+  EXPECT_NEAR(f.centre_m.z(), 3.525700, 1e-6);
+  EXPECT_NEAR(PatchOptions{}.radius_m, 2.662135, 1e-6);
+  const SamplingOptions s;
+  EXPECT_DOUBLE_EQ(s.density_radius_m * 20, 6.0);
+  EXPECT_DOUBLE_EQ(s.density_inner_radius_m * 20, 3.0);
+  EXPECT_DOUBLE_EQ(s.density_nms_m * 20, 1.5);
+  EXPECT_EQ(s.num_samples, 256);
+  const PairSamplingOptions p;
+  EXPECT_DOUBLE_EQ(p.fp_distance_m * 20, 7.0);
+  EXPECT_DOUBLE_EQ(p.nms_radius_m * 20, 5.0);
+  // Metres -> network units reproduces the release's (raw - MEAN) / STD.
+  const Vec3 raw(100, -40, 75);
+  const Vec3 release = (raw - Vec3(0.12249484, -0.3440005, 70.5140106)) / 266.2135032067564;
+  EXPECT_NEAR((f.to_network(raw / 20) - release).norm(), 0, 1e-12);
+}
+
+TEST(PointNms, SuppressorRuleOnAChainKeepsOnlyTheTop) {
+  const std::vector<Vec3> p = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(10, 0, 0)};
+  const std::vector<double> s = {0.9, 0.8, 0.7, 0.1};
+  // A-B and B-C closer than 1.5, A-C not: greedy NMS would keep C, the release rule does not.
+  EXPECT_EQ(suppressor_nms(p, s, 1.5), (std::vector<int>{0, 3}));
+  // Equal scores: the earlier one wins; strict <: points exactly at the radius survive.
+  EXPECT_EQ(suppressor_nms({Vec3(0, 0, 0), Vec3(0.5, 0, 0)}, {0.5, 0.5}, 1.0), (std::vector<int>{0}));
+  EXPECT_EQ(suppressor_nms({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {0.5, 0.6}, 1.0), (std::vector<int>{1, 0}));
+}
+
+TEST(Sampling, DensitySeedsOnePerCluster) {
+  std::vector<Vec3> p;
+  Rng rng(5);
+  for (int c = 0; c < 2; ++c) {
+    for (int k = 0; k < 15; ++k) p.push_back(Vec3(c * 1.0, 0, 0) + 0.015 * Vec3(rng.normal(), rng.normal(), rng.normal()).cwiseMin(2).cwiseMax(-2));
+  }
+  for (int k = 0; k < 20; ++k) p.push_back(Vec3(3 + k, 3, 0));  // sparse
+  // 13 points (A = 13 > 12) form a cluster; 12 do not.
+  for (int k = 0; k < 12; ++k) p.push_back(Vec3(0, 5, 0) + Vec3(0.001 * k, 0, 0));
+  const auto seeds = density_seeds(p, SamplingOptions{});
+  EXPECT_EQ(seeds, (std::vector<int>{0, 15}));
+}
+
+TEST(Sampling, FarthestPointSampling) {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 10; ++i) p.push_back(Vec3(i, 0, 0));
+  EXPECT_EQ(farthest_point_sampling(p, 3, {0}), (std::vector<int>{0, 9, 4}));
+  EXPECT_EQ(farthest_point_sampling(p, 3, {}), (std::vector<int>{0, 9, 4}));  // no seed: starts at 0
+  EXPECT_EQ(farthest_point_sampling(p, 4, {5, 5, 2}), (std::vector<int>{5, 2, 9, 0}));
+  EXPECT_EQ(farthest_point_sampling(p, 12, {}), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 0, 1}));
+  EXPECT_TRUE(farthest_point_sampling({}, 5, {}).empty());
+}
+
+TEST(Sampling, NearGtPositivesComeFirstAndAreSeeded) {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 300; ++i) p.push_back(Vec3(0.1 * i, 0, 0));
+  const std::vector<Vec3> gt = {Vec3(5, 0, 0)};
+  SamplingOptions o;
+  o.num_samples = 20;
+  o.near_gt_samples = 3;
+  Rng r1(9), r2(9);
+  const auto a = sample_endpoints(p, o, &gt, &r1);
+  const auto b = sample_endpoints(p, o, &gt, &r2);
+  EXPECT_EQ(a, b);
+  ASSERT_EQ(a.size(), 20u);
+  for (int k = 0; k < 3; ++k) EXPECT_LE((p[a[k]] - gt[0]).norm(), o.near_gt_radius_m);
+  EXPECT_THROW(sample_endpoints(p, o), std::invalid_argument);
+}
+
+// Hand-made patch: three segments, query at segment 0's first endpoint.
+TEST(JunctionPatch, FeaturesPaddingAndLabel) {
+  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)},
+                                      {Vec3(0, 1.5, 0), Vec3(0, 0.5, 0)},
+                                      {Vec3(5, 5, 5), Vec3(6, 5, 5)}};
+  const std::vector<int> labels = {0, 1, -1, 2, -1, -1};
+  const std::vector<Vec3> gt = {Vec3(0.1, 0.1, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
+  const SegmentSet set(segs);
+  const auto P = build_junction_patches(set, labels, gt, {0}, unit_frame(3, 2));
+  ASSERT_EQ(P.features.size(), 3u * 7);
+  const float* f = P.features.data();
+  // Slot 0: segment 0 (line distance 0), near = x itself.
+  EXPECT_FLOAT_EQ(f[0], 0);
+  EXPECT_FLOAT_EQ(f[3], 1);
+  EXPECT_FLOAT_EQ(f[6], 0);
+  // Slot 1: segment 1, its line passes through x (distance 0); endpoints reordered near-first.
+  EXPECT_FLOAT_EQ(f[7 + 1], 0.5f);
+  EXPECT_FLOAT_EQ(f[7 + 4], 1.5f);
+  EXPECT_FLOAT_EQ(f[7 + 6], 0.5f);
+  // Slot 2: segment 2 is 7.07 m from x's line -> padding with segment 0's coordinates and segment 2's distance.
+  EXPECT_EQ(P.padded, (std::vector<uint8_t>{0, 0, 1}));
+  EXPECT_FLOAT_EQ(f[14 + 3], 1);
+  EXPECT_NEAR(f[14 + 6], std::sqrt(75.0), 1e-5);
+  // Line labels [0, 2, 0(pad = segment 0)] -> junction 0; offset = gt[0] - x.
+  EXPECT_EQ(P.label[0], 0);
+  EXPECT_FLOAT_EQ(P.offset[0], 0.1f);
+  EXPECT_FLOAT_EQ(P.offset[1], 0.1f);
+  EXPECT_EQ(P.endpoint[0], 0);
+
+  PatchOptions zero = unit_frame(3, 2);
+  zero.padding = PaddingMode::Zero;
+  const auto Z = build_junction_patches(set, labels, gt, {0}, zero);
+  for (int k = 0; k < 7; ++k) EXPECT_EQ(Z.features[14 + k], 0.0f);
+
+  // Half or more padded -> negative; two noise lines of three (threshold 2) -> negative.
+  EXPECT_EQ(build_junction_patches(set, labels, gt, {0}, unit_frame(4, 2)).label[0], -1);
+  const std::vector<int> noisy = {-1, 1, -1, -1, -1, -1};
+  EXPECT_EQ(build_junction_patches(set, noisy, gt, {0}, unit_frame(3, 2)).label[0], -1);
+  // Query at segment 1's far end (0,1.5,0): near endpoint there is labelled -1.
+  const auto Q = build_junction_patches(set, labels, gt, {2}, unit_frame(3, 3));
+  EXPECT_FLOAT_EQ(Q.points[1], 1.5f);
+}
+
+TEST(JunctionPatch, TiesBreakToTheSmallestJunctionAndZeroLengthIsFar) {
+  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}, {Vec3(0, 0, 0), Vec3(0, 1, 0)}, {Vec3(0.1, 0, 0), Vec3(0.1, 0, 0)}};
+  const std::vector<int> labels = {3, -1, 2, -1, 0, 0};
+  const std::vector<Vec3> gt(4, Vec3::Zero());
+  const auto P = build_junction_patches(SegmentSet(segs), labels, gt, {0}, unit_frame(3, 3));
+  EXPECT_EQ(P.padded, (std::vector<uint8_t>{0, 0, 1}));  // zero-length segment at distance 1e5
+  // Line labels [3, 2, 3 (pad = segment 0)] -> 3 wins 2:1; with L = 2: [3, 2] tie -> 2.
+  EXPECT_EQ(P.label[0], 3);
+  EXPECT_EQ(build_junction_patches(SegmentSet(segs), labels, gt, {0}, unit_frame(2, 2)).label[0], 2);
+}
+
+TEST(JunctionPatch, BadInputs) {
+  EXPECT_THROW(build_junction_patches(SegmentSet({}), {}, {}, {0}, unit_frame(3, 2)), std::invalid_argument);
+  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};
+  EXPECT_THROW(build_junction_patches(SegmentSet(segs), {}, {}, {2}, unit_frame(3, 2)), std::out_of_range);
+  EXPECT_THROW(build_junction_patches(SegmentSet(segs), {0}, {}, {0}, unit_frame(3, 2)), std::invalid_argument);
+  EXPECT_THROW(build_junction_patches(SegmentSet(segs), {5, 5}, {Vec3::Zero()}, {0}, unit_frame(1, 1)), std::out_of_range);
+  PatchOptions bad;
+  bad.negative_noise_count = 40;
+  EXPECT_THROW(bad.Check(), std::invalid_argument);
+}
+
+TEST(PairPatch, SixtyFourSlotsCentredAtTheMidpoint) {
+  const std::vector<Segment3> segs = {{Vec3(1, 0, 0), Vec3(0, 0, 0)}, {Vec3(3, 0, 0), Vec3(3, 1, 0)}};
+  JunctionPair pr;
+  pr.u = Vec3(0, 0, 0);
+  pr.v = Vec3(3, 0, 0);
+  pr.label = 1;
+  const auto P = build_pair_patches(SegmentSet(segs), {pr}, unit_frame(2, 1));
+  ASSERT_EQ(P.lines, 4);
+  ASSERT_EQ(P.features.size(), 4u * 6);
+  // Around u: segment 0 (distance 0) then segment 1 (line x = 3, distance 3 > radius 2.66: padded).
+  // Around v: both lines pass through v (distance 0): tie -> lower index first (segment 0, then 1).
+  EXPECT_EQ(P.padded, (std::vector<uint8_t>{0, 1, 0, 0}));
+  const float* f = P.features.data();
+  // Midpoint m = (1.5, 0, 0): segment 0 near end (1,0,0) -> -0.5, far end (0,0,0) -> -1.5.
+  EXPECT_FLOAT_EQ(f[0], -0.5f);
+  EXPECT_FLOAT_EQ(f[3], -1.5f);
+  EXPECT_FLOAT_EQ(f[12], -0.5f);  // slot 2 = segment 0 again
+  EXPECT_FLOAT_EQ(f[18], 1.5f);   // slot 3 = segment 1, near end (3,0,0), far end (3,1,0)
+  EXPECT_FLOAT_EQ(f[21], 1.5f);
+  EXPECT_FLOAT_EQ(f[22], 1.0f);
+  EXPECT_EQ(P.label[0], 1);
+}
+
+Wireframe path4() {
+  Wireframe w;
+  for (int i = 0; i < 4; ++i) w.junctions.push_back(Vec3(2.0 * i, 0, 0));
+  w.edges = {{0, 1}, {1, 2}, {2, 3}};
+  return w;
+}
+
+TEST(Pairs, ClassesOfTheRelease) {
+  const PairClassifier c(path4());
+  EXPECT_EQ(c.classify(1, 1), kPairIdentical);
+  EXPECT_EQ(c.classify(0, 1), kPairConnected);
+  EXPECT_EQ(c.classify(0, 2), kPairDistance2);
+  EXPECT_EQ(c.classify(0, 3), kPairFarther);
+  EXPECT_EQ(c.classify(-1, 3), kPairFalsePositive);
+  EXPECT_EQ(c.classify(-1, -1), kPairFalsePositive);
+  EXPECT_EQ(assign_junction_labels({Vec3(0.3, 0, 0), Vec3(0.36, 0, 0), Vec3(1.9, 0.1, 0)}, path4().junctions, 0.35),
+            (std::vector<int>{0, -1, 1}));
+}
+
+TEST(Pairs, TrainingOrderAndCyclicFill) {
+  PredictedJunctions pred;
+  pred.positions = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(50, 0, 0), Vec3(0.1, 0, 0)};
+  pred.confidence = {0.9, 0.8, 0.7, 0.6};
+  PairSamplingOptions o;
+  o.pairs_per_building = 10;
+  o.max_static_pairs = 10;
+  const auto pairs = sample_training_pairs(path4(), pred, o);
+  std::vector<int> labels;
+  for (const auto& p : pairs) labels.push_back(p.label);
+  EXPECT_EQ(labels, (std::vector<int>{1, 1, 1, 2, 2, 3, 1, 4, 4, 1}));
+  EXPECT_TRUE(pairs[0].from_gt);
+  EXPECT_FALSE(pairs[6].from_gt);
+  EXPECT_EQ(pairs[7].i, 0);
+  EXPECT_EQ(pairs[7].j, 2);
+  // Static pairs are truncated first.
+  o.max_static_pairs = 2;
+  EXPECT_EQ(sample_training_pairs(path4(), pred, o)[2].label, 1);
+  EXPECT_FALSE(sample_training_pairs(path4(), pred, o)[2].from_gt);
+  // No predictions: static pairs are repeated, never a crash.
+  const auto only_gt = sample_training_pairs(path4(), PredictedJunctions{}, o);
+  ASSERT_EQ(only_gt.size(), 10u);
+  EXPECT_TRUE(only_gt[9].from_gt);
+  Wireframe one;
+  one.junctions = {Vec3::Zero()};
+  EXPECT_TRUE(sample_training_pairs(one, pred, o).empty());
+}
+
+TEST(Pairs, TestPairsKeepConfidentJunctions) {
+  PredictedJunctions pred;
+  pred.positions = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(50, 0, 0), Vec3(0.1, 0, 0)};
+  pred.confidence = {0.9, 0.8, 0.7, 0.6};
+  PairSamplingOptions o;
+  std::vector<int> kept;
+  EXPECT_TRUE(sample_test_pairs(pred, nullptr, o, &kept).empty());  // only one junction > 0.85
+  EXPECT_EQ(kept, (std::vector<int>{0}));
+  o.test_confidence = 0.5;
+  const Wireframe gt = path4();
+  const auto pairs = sample_test_pairs(pred, &gt, o, &kept);
+  EXPECT_EQ(kept, (std::vector<int>{0, 1, 2}));  // 3 is suppressed by 0 (NMS 0.25 m)
+  ASSERT_EQ(pairs.size(), 3u);
+  EXPECT_EQ(pairs[0].label, 1);
+  EXPECT_EQ(pairs[1].label, 4);
+  EXPECT_EQ(sample_test_pairs(pred, nullptr, o).at(1).j, 2);
+}
+
+TEST(Augmentation, IsScaleAndShiftInNetworkUnits) {
+  const NetworkFrame f;
+  Rng rng(3);
+  const Augmentation a = draw_augmentation(rng, AugmentOptions{}, f);
+  EXPECT_GE(a.scale, 0.8);
+  EXPECT_LE(a.scale, 1.25);
+  EXPECT_LE(a.shift_m.cwiseAbs().maxCoeff(), 0.1 * f.scale_m);
+  const Vec3 p(3, -2, 5);
+  const Vec3 expected = a.scale * f.to_network(p) + a.shift_m / f.scale_m;
+  EXPECT_NEAR((f.to_network(a.apply(p)) - expected).norm(), 0, 1e-12);
+  Rng r2(3);
+  EXPECT_EQ(draw_augmentation(r2, AugmentOptions{}, f).scale, a.scale);
+  AugmentOptions rot;
+  rot.rotate_z = true;
+  Rng r3(4);
+  const Augmentation b = draw_augmentation(r3, rot, f);
+  EXPECT_NE(b.angle_rad, 0.0);
+  // A rotation about the vertical through the centre keeps horizontal distances and heights (times scale).
+  const Vec3 d = b.apply(p) - b.centre_m - b.shift_m;
+  EXPECT_NEAR(d.head<2>().norm(), b.scale * (p - b.centre_m).head<2>().norm(), 1e-12);
+  EXPECT_NEAR(d.z(), b.scale * (p - b.centre_m).z(), 1e-12);
+}
+
+TEST(Samples, JunctionSampleOnASyntheticBuilding) {
+  const Building b = make_l_building("l", LBuildingSpec{});
+  const LineCloud c = make_synthetic_line_cloud(b, 11);
+  JunctionSampleOptions o;
+  const auto P = make_junction_sample(c, o, 1);
+  EXPECT_EQ(P.num_patches, 256);
+  EXPECT_EQ(P.lines, 32);
+  EXPECT_EQ(P.features.size(), 256u * 32 * 7);
+  int pos = 0;
+  for (int g = 0; g < 256; ++g) {
+    if (P.label[g] < 0) continue;
+    ++pos;
+    const Vec3 off(P.offset[3 * g], P.offset[3 * g + 1], P.offset[3 * g + 2]);
+    // Endpoint labels name the ends of the segment's GT edge, so the target junction can be an edge length away.
+    EXPECT_LT(off.norm() * o.patch.frame.scale_m, o.patch.radius_m + 16.0 + 0.5);
+  }
+  EXPECT_GT(pos, 20);
+  EXPECT_LT(pos, 256);
+  // Same seed -> same sample; augmentation changes it.
+  EXPECT_EQ(make_junction_sample(c, o, 1).features, P.features);
+  o.augment_enabled = true;
+  const auto A1 = make_junction_sample(c, o, 1);
+  EXPECT_EQ(make_junction_sample(c, o, 1).features, A1.features);
+  EXPECT_NE(make_junction_sample(c, o, 2).features, A1.features);
+  EXPECT_NE(A1.features, P.features);
+  EXPECT_EQ(A1.endpoint, P.endpoint);  // sampling happens before augmentation
+  EXPECT_THROW(make_junction_sample(LineCloud{}, o, 1), DataError);
+}
+
+TEST(Samples, PairSamplesOnASyntheticBuilding) {
+  const Building b = make_rect_building("r", RectBuildingSpec{});
+  const LineCloud c = make_synthetic_line_cloud(b, 12);
+  PredictedJunctions pred;
+  for (size_t i = 0; i < c.wireframe.junctions.size(); ++i) {
+    pred.positions.push_back(c.wireframe.junctions[i] + Vec3(0.05, 0, 0));
+    pred.confidence.push_back(0.99 - 0.01 * i);
+  }
+  pred.positions.push_back(Vec3(30, 30, 0));
+  pred.confidence.push_back(0.95);
+  PairSampleOptions o;
+  o.augment_enabled = true;
+  const auto T = make_pair_training_sample(c, pred, o, 5);
+  EXPECT_EQ(T.num_pairs, 512);
+  EXPECT_EQ(T.lines, 64);
+  EXPECT_EQ(T.features.size(), 512u * 64 * 6);
+  std::vector<JunctionPair> pairs;
+  const auto E = make_pair_test_sample(c, pred, o, &pairs);
+  EXPECT_EQ(E.num_pairs, 55);  // C(11, 2)
+  int connected = 0, fp = 0;
+  for (const auto& p : pairs) {
+    connected += p.label == kPairConnected;
+    fp += p.label == kPairFalsePositive;
+  }
+  EXPECT_EQ(connected, 17);
+  EXPECT_EQ(fp, 10);
+  // Fewer than 2 junctions at test time: no pairs, no crash.
+  PredictedJunctions one;
+  one.positions = {Vec3::Zero()};
+  one.confidence = {0.99};
+  EXPECT_EQ(make_pair_test_sample(c, one, o).num_pairs, 0);
+  LineCloud no_gt = c;
+  no_gt.wireframe = {};
+  no_gt.labels.clear();
+  EXPECT_THROW(make_pair_training_sample(no_gt, pred, o, 1), DataError);
+  const auto stacked = stack(std::vector<PairPatches>{T, T});
+  EXPECT_EQ(stacked.batch, 2);
+  EXPECT_EQ(stacked.features.size(), 2 * T.features.size());
+}
+
+}  // namespace
+}  // namespace lc2wf
