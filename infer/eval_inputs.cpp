@@ -1,0 +1,98 @@
+#include "infer/eval_inputs.h"
+
+#include <algorithm>
+#include <set>
+
+#include "dataset/atomic_file.h"
+#include "dataset/building.h"
+#include "dataset/errors.h"
+#include "dataset/line_cloud_io.h"
+#include "dataset/mesh_io.h"
+#include "dataset/text_parse.h"
+
+namespace lc2wf {
+namespace fs = std::filesystem;
+
+std::vector<std::string> read_name_list(const fs::path& path) {
+  const std::string text = read_file(path);
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  size_t start = 0;
+  int line_no = 0;
+  while (start <= text.size()) {
+    const size_t end = std::min(text.find('\n', start), text.size());
+    ++line_no;
+    const std::string name(trim(std::string_view(text).substr(start, end - start)));
+    start = end + 1;
+    if (name.empty() || name.front() == '#') continue;
+    if (name.find_first_of("/\\") != std::string::npos)
+      throw DataError(path.string(), line_no, "'" + name + "' is a path; expected a building name");
+    if (!seen.insert(name).second) throw DataError(path.string(), line_no, "duplicate building name '" + name + "'");
+    names.push_back(name);
+  }
+  return names;
+}
+
+std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const std::string& name) {
+  if (source.kind == GroundTruthSource::Kind::kMeshDir) {
+    const fs::path obj = source.dir / (name + ".obj");
+    const fs::path poly = source.dir / (name + ".polyshape");
+    const bool has_obj = fs::is_regular_file(obj), has_poly = fs::is_regular_file(poly);
+    if (has_obj && has_poly)
+      throw DataError(source.dir.string(), "both " + obj.filename().string() + " and " + poly.filename().string() +
+                                               " exist; keep one ground truth per building");
+    if (has_obj) return obj;
+    if (has_poly) return poly;
+    return std::nullopt;
+  }
+  // Line clouds: the dataset layer fixes the content, not the extension, so match on the stem.
+  std::vector<fs::path> hits;
+  for (const auto& entry : fs::directory_iterator(source.dir))
+    if (entry.is_regular_file() && entry.path().stem() == name) hits.push_back(entry.path());
+  if (hits.size() > 1) {
+    std::sort(hits.begin(), hits.end());
+    throw DataError(source.dir.string(), "several files named '" + name + "' (" + hits[0].filename().string() + ", " +
+                                             hits[1].filename().string() + "); keep one line cloud per building");
+  }
+  if (hits.empty()) return std::nullopt;
+  return hits[0];
+}
+
+GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& path) {
+  GroundTruth gt;
+  gt.path = path;
+  if (source.kind == GroundTruthSource::Kind::kLineCloudDir) {
+    LineCloud cloud = read_line_cloud(path);
+    if (cloud.wireframe.junctions.empty())
+      throw DataError(path.string(), "line cloud has no ground-truth wireframe");
+    gt.wireframe = std::move(cloud.wireframe);
+    gt.units = cloud.units;
+  } else if (path.extension() == ".polyshape") {
+    Building b = load_roof_image_building(path);
+    gt.wireframe = std::move(b.wireframe);
+    gt.units = b.units;
+  } else {
+    ObjReadOptions o;
+    o.y_up = source.obj_y_up;
+    gt.wireframe = read_obj_wireframe(path, o);
+    if (source.obj_units == CoordinateUnits::kRaw) {
+      gt.units.raw_per_metre = source.raw_per_metre;
+      for (Vec3& p : gt.wireframe.junctions) p = gt.units.to_metres(p);
+    }
+  }
+  return gt;
+}
+
+std::vector<std::string> list_ground_truth_names(const GroundTruthSource& source) {
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(source.dir)) {
+    if (!entry.is_regular_file()) continue;
+    const fs::path& p = entry.path();
+    if (source.kind == GroundTruthSource::Kind::kLineCloudDir || p.extension() == ".obj" ||
+        p.extension() == ".polyshape")
+      names.insert(p.stem().string());
+  }
+  return {names.begin(), names.end()};
+}
+
+}  // namespace lc2wf

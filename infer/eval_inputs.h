@@ -1,0 +1,47 @@
+// Locating and loading what lc2wf-eval compares: split lists, ground-truth wireframes (OBJ, Roof-Image
+// polyshape or line-cloud files) and predictions, all converted to metres.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "dataset/geometry.h"
+#include "infer/scored_wireframe.h"
+
+namespace lc2wf {
+
+// Building names, one per line; blank lines and lines starting with '#' are skipped, spaces trimmed.
+// Throws DataError naming the file (unreadable, duplicate name, name containing a path separator).
+std::vector<std::string> read_name_list(const std::filesystem::path& path);
+
+enum class CoordinateUnits { kMetres, kRaw };
+
+struct GroundTruthSource {
+  enum class Kind { kMeshDir, kLineCloudDir };
+  Kind kind = Kind::kMeshDir;
+  std::filesystem::path dir;
+  CoordinateUnits obj_units = CoordinateUnits::kMetres;  // units of GT `.obj` files
+  bool obj_y_up = false;        // GT OBJs exported Y-up (Roof-Image res_obj, LC2WF house/): swap to Z-up
+  double raw_per_metre = 20.0;  // raw OBJ units per metre (Roof-Image: 20)
+};
+
+struct GroundTruth {
+  std::filesystem::path path;
+  Wireframe wireframe;  // metres
+  UnitTransform units;  // how this building's raw coordinates map to metres (used for raw predictions)
+};
+
+// The file of `name` in the source folder: `<name>.obj` or `<name>.polyshape` (mesh folder; both present is
+// an error), or the single file whose stem is `name` (line-cloud folder). nullopt when there is none.
+std::optional<std::filesystem::path> find_ground_truth(const GroundTruthSource& source, const std::string& name);
+
+// Loads a GT file found by find_ground_truth. Polyshapes go through the dataset layer's building import
+// (metres, footprint recentred); line clouds carry their own wireframe and transform. Throws DataError.
+GroundTruth load_ground_truth(const GroundTruthSource& source, const std::filesystem::path& path);
+
+// Names of every GT building in the source folder (sorted); used when no split file is given.
+std::vector<std::string> list_ground_truth_names(const GroundTruthSource& source);
+
+}  // namespace lc2wf

@@ -1,0 +1,178 @@
+// lc2wf-eval: scores predicted wireframes against ground truth (the paper's Table 2 metrics).
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/util/progress.h"
+#include "infer/eval_inputs.h"
+#include "infer/eval_report_io.h"
+#include "infer/evaluator.h"
+#include "infer/prediction_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace lc2wf;
+
+constexpr int kExitData = 1;
+constexpr int kExitUsage = 2;
+
+const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) --out DIR [options]
+
+Scores predicted wireframes against the ground truth with the LC2WF paper's metrics (Table 2):
+vAP/vRecall at eta = 0.15/0.25/0.35 m, sAP/sRecall at eta = 0.25/0.35/0.50 m (one ranked list pooled
+over all buildings) and WED (mean per building). See infer/README.md for the exact definitions.
+
+  --pred DIR      predicted wireframes <name>.obj ('v' + 'l') with optional <name>.json scores
+                  (junction_scores / edge_scores); without scores every score is 1
+  --gt DIR        ground truth <name>.obj ('v' + 'f'/'l') or <name>.polyshape (Roof-Image mesh)
+  --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth
+  --split FILE    building names, one per line (default: every ground-truth building in the folder)
+  --out DIR       writes metrics.md, metrics.json and per_building.csv there
+  --units U       metres (default) or raw: units of the .obj files; raw coordinates are mapped to metres
+                  with the ground truth's own transform (polyshape/line cloud) or divided by 20 (.obj)
+  --gt-y-up       ground-truth .obj files are Y-up exports (Roof-Image res_obj, LC2WF house/)
+  --strict-wed    also report the strict WED (charges spurious edges and extra vertices)
+  --ties T        group (default) or list: how equal scores are ranked in the pooled AP list
+  --method NAME   row label in the tables (default: name of the --pred folder)
+  --quiet         no progress output
+  -h, --help      this text
+
+A building listed in the split without a prediction file is scored as an empty wireframe and listed in
+the outputs. Exit codes: 0 success, 1 bad or missing input data / I/O error, 2 bad command line.
+)";
+
+struct Args {
+  fs::path pred, gt, data, split, out;
+  CoordinateUnits units = CoordinateUnits::kMetres;
+  bool gt_y_up = false, strict_wed = false, quiet = false;
+  ApTieRule ties = ApTieRule::kGroupTies;
+  std::string method;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  auto value = [&](int& i) -> std::string {
+    if (i + 1 >= argc) throw UsageError(std::string(argv[i]) + " needs a value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    if (f == "--pred") a.pred = value(i);
+    else if (f == "--gt") a.gt = value(i);
+    else if (f == "--data") a.data = value(i);
+    else if (f == "--split") a.split = value(i);
+    else if (f == "--out") a.out = value(i);
+    else if (f == "--method") a.method = value(i);
+    else if (f == "--gt-y-up") a.gt_y_up = true;
+    else if (f == "--strict-wed") a.strict_wed = true;
+    else if (f == "--quiet") a.quiet = true;
+    else if (f == "--units") {
+      const std::string u = value(i);
+      if (u == "metres" || u == "meters") a.units = CoordinateUnits::kMetres;
+      else if (u == "raw") a.units = CoordinateUnits::kRaw;
+      else throw UsageError("--units must be 'metres' or 'raw', got '" + u + "'");
+    } else if (f == "--ties") {
+      const std::string t = value(i);
+      if (t == "group") a.ties = ApTieRule::kGroupTies;
+      else if (t == "list") a.ties = ApTieRule::kListOrder;
+      else throw UsageError("--ties must be 'group' or 'list', got '" + t + "'");
+    } else {
+      throw UsageError("unknown argument '" + f + "'");
+    }
+  }
+  if (a.pred.empty()) throw UsageError("--pred DIR is required");
+  if (a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
+  if (a.out.empty()) throw UsageError("--out DIR is required");
+  for (const fs::path& d : {a.pred, a.gt.empty() ? a.data : a.gt})
+    if (!fs::is_directory(d)) throw UsageError("'" + d.string() + "' is not a folder");
+  if (!a.split.empty() && !fs::is_regular_file(a.split))
+    throw UsageError("split file '" + a.split.string() + "' does not exist");
+  if (a.method.empty()) a.method = fs::absolute(a.pred).lexically_normal().filename().string();
+  if (a.method.empty()) a.method = "prediction";
+  return a;
+}
+
+int run(const Args& a) {
+  GroundTruthSource source;
+  source.kind = a.gt.empty() ? GroundTruthSource::Kind::kLineCloudDir : GroundTruthSource::Kind::kMeshDir;
+  source.dir = a.gt.empty() ? a.data : a.gt;
+  source.obj_units = a.units;
+  source.obj_y_up = a.gt_y_up;
+
+  const std::vector<std::string> names = a.split.empty() ? list_ground_truth_names(source) : read_name_list(a.split);
+  if (names.empty()) {
+    std::fprintf(stderr, "lc2wf-eval: error: no buildings to evaluate (%s is empty)\n",
+                 (a.split.empty() ? source.dir : a.split).string().c_str());
+    return kExitData;
+  }
+
+  EvalOptions options;
+  options.ties = a.ties;
+  options.strict_wed = a.strict_wed;
+  options.raw_per_metre = source.raw_per_metre;
+  Evaluator evaluator(options);
+  std::unique_ptr<Progress> progress;
+  if (!a.quiet) progress = std::make_unique<Progress>("evaluating", static_cast<int64_t>(names.size()));
+  for (const std::string& name : names) {
+    const auto gt_path = find_ground_truth(source, name);
+    if (!gt_path) {
+      if (progress) progress->finish();
+      std::fprintf(stderr, "lc2wf-eval: error: no ground truth for building '%s' in %s\n", name.c_str(),
+                   source.dir.string().c_str());
+      return kExitData;
+    }
+    const GroundTruth gt = load_ground_truth(source, *gt_path);
+    const fs::path pred_path = a.pred / (name + ".obj");
+    const bool missing = !fs::exists(pred_path);
+    const ScoredWireframe pred =
+        missing ? ScoredWireframe{}
+                : read_prediction(pred_path, a.units == CoordinateUnits::kRaw ? &gt.units : nullptr);
+    evaluator.add(name, pred, gt.wireframe, missing);
+    if (progress) progress->step();
+  }
+  if (progress) progress->finish();
+
+  const EvalReport report = evaluator.report();
+  write_eval_outputs(a.out, report, a.method);
+  const auto missing = report.missing_predictions();
+  if (!missing.empty())
+    std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings have no prediction in %s (scored as empty)\n",
+                 missing.size(), names.size(), a.pred.string().c_str());
+  std::fputs(eval_markdown(report, a.method).c_str(), stdout);
+  std::fprintf(stdout, "\nWrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),
+               (a.out / "metrics.json").string().c_str(), (a.out / "per_building.csv").string().c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    if (f == "-h" || f == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+  }
+  Args args;
+  try {
+    args = parse_args(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lc2wf-eval: %s\nRun 'lc2wf-eval --help' for usage.\n", e.what());
+    return kExitUsage;
+  }
+  try {
+    return run(args);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "\nlc2wf-eval: error: %s\n", e.what());
+    return kExitData;
+  }
+}

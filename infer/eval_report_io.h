@@ -1,0 +1,21 @@
+// Output formats of an evaluation: a Markdown table shaped like the paper's Table 2, a JSON with every
+// number, and a per-building CSV (formats documented in infer/README.md).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "infer/evaluator.h"
+
+namespace lc2wf {
+
+std::string eval_markdown(const EvalReport& report, const std::string& method);
+nlohmann::json eval_json(const EvalReport& report, const std::string& method);
+std::string eval_per_building_csv(const EvalReport& report);
+
+// Writes `<dir>/metrics.md`, `<dir>/metrics.json` and `<dir>/per_building.csv`, each atomically.
+void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method);
+
+}  // namespace lc2wf

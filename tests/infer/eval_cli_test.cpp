@@ -1,0 +1,130 @@
+// Runs the lc2wf-eval binary on small generated cases.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+
+#include "dataset/line_cloud_io.h"
+#include "test_files.h"
+
+namespace lc2wf {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliResult {
+  int code = -1;
+  std::string out, err;
+};
+
+CliResult run_eval(const fs::path& scratch, const std::string& args) {
+  const fs::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
+  const std::string cmd = std::string(LC2WF_EVAL_BIN) + " " + args + " >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = testing::read_text(out);
+  r.err = testing::read_text(err);
+  return r;
+}
+
+// The box of testing::box_polyshape(x0) as a raw-unit prediction with all 12 edges.
+std::string box_prediction_raw(double x0) {
+  std::string s;
+  for (int z : {4, 0})
+    for (auto [x, y] : {std::pair{0, 0}, {10, 0}, {10, 6}, {0, 6}})
+      s += "v " + std::to_string(x0 + x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+  s += "l 1 2 3 4 1\nl 5 6 7 8 5\nl 1 5\nl 2 6\nl 3 7\nl 4 8\n";
+  return s;
+}
+
+TEST(EvalCli, HelpAndUsageErrors) {
+  testing::ScratchDir dir("cli_usage");
+  const CliResult help = run_eval(dir.path(), "--help");
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("Usage: lc2wf-eval"), std::string::npos);
+  const CliResult none = run_eval(dir.path(), "--pred " + dir.path().string() + " --out x");
+  EXPECT_EQ(none.code, 2);
+  EXPECT_NE(none.err.find("--gt"), std::string::npos);
+  const CliResult bad = run_eval(dir.path(), "--bogus");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--bogus"), std::string::npos);
+  const CliResult units = run_eval(dir.path(), "--pred . --gt . --out x --units feet");
+  EXPECT_EQ(units.code, 2);
+}
+
+TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {
+  testing::ScratchDir dir("cli_poly");
+  const fs::path gt = dir.path() / "gt", pred = dir.path() / "pred", out = dir.path() / "out";
+  testing::write_text(gt / "b1.polyshape", testing::box_polyshape(100));
+  testing::write_text(gt / "b2.polyshape", testing::box_polyshape(300));
+  testing::write_text(pred / "b1.obj", box_prediction_raw(100));
+  testing::write_text(dir.path() / "split.txt", "b1\nb2\n");
+  const CliResult r = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --split " +
+                                         (dir.path() / "split.txt").string() + " --out " + out.string() +
+                                         " --units raw --strict-wed --method box");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("| box | 50.0/50.0 |"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("1 of 2 buildings have no prediction"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(testing::read_text(out / "metrics.json"));
+  EXPECT_EQ(j["missing_predictions"], nlohmann::json::array({"b2"}));
+  EXPECT_DOUBLE_EQ(j["vertex"][0]["ap"].get<double>(), 0.5);  // 8 of 16 GT vertices, all exact, scores 1
+  EXPECT_DOUBLE_EQ(j["edge"][0]["recall"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["per_building"][0]["wed"]["total_num"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(j["wed_strict"]["add_vertex"].get<double>(), 4.0);
+  const std::string csv = testing::read_text(out / "per_building.csv");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
+  EXPECT_FALSE(testing::read_text(out / "metrics.md").empty());
+  // Read in metres instead, the raw coordinates are 20x too large: nothing matches.
+  const CliResult metres = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --out " +
+                                              (dir.path() / "out_m").string() + " --quiet");
+  ASSERT_EQ(metres.code, 0) << metres.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(testing::read_text(dir.path() / "out_m" / "metrics.json"))["vertex"][2]["ap"]
+                       .get<double>(),
+                   0.0);
+}
+
+TEST(EvalCli, LineCloudGroundTruthWithScores) {
+  testing::ScratchDir dir("cli_cloud");
+  const fs::path data = dir.path() / "data", pred = dir.path() / "pred", out = dir.path() / "out";
+  LineCloud cloud;
+  cloud.name = "c1";
+  cloud.segments = {{{0, 0, 0}, {1, 0, 0}}};
+  cloud.wireframe.junctions = {{0, 0, 0}, {4, 0, 0}, {4, 3, 0}};
+  cloud.wireframe.edges = {{0, 1}, {1, 2}, {0, 2}};
+  cloud.units.raw_per_metre = 20;
+  fs::create_directories(data);
+  write_line_cloud(data / "c1.lcl", cloud);
+  // Two junctions exact, one 0.3 m off; the sidecar ranks the bad one lowest.
+  testing::write_text(pred / "c1.obj", "v 0 0 0\nv 4 0 0\nv 4 3.3 0\nl 1 2 3 1\n");
+  testing::write_text(pred / "c1.json", R"({"format": "lc2wf-wireframe-scores", "version": 1,
+      "junction_scores": [0.9, 0.8, 0.1], "edge_scores": [0.9, 0.5, 0.4]})");
+  const CliResult r = run_eval(dir.path(), "--pred " + pred.string() + " --data " + data.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(testing::read_text(out / "metrics.json"));
+  EXPECT_NEAR(j["vertex"][0]["ap"].get<double>(), 2.0 / 3.0, 1e-12);  // TP TP FP of 3
+  EXPECT_NEAR(j["vertex"][2]["ap"].get<double>(), 1.0, 1e-12);        // 0.3 m < 0.35 m
+  EXPECT_NEAR(j["edge"][0]["ap"].get<double>(), 1.0 / 3.0, 1e-12);    // 0.25 m: only the exact edge, TP FP FP
+  EXPECT_NEAR(j["edge"][2]["ap"].get<double>(), 1.0, 1e-12);          // 0.50 m: the 0.3 m-off edges count
+}
+
+TEST(EvalCli, BadInputsExitOneAndNameTheProblem) {
+  testing::ScratchDir dir("cli_bad");
+  const fs::path gt = dir.path() / "gt", pred = dir.path() / "pred";
+  testing::write_text(gt / "b1.polyshape", testing::box_polyshape(0));
+  testing::write_text(pred / "b1.obj", "v 0 0 zero\n");
+  const std::string base = "--pred " + pred.string() + " --gt " + gt.string() + " --out " + (dir.path() / "o").string();
+  const CliResult bad_pred = run_eval(dir.path(), base);
+  EXPECT_EQ(bad_pred.code, 1);
+  EXPECT_NE(bad_pred.err.find("b1.obj:1"), std::string::npos) << bad_pred.err;
+  testing::write_text(dir.path() / "split.txt", "b1\nghost\n");
+  testing::write_text(pred / "b1.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
+  const CliResult no_gt = run_eval(dir.path(), base + " --split " + (dir.path() / "split.txt").string());
+  EXPECT_EQ(no_gt.code, 1);
+  EXPECT_NE(no_gt.err.find("ghost"), std::string::npos) << no_gt.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "o" / "metrics.json"));
+}
+
+}  // namespace
+}  // namespace lc2wf
