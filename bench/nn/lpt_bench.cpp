@@ -1,0 +1,107 @@
+// Line-Patch Transformer speed at the paper's shapes: one training step (forward, release loss,
+// backward, AdamW) of each model and one inference pass per building. Reports seconds per iteration
+// and the process's peak RSS; run one workload per process (--benchmark_filter) for a per-workload peak.
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <cstdlib>
+#include <vector>
+
+#include "core/ops.h"
+#include "core/parallel.h"
+#include "nn/edge_net.h"
+#include "nn/junction_net.h"
+#include "nn/losses.h"
+#include "nn/optimizer.h"
+
+namespace lc2wf {
+namespace {
+
+double peak_rss_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+}
+
+struct Batch {
+  Tensor x, mask, labels, offsets;
+};
+
+// Random patches like the real data: ~40% padded slots, slot 0 always valid.
+Batch make_batch(int64_t B, int64_t G, int64_t N, int64_t F, int64_t classes, uint64_t seed) {
+  Rng rng(seed);
+  std::vector<float> x(static_cast<size_t>(B * G * N * F));
+  for (auto& v : x) v = static_cast<float>(rng.next_uniform(-0.5, 0.5));
+  std::vector<uint8_t> mask(static_cast<size_t>(B * G * N));
+  for (size_t i = 0; i < mask.size(); ++i) mask[i] = (i % N != 0) && rng.next_uniform() < 0.4;
+  std::vector<int64_t> labels(static_cast<size_t>(B * G));
+  for (auto& l : labels) l = static_cast<int64_t>(rng.next_below(classes));
+  std::vector<float> offsets(static_cast<size_t>(B * G * 3));
+  for (auto& v : offsets) v = static_cast<float>(rng.next_uniform(-0.1, 0.1));
+  return {Tensor::from_vector(x, {B, G, N, F}), Tensor::from_mask(mask, {B, G, N}),
+          Tensor::from_vector(labels, {B, G}), Tensor::from_vector(offsets, {B, G, 3})};
+}
+
+void finish(benchmark::State& state) { state.counters["peak_rss_MB"] = peak_rss_mb(); }
+
+void BM_JunctionTrainStep(benchmark::State& state) {
+  JunctionNet net{JunctionNetConfig{}};
+  AdamW opt(net.named_parameters(), OptimConfig{});
+  const Batch b = make_batch(16, 256, 32, 7, 2, 1);
+  JunctionLossConfig loss_config;
+  loss_config.kind = "release";
+  auto step = [&] {
+    opt.zero_grad();
+    const LossTerms loss = junction_loss(net.forward(b.x, b.mask), {b.labels, b.offsets}, loss_config);
+    loss.total.backward();
+    opt.step();
+  };
+  step();  // warm-up: first-touch allocations
+  for (auto _ : state) step();
+  finish(state);
+}
+
+void BM_EdgeTrainStep(benchmark::State& state) {
+  EdgeNet net{EdgeNetConfig{}};
+  AdamW opt(net.named_parameters(), OptimConfig{});
+  const Batch b = make_batch(4, 512, 64, 6, 5, 2);
+  auto step = [&] {
+    opt.zero_grad();
+    const Tensor loss = edge_loss(net.forward(b.x, b.mask), b.labels, EdgeLossConfig{});
+    loss.backward();
+    opt.step();
+  };
+  step();
+  for (auto _ : state) step();
+  finish(state);
+}
+
+void BM_JunctionInference(benchmark::State& state) {
+  JunctionNet net{JunctionNetConfig{}};
+  net.eval();
+  const Batch b = make_batch(1, 256, 32, 7, 2, 3);
+  NoGradGuard no_grad;
+  net.forward(b.x, b.mask);
+  for (auto _ : state) benchmark::DoNotOptimize(net.forward(b.x, b.mask).logits.data<float>());
+  finish(state);
+}
+
+void BM_EdgeInference(benchmark::State& state) {
+  EdgeNet net{EdgeNetConfig{}};
+  net.eval();
+  const Batch b = make_batch(1, 435, 64, 6, 5, 4);
+  NoGradGuard no_grad;
+  net.forward(b.x, b.mask);
+  for (auto _ : state) benchmark::DoNotOptimize(net.forward(b.x, b.mask).data<float>());
+  finish(state);
+}
+
+BENCHMARK(BM_JunctionTrainStep)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_EdgeTrainStep)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_JunctionInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+BENCHMARK(BM_EdgeInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+
+}  // namespace
+}  // namespace lc2wf
+
+BENCHMARK_MAIN();

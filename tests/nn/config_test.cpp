@@ -1,0 +1,113 @@
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "nn/config.h"
+
+namespace lc2wf {
+namespace {
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Config, DefaultsAreThePaperValues) {
+  const JunctionNetConfig j;
+  EXPECT_EQ(j.lpt.input_dim, 7);
+  EXPECT_EQ(j.lpt.lines_per_patch, 32);
+  EXPECT_EQ(j.lpt.patches, 256);
+  EXPECT_EQ(j.lpt.mlp_dims, (std::vector<int64_t>{64, 64, 128, 128, 256}));
+  EXPECT_EQ(j.lpt.hidden_dim, 256);
+  EXPECT_EQ(j.lpt.num_heads, 8);
+  EXPECT_EQ(j.lpt.ffn_dim, 256);
+  EXPECT_DOUBLE_EQ(j.lpt.dropout, 0.5);
+  EXPECT_DOUBLE_EQ(j.lpt.attn_dropout, 0.5);
+  EXPECT_EQ(j.lpt.pool, "mean_all");
+  EXPECT_EQ(j.head.dims, (std::vector<int64_t>{128, 64, 32}));
+  EXPECT_DOUBLE_EQ(j.head.dropout, 0.1);
+  const EdgeNetConfig e;
+  EXPECT_EQ(e.lpt.input_dim, 6);
+  EXPECT_EQ(e.lpt.lines_per_patch, 64);
+  EXPECT_EQ(e.lpt.patches, 512);
+  EXPECT_EQ(e.num_classes, 5);
+  EXPECT_EQ(EdgeLossConfig{}.class_weights, (std::vector<double>{1, 3, 1, 1, 1}));
+  EXPECT_EQ(JunctionLossConfig{}.kind, "paper");
+  EXPECT_DOUBLE_EQ(JunctionLossConfig{}.reg_weight, 10.0);
+  const OptimConfig o;
+  EXPECT_EQ(o.optimizer, "adamw");
+  EXPECT_DOUBLE_EQ(o.lr, 1e-3);
+  EXPECT_DOUBLE_EQ(o.weight_decay, 1e-5);
+  EXPECT_EQ(o.milestones, (std::vector<int64_t>{15, 30, 41}));
+  EXPECT_NO_THROW(j.Check());
+  EXPECT_NO_THROW(e.Check());
+  EXPECT_NO_THROW(o.Check());
+}
+
+TEST(Config, SmallerModelIsOneJsonAway) {
+  const auto j = nlohmann::json::parse(R"({"lpt": {"hidden_dim": 32, "mlp_dims": [8, 32], "num_heads": 4},
+                                           "head": {"dims": [16]}})");
+  const JunctionNetConfig c = JunctionNetConfig::from_json(j);
+  EXPECT_EQ(c.lpt.hidden_dim, 32);
+  EXPECT_EQ(c.lpt.mlp_dims, (std::vector<int64_t>{8, 32}));
+  EXPECT_EQ(c.lpt.lines_per_patch, 32);  // untouched keys keep their defaults
+  EXPECT_NO_THROW(c.Check());
+  EXPECT_EQ(JunctionNetConfig::from_json(c.to_json()).to_json(), c.to_json());
+}
+
+TEST(Config, EdgeKeepsItsOwnDefaultsUnderPartialJson) {
+  const EdgeNetConfig c = EdgeNetConfig::from_json(nlohmann::json::parse(R"({"lpt": {"hidden_dim": 256}})"));
+  EXPECT_EQ(c.lpt.input_dim, 6);
+  EXPECT_EQ(c.lpt.lines_per_patch, 64);
+}
+
+TEST(Config, UnknownKeysAndWrongTypesNameTheField) {
+  EXPECT_NE(error_of([] { JunctionNetConfig::from_json(nlohmann::json::parse(R"({"lpt": {"hiden_dim": 3}})")); })
+                .find("junction_net.lpt: unknown key 'hiden_dim'"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { OptimConfig::from_json(nlohmann::json::parse(R"({"lr": "fast"})")); }).find("optim.lr"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"num_heads": 2.5})")); })
+                .find("lpt.num_heads: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"mlp_dims": [8, "x"]})")); })
+                .find("lpt.mlp_dims[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { HeadConfig::from_json(nlohmann::json::parse("[1]")); }).find("expected a JSON object"),
+            std::string::npos);
+}
+
+TEST(Config, CheckNamesTheBadField) {
+  LptConfig l;
+  l.num_heads = 7;
+  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.num_heads"), std::string::npos);
+  l = LptConfig{};
+  l.mlp_dims = {64, 128};
+  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.mlp_dims"), std::string::npos);
+  l = LptConfig{};
+  l.pool = "max";
+  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.pool"), std::string::npos);
+  l = LptConfig{};
+  l.dropout = 1.0;
+  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.dropout"), std::string::npos);
+  JunctionLossConfig jl;
+  jl.kind = "focal";
+  EXPECT_NE(error_of([&] { jl.Check(); }).find("junction_loss.kind"), std::string::npos);
+  OptimConfig o;
+  o.milestones = {30, 15};
+  EXPECT_NE(error_of([&] { o.Check(); }).find("optim.milestones"), std::string::npos);
+  EdgeLossConfig el;
+  el.class_weights = {1, -1};
+  EXPECT_NE(error_of([&] { el.Check(); }).find("edge_loss.class_weights"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lc2wf
