@@ -14,11 +14,12 @@ bool finite(const Eigen::MatrixBase<Derived>& m) {
 
 }  // namespace
 
-std::vector<int> endpoint_labels(const LineCloud& cloud) {
+std::vector<int> endpoint_labels(const LineCloud& cloud, double max_distance_m) {
   std::vector<int> out(2 * cloud.segments.size(), -1);
   for (size_t i = 0; i < cloud.labels.size() && i < cloud.segments.size(); ++i) {
-    out[2 * i] = cloud.labels[i].i1;
-    out[2 * i + 1] = cloud.labels[i].i2;
+    const auto& l = cloud.labels[i];
+    if (l.d1 <= max_distance_m) out[2 * i] = l.i1;
+    if (l.d2 <= max_distance_m) out[2 * i + 1] = l.i2;
   }
   return out;
 }

@@ -2,6 +2,7 @@
 // wireframe, the raw<->metre transform and the per-segment label tuple (f, i1, d1, i2, d2).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,10 @@ struct LineCloud {
 };
 
 // The release's per-endpoint labels (2N values: GT junction id or -1), derived from `labels`:
-// endpoint a -> i1, endpoint b -> i2. All -1 when the cloud is unlabelled.
-std::vector<int> endpoint_labels(const LineCloud& cloud);
+// endpoint a -> i1, endpoint b -> i2. All -1 when the cloud is unlabelled. With a finite
+// `max_distance_m` an endpoint keeps its junction only when it lies within that distance of it (d1/d2),
+// so a piece from the middle of a long edge does not point at junctions metres away.
+std::vector<int> endpoint_labels(const LineCloud& cloud, double max_distance_m = std::numeric_limits<double>::infinity());
 
 // Label tuple for a segment known to lie on GT edge (j, k): orders the junctions to match the segment's
 // endpoints (the pairing with the smaller summed endpoint distance) and fills the distances.

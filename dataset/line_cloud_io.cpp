@@ -208,7 +208,7 @@ LineCloud line_cloud_from_bytes(const std::string& bytes, const std::string& src
       h = Json::parse(bytes.substr(eol + 1, header_len));
       blob = std::string_view(bytes).substr(eol + 1 + header_len);
     }
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {
     throw DataError(src, std::string("malformed JSON: ") + e.what());
   }
 

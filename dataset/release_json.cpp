@@ -59,7 +59,7 @@ LineCloud parse_release_line_cloud(const std::string& text, const std::string& s
   Json j;
   try {
     j = Json::parse(text);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {
     throw DataError(src, std::string("malformed JSON: ") + e.what());
   }
   if (!j.is_object()) throw DataError(src, "top level must be an object");

@@ -1,5 +1,7 @@
 #include "dataset/samples.h"
 
+#include <stdexcept>
+
 #include "dataset/errors.h"
 #include "dataset/rng.h"
 
@@ -13,6 +15,7 @@ void require_segments(const LineCloud& c) {
 }  // namespace
 
 void JunctionSampleOptions::Check() const {
+  if (!(endpoint_label_max_distance_m > 0)) throw std::invalid_argument("JunctionSampleOptions.endpoint_label_max_distance_m must be > 0");
   sampling.Check();
   patch.Check();
   augment.Check();
@@ -35,7 +38,7 @@ JunctionPatches make_junction_sample(const LineCloud& cloud, const JunctionSampl
   std::vector<Vec3> gt = cloud.wireframe.junctions;
   aug.apply(segs);
   aug.apply(gt);
-  return build_junction_patches(SegmentSet(segs), endpoint_labels(cloud), gt, samples, o.patch);
+  return build_junction_patches(SegmentSet(segs), endpoint_labels(cloud, o.endpoint_label_max_distance_m), gt, samples, o.patch);
 }
 
 PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJunctions& predicted,

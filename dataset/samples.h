@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include "dataset/augmentation.h"
 #include "dataset/line_cloud.h"
@@ -16,6 +17,9 @@ struct JunctionSampleOptions {
   PatchOptions patch;
   AugmentOptions augment;
   bool augment_enabled = false;  // training only, as the release
+  // Endpoint labels farther than this from their junction count as noise (see endpoint_labels()); the
+  // default keeps the plain (f, i1, i2) derivation.
+  double endpoint_label_max_distance_m = std::numeric_limits<double>::infinity();
   void Check() const;
 };
 

@@ -91,6 +91,7 @@ TEST(LineCloudIo, EndpointLabelsFollowTheTuple) {
   EXPECT_NEAR(c.labels[0].d1, std::hypot(0.1, 0.1), 1e-12);
   EXPECT_NEAR(c.labels[0].d2, 0.5, 1e-12);
   EXPECT_EQ(endpoint_labels(c), (std::vector<int>{1, 0, -1, -1}));
+  EXPECT_EQ(endpoint_labels(c, 0.3), (std::vector<int>{1, -1, -1, -1}));
 }
 
 std::string replace_once(std::string s, const std::string& from, const std::string& to) {
