@@ -1,0 +1,24 @@
+// 2D line segments with OpenCV 4.6's LSD (restored in 4.5.4; Debian's 4.6.0 has it and it does not
+// throw), as Line3D++ uses it: refinement, minimum length relative to the image diagonal, the longest
+// segments kept, sorted longest first (the index is the segment id).
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "dataset/geometry.h"
+
+namespace lc2wf {
+
+struct LsdOptions {
+  bool refine_advanced = true;      // LSD_REFINE_ADV, else LSD_REFINE_STD
+  double min_length_frac = 0.01;    // of the full-resolution image diagonal
+  int max_segments = 1000;          // keep the longest
+  int max_side = 0;                 // downscale so the larger side is at most this before LSD (0 = never)
+  void Check() const;
+};
+
+// Accepts 8-bit gray or BGR images; throws std::invalid_argument for an empty or other-typed image.
+std::vector<Segment2> detect_segments(const cv::Mat& image, const LsdOptions& options);
+
+}  // namespace lc2wf

@@ -1,0 +1,69 @@
+#include "tools/pipeline/cloud_builder.h"
+
+#include <chrono>
+
+#include "dataset/errors.h"
+
+namespace lc2wf {
+namespace {
+
+double since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+}  // namespace
+
+void CloudBuilderOptions::Check() const {
+  lsd.Check();
+  triangulator.Check();
+  labels.Check();
+}
+
+LineCloud build_line_cloud(const Building& building, const std::vector<RenderedView>& views, const CloudBuilderOptions& options,
+                           CloudBuildStats* stats) {
+  options.Check();
+  CloudBuildStats local;
+  CloudBuildStats& st = stats ? *stats : local;
+  if (views.empty()) throw DataError(building.name, "no views (cameras missing)");
+
+  auto t = std::chrono::steady_clock::now();
+  std::vector<TriangulationView> tv(views.size());
+  st.segments_per_view.assign(views.size(), 0);
+  long long total_segments = 0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    tv[v].camera = views[v].camera;
+    tv[v].segments = detect_segments(views[v].image, options.lsd);
+    st.segments_per_view[v] = static_cast<int>(tv[v].segments.size());
+    total_segments += st.segments_per_view[v];
+  }
+  st.seconds_lsd = since(t);
+  if (total_segments == 0) throw DataError(building.name, "LSD found no 2D segment in any of " + std::to_string(views.size()) + " views");
+
+  t = std::chrono::steady_clock::now();
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vec3& p : building.mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const auto lines = triangulate_lines(tv, options.triangulator, Vec3(0.5 * (lo + hi)), &st.triangulation);
+  st.seconds_triangulation = since(t);
+  if (lines.empty()) throw DataError(building.name, "triangulation produced no 3D line");
+
+  t = std::chrono::steady_clock::now();
+  LineCloud cloud;
+  cloud.name = building.name;
+  cloud.units = building.units;
+  cloud.wireframe = building.wireframe;
+  for (const RenderedView& v : views) cloud.cameras.push_back(v.camera);
+  for (const TriangulatedLine& l : lines) {
+    cloud.segments.push_back(l.line);
+    std::vector<Observation> obs;
+    for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, tv[s.ref.view].segments[s.ref.segment]});
+    cloud.support.push_back(std::move(obs));
+  }
+  cloud.labels = label_by_support(cloud, building.mesh, options.labels);
+  st.seconds_labelling = since(t);
+  return cloud;
+}
+
+}  // namespace lc2wf

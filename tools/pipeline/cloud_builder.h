@@ -1,0 +1,40 @@
+// Rendered views of one building -> labelled line cloud: LSD per view, multi-view triangulation, and
+// labels (f, i1, d1, i2, d2) from the supporting 2D segments via dataset/ labelling.
+#pragma once
+
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "dataset/building.h"
+#include "dataset/labelling.h"
+#include "dataset/line_cloud.h"
+#include "tools/lines/lsd_detector.h"
+#include "tools/triangulation/line_triangulator.h"
+
+namespace lc2wf {
+
+struct RenderedView {
+  cv::Mat image;  // 8-bit gray or BGR
+  Camera camera;
+};
+
+struct CloudBuilderOptions {
+  LsdOptions lsd;
+  TriangulatorOptions triangulator;
+  SupportLabelOptions labels;
+  void Check() const;
+};
+
+struct CloudBuildStats {
+  std::vector<int> segments_per_view;
+  TriangulationStats triangulation;
+  double seconds_lsd = 0.0;
+  double seconds_triangulation = 0.0;
+  double seconds_labelling = 0.0;
+};
+
+// Throws DataError naming the building when no view yields any 2D segment or no 3D line results.
+LineCloud build_line_cloud(const Building& building, const std::vector<RenderedView>& views, const CloudBuilderOptions& options,
+                           CloudBuildStats* stats = nullptr);
+
+}  // namespace lc2wf

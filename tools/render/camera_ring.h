@@ -1,0 +1,34 @@
+// Oblique views around a building: cameras on rings at several elevations, all aimed near the building
+// centre, each placed at the smallest distance that keeps every mesh vertex inside the frame.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "dataset/geometry.h"
+
+namespace lc2wf {
+
+struct CameraRingOptions {
+  int views = 20;
+  int width = 640;
+  int height = 480;
+  double focal_px = 0.0;             // 0: a 35 mm lens on a 36 mm sensor (fx = 0.9722 * width)
+  double min_elevation_deg = 20.0;
+  double max_elevation_deg = 45.0;
+  int rings = 3;                     // elevations cycle through this many evenly spaced rings
+  double azimuth_jitter_deg = 6.0;
+  double elevation_jitter_deg = 3.0;
+  double target_jitter = 0.03;       // aim-point jitter as a fraction of the building's size
+  double margin = 0.06;              // keep vertices this fraction of the image size away from the border
+  uint64_t seed = 0;
+  void Check() const;
+};
+
+// Throws std::invalid_argument when `points` is empty or the options are bad.
+std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const CameraRingOptions& options);
+
+// OpenCV-convention camera at `center` looking at `target` with world +z up in the image.
+Camera look_at(const Vec3& center, const Vec3& target, const Eigen::Matrix3d& K, int width, int height);
+
+}  // namespace lc2wf
