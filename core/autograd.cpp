@@ -27,7 +27,7 @@ void accumulate_leaf(TensorImpl& leaf, const Tensor& g) {
     using T = decltype(tag);
     T* a = ptr<T>(acc);
     const T* b = ptr<T>(g);
-    parallel_for(n, kElemGrain, [&](int64_t s, int64_t e) {
+    parallel_for_work(n, kElemGrain, 1, [&](int64_t s, int64_t e) {
       for (int64_t i = s; i < e; ++i) a[i] += b[i];
     });
     return 0;

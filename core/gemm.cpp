@@ -58,7 +58,7 @@ void gemm(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, int64_t
   // Few row tiles: also split the columns so both cores get work.
   int64_t col_tile = row_tiles >= 4 ? N : kTileCols;
   int64_t col_tiles = (N + col_tile - 1) / col_tile;
-  parallel_for(row_tiles * col_tiles, 1, [&](int64_t t0, int64_t t1) {
+  parallel_for_work(row_tiles * col_tiles, 1, kTileRows * col_tile * std::max<int64_t>(K, 1), [&](int64_t t0, int64_t t1) {
     for (int64_t t = t0; t < t1; ++t) {
       int64_t rt = t / col_tiles, ct = t % col_tiles;
       int64_t r0 = rt * kTileRows, c0 = ct * col_tile;

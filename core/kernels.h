@@ -54,21 +54,21 @@ T* ptr(const Tensor& t) {
 // out[i] = f(a[i]) over n elements, in fixed chunks.
 template <class T, class F>
 void map1(const T* a, T* out, int64_t n, F f) {
-  parallel_for(n, kElemGrain, [&](int64_t b, int64_t e) {
+  parallel_for_work(n, kElemGrain, 2, [&](int64_t b, int64_t e) {
     for (int64_t i = b; i < e; ++i) out[i] = f(a[i]);
   });
 }
 
 template <class T, class F>
 void map2(const T* a, const T* b, T* out, int64_t n, F f) {
-  parallel_for(n, kElemGrain, [&](int64_t s, int64_t e) {
+  parallel_for_work(n, kElemGrain, 2, [&](int64_t s, int64_t e) {
     for (int64_t i = s; i < e; ++i) out[i] = f(a[i], b[i]);
   });
 }
 
 template <class T, class F>
 void map3(const T* a, const T* b, const T* c, T* out, int64_t n, F f) {
-  parallel_for(n, kElemGrain, [&](int64_t s, int64_t e) {
+  parallel_for_work(n, kElemGrain, 2, [&](int64_t s, int64_t e) {
     for (int64_t i = s; i < e; ++i) out[i] = f(a[i], b[i], c[i]);
   });
 }
@@ -104,7 +104,7 @@ void broadcast_loop(const T* a, const T* b, T* out, const BroadcastPlan& p, F f)
   int64_t ia = p.sa[nd - 1], ib = p.sb[nd - 1];
   int64_t rows = prod(p.size, 0, nd - 1);
   int64_t grain = std::max<int64_t>(1, kElemGrain / inner);
-  parallel_for(rows, grain, [&](int64_t r0, int64_t r1) {
+  parallel_for_work(rows, grain, inner, [&](int64_t r0, int64_t r1) {
     for (int64_t r = r0; r < r1; ++r) {
       int64_t oa = 0, ob = 0, rem = r;
       for (size_t d = nd - 1; d-- > 0;) {

@@ -37,7 +37,7 @@ template <class T>
 void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, Layout lk, const T* v, Layout lv, T* o,
                        Layout lo, const uint8_t* mask, T scale, const DropoutPlan& drop, T* probs) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
-  parallel_for(s.B * s.H, kPairsPerTask, [&](int64_t p0, int64_t p1) {
+  parallel_for_work(s.B * s.H, kPairsPerTask, 4 * s.Lq * s.Lk * (s.D + 4), [&](int64_t p0, int64_t p1) {
     std::vector<T> kt(static_cast<size_t>(D * Lk)), pd(static_cast<size_t>(Lk));
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
@@ -106,7 +106,7 @@ void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, L
                         const T* go, Layout lo, const T* probs, T scale, const DropoutPlan& drop, T* dq, Layout ldq,
                         T* dk, Layout ldk, T* dv, Layout ldv) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
-  parallel_for(s.B * s.H, kPairsPerTask, [&](int64_t p0, int64_t p1) {
+  parallel_for_work(s.B * s.H, kPairsPerTask, 4 * s.Lq * s.Lk * (s.D + 4), [&](int64_t p0, int64_t p1) {
     std::vector<T> vt(static_cast<size_t>(D * Lk)), dp(static_cast<size_t>(Lk)), pw(static_cast<size_t>(Lk));
     std::vector<uint8_t> keep(static_cast<size_t>(Lk), 1);
     for (int64_t p = p0; p < p1; ++p) {
@@ -174,7 +174,7 @@ void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, L
 template <class T>
 void head_average(const AttnShape& s, const T* probs, T* avg) {
   int64_t LL = s.Lq * s.Lk;
-  parallel_for(s.B, 1, [&](int64_t b0, int64_t b1) {
+  parallel_for_work(s.B, 1, s.H * s.Lq * s.Lk, [&](int64_t b0, int64_t b1) {
     for (int64_t b = b0; b < b1; ++b) {
       T* dst = avg + b * LL;
       std::fill_n(dst, LL, T(0));

@@ -51,7 +51,7 @@ Tensor cross_entropy(const Tensor& logits, const Tensor& target, const Tensor& c
     const T* cw = class_weight.defined() ? ptr<T>(class_weight) : nullptr;
     T* pw = ptr<T>(row_w);
     T* pl = ptr<T>(row_loss);
-    parallel_for(M, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, C)), [&](int64_t r0, int64_t r1) {
+    parallel_for_work(M, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, C)), 8 * C, [&](int64_t r0, int64_t r1) {
       for (int64_t r = r0; r < r1; ++r) {
         if (t[r] == ignore_index) {
           pw[r] = 0;
@@ -97,7 +97,7 @@ Tensor cross_entropy(const Tensor& logits, const Tensor& target, const Tensor& c
                const T* pg = ptr<T>(g);
                const int64_t* tt = tgt.data<int64_t>();
                T* pd = ptr<T>(dx);
-               parallel_for(M, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, C)), [&](int64_t r0, int64_t r1) {
+               parallel_for_work(M, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, C)), 8 * C, [&](int64_t r0, int64_t r1) {
                  for (int64_t r = r0; r < r1; ++r) {
                    T* dr = pd + r * C;
                    T coef = reduction == Reduction::None ? pg[r] * pw[r] : pg[0] * pw[r] / static_cast<T>(denom);

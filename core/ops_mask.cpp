@@ -15,7 +15,7 @@ Tensor mask_grad(const Tensor& g, const Tensor& mask, bool zero_where) {
     using T = decltype(tag);
     const T* pg = ptr<T>(g);
     T* po = ptr<T>(out);
-    parallel_for(g.numel(), kElemGrain, [&](int64_t b, int64_t e) {
+    parallel_for_work(g.numel(), kElemGrain, 1, [&](int64_t b, int64_t e) {
       for (int64_t i = b; i < e; ++i) po[i] = (m[i] != 0) == zero_where ? T(0) : pg[i];
     });
     return 0;
@@ -38,7 +38,7 @@ Tensor masked_fill(const Tensor& a, const Tensor& mask, double value) {
     const T* pa = ptr<T>(a);
     T* po = ptr<T>(out);
     T v = static_cast<T>(value);
-    parallel_for(a.numel(), kElemGrain, [&](int64_t b, int64_t e) {
+    parallel_for_work(a.numel(), kElemGrain, 1, [&](int64_t b, int64_t e) {
       for (int64_t i = b; i < e; ++i) po[i] = pm[i] ? v : pa[i];
     });
     return 0;
@@ -64,7 +64,7 @@ Tensor where(const Tensor& mask, const Tensor& a, const Tensor& b) {
     const T* pa = ptr<T>(ae);
     const T* pb = ptr<T>(be);
     T* po = ptr<T>(out);
-    parallel_for(out.numel(), kElemGrain, [&](int64_t s, int64_t e) {
+    parallel_for_work(out.numel(), kElemGrain, 1, [&](int64_t s, int64_t e) {
       for (int64_t i = s; i < e; ++i) po[i] = pm[i] ? pa[i] : pb[i];
     });
     return 0;

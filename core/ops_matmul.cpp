@@ -30,7 +30,7 @@ Tensor bmm_raw(const Tensor& A, const Tensor& B, bool ta, bool tb) {
         gemm<T>(ta, tb, M, N, K, pa + i * sa, lda, pb + i * sb, ldb, pc + i * sc, N, false);
     } else {
       int64_t grain = std::max<int64_t>(1, kSmallGemm / std::max<int64_t>(1, M * N * K));
-      parallel_for(nb, grain, [&](int64_t b0, int64_t b1) {
+      parallel_for_work(nb, grain, M * N * std::max<int64_t>(K, 1), [&](int64_t b0, int64_t b1) {
         for (int64_t i = b0; i < b1; ++i)
           gemm_serial<T>(ta, tb, M, N, K, pa + i * sa, lda, pb + i * sb, ldb, pc + i * sc, N, false);
       });

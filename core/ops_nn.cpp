@@ -15,7 +15,7 @@ constexpr int64_t kNormRows = 64;  // rows per block for column statistics (fixe
 // Softmax (or log-softmax) over contiguous rows of length R.
 template <class T>
 void softmax_rows(const T* x, T* y, int64_t rows, int64_t R, bool log_space) {
-  parallel_for(rows, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, R)), [&](int64_t r0, int64_t r1) {
+  parallel_for_work(rows, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, R)), 8 * R, [&](int64_t r0, int64_t r1) {
     for (int64_t r = r0; r < r1; ++r) {
       const T* xr = x + r * R;
       T* yr = y + r * R;
@@ -56,7 +56,7 @@ Tensor softmax_last(const Tensor& a, bool log_space) {
         const T* pg = ptr<T>(g);
         const T* py = ptr<T>(y);
         T* pd = ptr<T>(dx);
-        parallel_for(rows, std::max<int64_t>(1, kElemGrain / R), [&](int64_t r0, int64_t r1) {
+        parallel_for_work(rows, std::max<int64_t>(1, kElemGrain / R), 4 * R, [&](int64_t r0, int64_t r1) {
           for (int64_t r = r0; r < r1; ++r) {
             const T* gr = pg + r * R;
             const T* yr = py + r * R;
@@ -110,7 +110,7 @@ Tensor dropout(const Tensor& a, double p, bool training, Rng& rng) {
       const T* s = ptr<T>(src);
       T* d = ptr<T>(dst);
       T sc = static_cast<T>(scale);
-      parallel_for(src.numel(), kElemGrain, [&](int64_t b, int64_t e) {
+      parallel_for_work(src.numel(), kElemGrain, 4, [&](int64_t b, int64_t e) {
         for (int64_t i = b; i < e; ++i) d[i] = dropout_keep(stream, first + i, thr) ? s[i] * sc : T(0);
       });
       return 0;
@@ -151,7 +151,7 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
     T* py = ptr<T>(out);
     T* pm = ptr<T>(mean_t);
     T* pr = ptr<T>(rstd_t);
-    parallel_for(M, kNormRows, [&](int64_t r0, int64_t r1) {
+    parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
       for (int64_t r = r0; r < r1; ++r) {
         const T* xr = px + r * C;
         T* yr = py + r * C;
@@ -190,7 +190,7 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
                T* pd = gx ? ptr<T>(dx) : nullptr;
                T* ppw = ptr<T>(part_w);
                T* ppb = ptr<T>(part_b);
-               parallel_for(M, kNormRows, [&](int64_t r0, int64_t r1) {
+               parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
                  T* accw = ppw + (r0 / kNormRows) * C;
                  T* accb = ppb + (r0 / kNormRows) * C;
                  for (int64_t r = r0; r < r1; ++r) {
@@ -259,7 +259,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
       // Column sums per row block, then the block partials in block order.
       auto column_pass = [&](auto row_value) {
         std::fill(part.begin(), part.end(), T(0));
-        parallel_for(M, kNormRows, [&](int64_t r0, int64_t r1) {
+        parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
           T* acc = part.data() + (r0 / kNormRows) * C;
           for (int64_t r = r0; r < r1; ++r) row_value(px + r * C, acc);
         });
@@ -304,7 +304,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
       shift[i] = (pb ? pb[i] : T(0)) - pm[i] * scale[i];
     }
     T* py = ptr<T>(out);
-    parallel_for(M, kNormRows, [&](int64_t r0, int64_t r1) {
+    parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
       for (int64_t r = r0; r < r1; ++r) {
         const T* xr = px + r * C;
         T* yr = py + r * C;
@@ -328,7 +328,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
                const T* pm = ptr<T>(mean_t);
                const T* pr = ptr<T>(rstd_t);
                std::vector<T> part(static_cast<size_t>(nblk * 2 * C), T(0));
-               parallel_for(M, kNormRows, [&](int64_t r0, int64_t r1) {
+               parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
                  T* sg = part.data() + (r0 / kNormRows) * 2 * C;
                  T* sgh = sg + C;
                  for (int64_t r = r0; r < r1; ++r) {
@@ -362,7 +362,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
                    c2[i] = training ? sum_gh[i] * invm : T(0);
                  }
                  T* pd = ptr<T>(dx);
-                 parallel_for(M, kNormRows, [&](int64_t r0, int64_t r1) {
+                 parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
                    for (int64_t r = r0; r < r1; ++r) {
                      const T* xr = px + r * C;
                      const T* gr = pg + r * C;

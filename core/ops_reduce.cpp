@@ -24,7 +24,7 @@ void sum_kernel(const T* in, T* out, int64_t outer, int64_t R, int64_t inner) {
   int64_t rblock = std::max<int64_t>(1, kRowBlockElems / inner);
   int64_t nblk = (R + rblock - 1) / rblock;
   std::vector<T> partial(static_cast<size_t>(outer * nblk * inner));
-  parallel_for(outer * nblk, 1, [&](int64_t t0, int64_t t1) {
+  parallel_for_work(outer * nblk, 1, rblock * inner, [&](int64_t t0, int64_t t1) {
     for (int64_t t = t0; t < t1; ++t) {
       int64_t o = t / nblk, blk = t % nblk;
       int64_t r0 = blk * rblock, r1 = std::min(R, r0 + rblock);
@@ -174,7 +174,7 @@ Tensor extremum(const Tensor& a, const std::vector<int64_t>& axes_in, bool keepd
     using T = decltype(tag);
     const T* in = ptr<T>(moved);
     T* po = ptr<T>(out);
-    parallel_for(outer, std::max<int64_t>(1, kElemGrain / R), [&](int64_t o0, int64_t o1) {
+    parallel_for_work(outer, std::max<int64_t>(1, kElemGrain / R), R, [&](int64_t o0, int64_t o1) {
       for (int64_t o = o0; o < o1; ++o) {
         const T* row = in + o * R;
         int64_t best = 0;

@@ -19,7 +19,7 @@ void copy_axis_block(const Tensor& src, const Tensor& dst, int64_t outer, int64_
   const char* s = static_cast<const char*>(src.impl()->raw());
   char* d = static_cast<char*>(dst.impl()->raw());
   size_t row = static_cast<size_t>(len * inner) * es;
-  parallel_for(outer, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, len * inner)), [&](int64_t o0, int64_t o1) {
+  parallel_for_work(outer, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, len * inner)), len * inner, [&](int64_t o0, int64_t o1) {
     for (int64_t o = o0; o < o1; ++o)
       std::memcpy(d + ((o * dst_len + dst_at) * inner) * es, s + ((o * src_len + src_at) * inner) * es, row);
   });
@@ -53,7 +53,7 @@ Tensor Tensor::permute(const std::vector<int64_t>& axes) const {
       using U = decltype(tag);
       const U* src = static_cast<const U*>(impl()->raw());
       U* dst = static_cast<U*>(out.impl()->raw());
-      parallel_for(rows, std::max<int64_t>(1, kElemGrain / inner), [&](int64_t r0, int64_t r1) {
+      parallel_for_work(rows, std::max<int64_t>(1, kElemGrain / inner), inner, [&](int64_t r0, int64_t r1) {
         for (int64_t r = r0; r < r1; ++r) {
           int64_t off = 0, rem = r;
           for (int64_t i = nd - 2; i >= 0; --i) {
@@ -201,7 +201,7 @@ Tensor index_select(const Tensor& a, int64_t axis, const Tensor& index) {
   size_t es = dtype_size(a.dtype());
   const char* src = static_cast<const char*>(a.impl()->raw());
   char* dst = static_cast<char*>(out.impl()->raw());
-  parallel_for(outer * k, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, inner)), [&](int64_t t0, int64_t t1) {
+  parallel_for_work(outer * k, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, inner)), inner, [&](int64_t t0, int64_t t1) {
     for (int64_t t = t0; t < t1; ++t) {
       int64_t o = t / k, j = t % k;
       std::memcpy(dst + t * inner * es, src + ((o * n + idx[j]) * inner) * es, inner * es);
@@ -216,7 +216,7 @@ Tensor index_select(const Tensor& a, int64_t axis, const Tensor& index) {
         const T* pg = ptr<T>(g);
         T* pd = ptr<T>(da);
         // Parallel over the outer axis only: repeated indices then add in a fixed order.
-        parallel_for(outer, 1, [&](int64_t o0, int64_t o1) {
+        parallel_for_work(outer, 1, k * inner, [&](int64_t o0, int64_t o1) {
           for (int64_t o = o0; o < o1; ++o)
             for (int64_t j = 0; j < k; ++j) {
               const T* gr = pg + (o * k + j) * inner;

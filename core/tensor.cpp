@@ -272,7 +272,7 @@ void convert_into(const TensorImpl& src, To* dst) {
   const void* p = src.raw();
   int64_t n = src.numel;
   auto run = [&](auto* s) {
-    parallel_for(n, kElemGrain, [&](int64_t b, int64_t e) {
+    parallel_for_work(n, kElemGrain, 1, [&](int64_t b, int64_t e) {
       for (int64_t i = b; i < e; ++i) dst[i] = static_cast<To>(s[i]);
     });
   };
