@@ -1,0 +1,72 @@
+#include "dataset/splits.h"
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "dataset/atomic_file.h"
+#include "dataset/errors.h"
+#include "dataset/rng.h"
+#include "dataset/text_parse.h"
+
+namespace lc2wf {
+
+void SplitRule::Check() const {
+  if (test_count < 0) throw std::invalid_argument("SplitRule.test_count must be >= 0");
+  if (val_count < 0) throw std::invalid_argument("SplitRule.val_count must be >= 0");
+}
+
+uint64_t split_key(const std::string& name, uint64_t seed) {
+  uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : name) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  return mix_seed(h, seed);
+}
+
+Splits make_splits(const std::vector<std::string>& names, const SplitRule& rule) {
+  rule.Check();
+  if (std::set<std::string>(names.begin(), names.end()).size() != names.size()) {
+    throw std::invalid_argument("make_splits: duplicate building names");
+  }
+  if (names.size() < static_cast<size_t>(rule.test_count) + rule.val_count) {
+    throw std::invalid_argument("make_splits: fewer names than test_count + val_count");
+  }
+  std::vector<std::pair<uint64_t, std::string>> keyed;
+  for (const auto& n : names) keyed.emplace_back(split_key(n, rule.seed), n);
+  std::sort(keyed.begin(), keyed.end());
+  Splits s;
+  for (size_t i = 0; i < keyed.size(); ++i) {
+    auto& list = i < static_cast<size_t>(rule.test_count)                   ? s.test
+                 : i < static_cast<size_t>(rule.test_count + rule.val_count) ? s.val
+                                                                             : s.train;
+    list.push_back(keyed[i].second);
+  }
+  for (auto* l : {&s.train, &s.val, &s.test}) std::sort(l->begin(), l->end());
+  return s;
+}
+
+std::vector<std::string> read_name_list(const std::filesystem::path& path) {
+  std::istringstream in(read_file(path));
+  std::vector<std::string> out;
+  std::string line;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    const std::string_view t = trim(line);
+    if (t.empty() || t.front() == '#') continue;
+    if (t.find_first_of(" \t") != std::string_view::npos) throw DataError(path.string(), line_no, "a name must not contain whitespace");
+    out.emplace_back(t);
+  }
+  return out;
+}
+
+void write_name_list(const std::filesystem::path& path, const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += n + "\n";
+  write_file_atomic(path, s);
+}
+
+}  // namespace lc2wf
