@@ -8,6 +8,7 @@
 #include "dataset/errors.h"
 #include "dataset/line_cloud_io.h"
 #include "dataset/mesh_io.h"
+#include "dataset/release_json.h"
 #include "dataset/text_parse.h"
 
 namespace lc2wf {
@@ -62,7 +63,11 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
   GroundTruth gt;
   gt.path = path;
   if (source.kind == GroundTruthSource::Kind::kLineCloudDir) {
-    LineCloud cloud = read_line_cloud(path);
+    // Our line-cloud files and the release's LineCloud JSON both may start with '{'; the release keys tell.
+    const std::string bytes = read_file(path);
+    const bool release = bytes.find("\"junc3DList\"") != std::string::npos &&
+                         bytes.find("\"lc2wf-linecloud\"") == std::string::npos;
+    LineCloud cloud = release ? parse_release_line_cloud(bytes, path.string()) : line_cloud_from_bytes(bytes, path.string());
     if (cloud.wireframe.junctions.empty())
       throw DataError(path.string(), "line cloud has no ground-truth wireframe");
     gt.wireframe = std::move(cloud.wireframe);

@@ -38,7 +38,8 @@ struct GroundTruth {
 std::optional<std::filesystem::path> find_ground_truth(const GroundTruthSource& source, const std::string& name);
 
 // Loads a GT file found by find_ground_truth. Polyshapes go through the dataset layer's building import
-// (metres, footprint recentred); line clouds carry their own wireframe and transform. Throws DataError.
+// (metres, footprint recentred); line clouds (ours, or the release's LineCloud JSON with `objGTJunc3D` /
+// `line_idx`) carry their own wireframe and transform. Throws DataError.
 GroundTruth load_ground_truth(const GroundTruthSource& source, const std::filesystem::path& path);
 
 // Names of every GT building in the source folder (sorted); used when no split file is given.

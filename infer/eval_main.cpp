@@ -11,6 +11,10 @@
 #include "infer/eval_report_io.h"
 #include "infer/evaluator.h"
 #include "infer/prediction_io.h"
+#if LC2WF_EVAL_WITH_WEIGHTS
+#include "infer/batch_inference.h"
+#include "infer/cloud_input.h"
+#endif
 
 namespace {
 
@@ -21,6 +25,7 @@ constexpr int kExitData = 1;
 constexpr int kExitUsage = 2;
 
 const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) --out DIR [options]
+       lc2wf-eval --weights DIR --data DIR --split FILE --out DIR [options]
 
 Scores predicted wireframes against the ground truth with the LC2WF paper's metrics (Table 2):
 vAP/vRecall at eta = 0.15/0.25/0.35 m, sAP/sRecall at eta = 0.25/0.35/0.50 m (one ranked list pooled
@@ -28,6 +33,10 @@ over all buildings) and WED (mean per building). See infer/README.md for the exa
 
   --pred DIR      predicted wireframes <name>.obj ('v' + 'l') with optional <name>.json scores
                   (junction_scores / edge_scores); without scores every score is 1
+  --weights DIR   run inference first (junction.safetensors + edge.safetensors from lc2wf-train) on the
+                  line clouds of --data; predictions go to OUT/predictions
+  --release-quirks  with --weights: the release's post-processing instead of the sound rules
+  --previews      with --weights: also write OUT/previews/<name>.png
   --gt DIR        ground truth <name>.obj ('v' + 'f'/'l') or <name>.polyshape (Roof-Image mesh)
   --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth
   --split FILE    building names, one per line (default: every ground-truth building in the folder)
@@ -46,7 +55,8 @@ the outputs. Exit codes: 0 success, 1 bad or missing input data / I/O error, 2 b
 )";
 
 struct Args {
-  fs::path pred, gt, data, split, out;
+  fs::path pred, gt, data, split, out, weights;
+  bool release_quirks = false, previews = false;
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kGroupTies;
@@ -66,6 +76,9 @@ Args parse_args(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     if (f == "--pred") a.pred = value(i);
+    else if (f == "--weights") a.weights = value(i);
+    else if (f == "--release-quirks") a.release_quirks = true;
+    else if (f == "--previews") a.previews = true;
     else if (f == "--gt") a.gt = value(i);
     else if (f == "--data") a.data = value(i);
     else if (f == "--split") a.split = value(i);
@@ -88,13 +101,27 @@ Args parse_args(int argc, char** argv) {
       throw UsageError("unknown argument '" + f + "'");
     }
   }
-  if (a.pred.empty()) throw UsageError("--pred DIR is required");
+  if (a.pred.empty() == a.weights.empty()) throw UsageError("give exactly one of --pred DIR and --weights DIR");
+#if !LC2WF_EVAL_WITH_WEIGHTS
+  if (!a.weights.empty()) throw UsageError("--weights needs lc2wf built with the nn module");
+#endif
+  if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
+  if (a.weights.empty() && (a.release_quirks || a.previews))
+    throw UsageError("--release-quirks and --previews only apply with --weights");
+  if (!a.weights.empty()) {
+    if (!fs::is_directory(a.weights)) throw UsageError("'" + a.weights.string() + "' is not a folder");
+    if (a.out.empty()) throw UsageError("--out DIR is required");
+    a.pred = a.out / "predictions";
+    fs::create_directories(a.pred);
+  }
   if (a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
   if (a.out.empty()) throw UsageError("--out DIR is required");
   for (const fs::path& d : {a.pred, a.gt.empty() ? a.data : a.gt})
     if (!fs::is_directory(d)) throw UsageError("'" + d.string() + "' is not a folder");
   if (!a.split.empty() && !fs::is_regular_file(a.split))
     throw UsageError("split file '" + a.split.string() + "' does not exist");
+  if (a.method.empty() && !a.weights.empty())
+    a.method = fs::absolute(a.weights).lexically_normal().filename().string() + (a.release_quirks ? " (release quirks)" : "");
   if (a.method.empty()) a.method = fs::absolute(a.pred).lexically_normal().filename().string();
   if (a.method.empty()) a.method = "prediction";
   return a;
@@ -113,6 +140,25 @@ int run(const Args& a) {
                  (a.split.empty() ? source.dir : a.split).string().c_str());
     return kExitData;
   }
+
+#if LC2WF_EVAL_WITH_WEIGHTS
+  if (!a.weights.empty()) {
+    // Inference on every listed building, then the usual scoring of what it wrote.
+    std::vector<fs::path> clouds;
+    for (const std::string& name : names) clouds.push_back(find_cloud_file(a.data, name));
+    BatchInferenceOptions inference;
+    if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
+    inference.quiet = a.quiet;
+    if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
+    const BatchInferenceSummary s = infer_clouds(WireframePredictor(a.weights), clouds, a.pred, inference);
+    if (s.failed > 0) {
+      std::fprintf(stderr, "lc2wf-eval: error: %d line cloud(s) could not be read\n", s.failed);
+      return kExitData;
+    }
+    std::fprintf(stderr, "lc2wf-eval: inference %.3f s per building on average (max %.3f s), %d empty wireframe(s)\n",
+                 s.buildings ? s.total_seconds / s.buildings : 0.0, s.max_seconds, s.empty);
+  }
+#endif
 
   EvalOptions options;
   options.ties = a.ties;

@@ -1,5 +1,7 @@
 #include "infer/point_nms.h"
 
+#include "dataset/point_nms.h"
+
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
@@ -12,6 +14,7 @@ std::vector<int> point_nms(const std::vector<Vec3>& points, const std::vector<do
   if (points.size() != confidences.size())
     throw std::invalid_argument("point_nms: " + std::to_string(points.size()) + " points but " +
                                 std::to_string(confidences.size()) + " confidences");
+  if (rule == PointNmsRule::kSuppressor) return suppressor_nms(points, confidences, radius);
   const int n = static_cast<int>(points.size());
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -20,24 +23,11 @@ std::vector<int> point_nms(const std::vector<Vec3>& points, const std::vector<do
   auto close = [&](int a, int b) { return (points[a] - points[b]).squaredNorm() < r2; };
 
   std::vector<char> dropped(n, 0);
-  if (rule == PointNmsRule::kGreedy) {
-    for (int oi = 0; oi < n; ++oi) {
-      const int j = order[oi];
-      if (dropped[j]) continue;
-      for (int ok = oi + 1; ok < n; ++ok)
-        if (!dropped[order[ok]] && close(j, order[ok])) dropped[order[ok]] = 1;
-    }
-  } else {
-    // Literal release loop: every not-yet-dropped point looks at *all* neighbours, dropped or not.
-    for (int oi = 0; oi < n; ++oi) {
-      const int j = order[oi];
-      if (dropped[j]) continue;
-      for (int i = 0; i < n; ++i) {
-        if (i == j || !close(i, j)) continue;
-        if (confidences[i] <= confidences[j]) dropped[i] = 1;
-        else dropped[j] = 1;
-      }
-    }
+  for (int oi = 0; oi < n; ++oi) {
+    const int j = order[oi];
+    if (dropped[j]) continue;
+    for (int ok = oi + 1; ok < n; ++ok)
+      if (!dropped[order[ok]] && close(j, order[ok])) dropped[order[ok]] = 1;
   }
   std::vector<int> kept;
   for (int j : order)

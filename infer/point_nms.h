@@ -13,6 +13,7 @@ enum class PointNmsRule {
   kGreedy,
   // The release's rule (reference spec §2.9): a point is also removed by a stronger neighbour that was
   // itself suppressed, so on a chain A > B > C (A–B and B–C close, A–C far) only A survives.
+  // Implemented by the dataset layer's suppressor_nms (also used for the density seeds).
   kSuppressor,
 };
 

@@ -118,3 +118,24 @@ TEST(EvalInputs, RawObjGroundTruthIsScaled) {
 
 }  // namespace
 }  // namespace lc2wf
+
+namespace lc2wf {
+namespace {
+
+TEST(EvalInputs, ReleaseLineCloudJsonGroundTruth) {
+  testing::ScratchDir dir("gt_release");
+  testing::write_text(dir.path() / "r.json", R"({"junc3DList": [[0, 0, 0], [20, 0, 0]], "label": [0, 1],
+      "objGTJunc3D": [[0, 0, 0], [20, 0, 0], [20, 40, 0]], "line_idx": [[0, 1], [1, 2]]})");
+  GroundTruthSource src;
+  src.kind = GroundTruthSource::Kind::kLineCloudDir;
+  src.dir = dir.path();
+  const auto path = find_ground_truth(src, "r");
+  ASSERT_TRUE(path.has_value());
+  const GroundTruth gt = load_ground_truth(src, *path);
+  ASSERT_EQ(gt.wireframe.junctions.size(), 3u);
+  EXPECT_EQ(gt.wireframe.edges.size(), 2u);
+  EXPECT_NEAR(gt.wireframe.junctions[2].y(), 2.0, 1e-12);  // 40 raw = 2 m
+}
+
+}  // namespace
+}  // namespace lc2wf

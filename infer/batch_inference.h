@@ -1,0 +1,39 @@
+// Inference over a list of line-cloud files: predictions written with infer/prediction_io.h
+// (`<out>/<name>.obj` + `<name>.json` with scores and notes), optional previews, and a timing summary.
+// Shared by lc2wf-infer and lc2wf-eval --weights.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "infer/cloud_input.h"
+#include "infer/inference.h"
+
+namespace lc2wf {
+
+struct BatchInferenceOptions {
+  PostProcessOptions post;
+  CloudFormat format = CloudFormat::kAuto;
+  double raw_per_metre = 20.0;  // release JSON only
+  bool raw_units = false;       // write raw (source) coordinates instead of metres
+  // Where the preview PNG of a building goes; empty function = no previews.
+  std::function<std::filesystem::path(const std::string& name)> preview_path;
+  bool quiet = false;
+};
+
+struct BatchInferenceSummary {
+  int buildings = 0;        // predicted (possibly empty wireframes)
+  int failed = 0;           // unreadable clouds (reported on stderr)
+  int empty = 0;            // no edge in the final wireframe
+  double total_seconds = 0; // networks + post-processing, excluding file I/O
+  double max_seconds = 0;
+  double junction_seconds = 0, edge_seconds = 0, post_seconds = 0;
+  std::vector<std::string> names;  // predicted buildings, input order
+};
+
+BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const std::vector<std::filesystem::path>& clouds,
+                                   const std::filesystem::path& out_dir, const BatchInferenceOptions& options);
+
+}  // namespace lc2wf

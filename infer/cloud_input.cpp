@@ -1,0 +1,60 @@
+#include "infer/cloud_input.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "dataset/errors.h"
+#include "dataset/line_cloud_io.h"
+#include "dataset/release_json.h"
+
+namespace lc2wf {
+
+namespace fs = std::filesystem;
+
+CloudFormat parse_cloud_format(const std::string& text, const std::string& what) {
+  if (text == "auto") return CloudFormat::kAuto;
+  if (text == "lc2wf") return CloudFormat::kLc2wf;
+  if (text == "release") return CloudFormat::kRelease;
+  throw std::invalid_argument(what + " must be \"auto\", \"lc2wf\" or \"release\", got \"" + text + "\"");
+}
+
+LineCloud load_line_cloud(const fs::path& path, CloudFormat format, double raw_per_metre) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw DataError(path.string(), "cannot open line cloud");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string bytes = ss.str();
+  if (format == CloudFormat::kAuto) {
+    // Both formats may start with '{'; only the release's JSON has `junc3DList` without our format tag.
+    const bool release = bytes.find("\"junc3DList\"") != std::string::npos &&
+                         bytes.find("\"lc2wf-linecloud\"") == std::string::npos;
+    format = release ? CloudFormat::kRelease : CloudFormat::kLc2wf;
+  }
+  LineCloud cloud;
+  if (format == CloudFormat::kRelease) {
+    ReleaseJsonOptions options;
+    options.raw_per_metre = raw_per_metre;
+    cloud = parse_release_line_cloud(bytes, path.string(), options);
+  } else {
+    cloud = line_cloud_from_bytes(bytes, path.string());
+  }
+  if (cloud.name.empty()) cloud.name = path.stem().string();
+  return cloud;
+}
+
+fs::path find_cloud_file(const fs::path& dir, const std::string& name) {
+  std::vector<fs::path> hits;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec))
+    if (entry.is_regular_file() && entry.path().stem() == name) hits.push_back(entry.path());
+  if (ec) throw DataError(dir.string(), "cannot list folder: " + ec.message());
+  if (hits.empty()) throw DataError(dir.string(), "no line-cloud file for building '" + name + "'");
+  if (hits.size() > 1)
+    throw DataError(dir.string(), "building '" + name + "' has several files (" + hits[0].filename().string() + ", " +
+                                      hits[1].filename().string() + ")");
+  return hits[0];
+}
+
+}  // namespace lc2wf

@@ -1,0 +1,176 @@
+#include "infer/inference.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/tensor.h"
+#include "infer/patch_tensors.h"
+#include "nn/checkpoint.h"
+
+namespace lc2wf {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Puts a module in eval mode for a scope and restores its previous mode.
+class EvalScope {
+ public:
+  explicit EvalScope(Module& m) : module_(m), was_training_(m.is_training()) { module_.eval(); }
+  ~EvalScope() { module_.train(was_training_); }
+
+ private:
+  Module& module_;
+  bool was_training_;
+  NoGradGuard no_grad_;
+};
+
+nlohmann::json stored_net_config(const std::filesystem::path& path, const std::string& stage) {
+  const CheckpointInfo info = read_checkpoint_info(path);
+  if (!info.config.is_object() || !info.config.contains("net"))
+    throw std::runtime_error(path.string() + ": checkpoint has no network config (not written by lc2wf-train?)");
+  const std::string found = info.config.value("stage", std::string());
+  if (found != stage)
+    throw std::runtime_error(path.string() + ": expected a " + stage + " model, found stage '" + found + "'");
+  return info.config.at("net");
+}
+
+}  // namespace
+
+JunctionSampleOptions junction_sample_options(const JunctionNetConfig& config) {
+  JunctionSampleOptions o;
+  o.sampling.num_samples = static_cast<int>(config.lpt.patches);
+  o.patch.lines_per_patch = static_cast<int>(config.lpt.lines_per_patch);
+  o.augment_enabled = false;
+  return o;
+}
+
+PatchOptions pair_patch_options(const EdgeNetConfig& config) {
+  PatchOptions o;
+  o.lines_per_patch = static_cast<int>(config.lpt.lines_per_patch / 2);
+  return o;
+}
+
+PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud) {
+  PredictedJunctions out;
+  if (cloud.segments.empty()) return out;
+  const JunctionSampleOptions options = junction_sample_options(net.config());
+  const JunctionPatches patches = make_junction_sample(cloud, options, 0);
+  const PatchInput in = junction_input(patches);
+  EvalScope scope(net);
+  const JunctionOutput y = net.forward(in.x, in.mask);
+  const std::vector<double> logits = y.logits.to_vector(), offsets = y.offsets.to_vector();
+  const int G = patches.num_patches;
+  out.positions.resize(G);
+  out.confidence.resize(G);
+  for (int g = 0; g < G; ++g) {
+    out.confidence[g] = 1.0 / (1.0 + std::exp(logits[2 * g] - logits[2 * g + 1]));  // softmax[1]
+    const Vec3 point(patches.points[3 * g], patches.points[3 * g + 1], patches.points[3 * g + 2]);
+    const Vec3 offset(offsets[3 * g], offsets[3 * g + 1], offsets[3 * g + 2]);
+    out.positions[g] = options.patch.frame.to_metres(point + offset);
+  }
+  return out;
+}
+
+std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
+  if (pairs.empty()) return {};
+  const PairPatches patches = build_pair_patches(SegmentSet(cloud.segments), pairs, pair_patch_options(net.config()));
+  const PatchInput in = pair_input(patches);
+  EvalScope scope(net);
+  const std::vector<double> logits = net.forward(in.x, in.mask).to_vector();
+  const size_t C = static_cast<size_t>(net.config().num_classes);
+  std::vector<float> probs(logits.size());
+  for (size_t p = 0; p < pairs.size(); ++p) {
+    const double* z = &logits[p * C];
+    double zmax = z[0], total = 0.0;
+    for (size_t c = 1; c < C; ++c) zmax = std::max(zmax, z[c]);
+    for (size_t c = 0; c < C; ++c) total += std::exp(z[c] - zmax);
+    for (size_t c = 0; c < C; ++c) probs[p * C + c] = static_cast<float>(std::exp(z[c] - zmax) / total);
+  }
+  return probs;
+}
+
+InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, const PredictedJunctions& junctions,
+                                  const PostProcessOptions& options) {
+  InferenceResult r;
+  r.junctions = junctions;
+  auto t0 = Clock::now();
+  r.selection = select_junctions(junctions.positions, junctions.confidence, options);
+  r.notes = r.selection.notes;
+  r.post_seconds = seconds_since(t0);
+  const int n = static_cast<int>(r.selection.positions.size());
+  if (n < 2) {
+    r.notes.push_back("fewer than 2 junctions above the confidence threshold: empty wireframe");
+    return r;
+  }
+  std::vector<JunctionPair> pairs;
+  for (const auto& [i, j] : all_pairs(n)) {
+    JunctionPair p;
+    p.u = r.selection.positions[i];
+    p.v = r.selection.positions[j];
+    p.i = i;
+    p.j = j;
+    pairs.push_back(p);
+  }
+  t0 = Clock::now();
+  const std::vector<float> probs = predict_pair_probabilities(edge_net, cloud, pairs);
+  r.edge_seconds = seconds_since(t0);
+
+  t0 = Clock::now();
+  PostProcessInput in;
+  in.junctions = r.selection.positions;
+  in.confidences = r.selection.confidences;
+  const size_t C = static_cast<size_t>(edge_net.config().num_classes);
+  for (size_t p = 0; p < pairs.size(); ++p)
+    in.pairs.push_back({pairs[p].i, pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
+  PostProcessResult post = post_process(in, options);
+  r.wireframe = std::move(post.wireframe);
+  r.candidates = std::move(post.candidates);
+  r.notes.insert(r.notes.end(), post.notes.begin(), post.notes.end());
+  if (r.wireframe.wireframe.edges.empty()) r.notes.push_back("no edge survived post-processing: empty wireframe");
+  r.post_seconds += seconds_since(t0);
+  return r;
+}
+
+WireframePredictor::WireframePredictor(const std::filesystem::path& dir)
+    : WireframePredictor(dir / "junction.safetensors", dir / "edge.safetensors") {}
+
+WireframePredictor::WireframePredictor(const std::filesystem::path& junction_weights,
+                                       const std::filesystem::path& edge_weights)
+    : junction_(load_junction_net(junction_weights)), edge_(load_edge_net(edge_weights)) {}
+
+InferenceResult WireframePredictor::predict(const LineCloud& cloud, const PostProcessOptions& options) const {
+  const auto t0 = Clock::now();
+  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud);
+  const double junction_seconds = seconds_since(t0);
+  InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
+  r.junction_seconds = junction_seconds;
+  if (cloud.segments.empty()) r.notes.insert(r.notes.begin(), "line cloud has no segments: no junction candidates");
+  return r;
+}
+
+InferenceResult WireframePredictor::predict_from_junctions(const LineCloud& cloud, const PredictedJunctions& junctions,
+                                                           const PostProcessOptions& options) const {
+  return predict_wireframe(*edge_, cloud, junctions, options);
+}
+
+std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path) {
+  const JunctionNetConfig config = JunctionNetConfig::from_json(stored_net_config(path, "junction"), path.string() + ": net");
+  config.Check();
+  auto net = std::make_unique<JunctionNet>(config);
+  load_checkpoint(path, *net, nullptr, nullptr);
+  net->eval();
+  return net;
+}
+
+std::unique_ptr<EdgeNet> load_edge_net(const std::filesystem::path& path) {
+  const EdgeNetConfig config = EdgeNetConfig::from_json(stored_net_config(path, "edge"), path.string() + ": net");
+  config.Check();
+  auto net = std::make_unique<EdgeNet>(config);
+  load_checkpoint(path, *net, nullptr, nullptr);
+  net->eval();
+  return net;
+}
+
+}  // namespace lc2wf

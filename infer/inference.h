@@ -1,0 +1,73 @@
+// Running the two networks on a line cloud (reference spec §2.8, §3.4, §4): junction sampling and
+// patches -> JunctionNet -> junction candidates (metres, confidences) -> select_junctions -> all pairs ->
+// EdgeNet over every pair of the building at once (its patch encoder attends across pairs) ->
+// post_process -> ScoredWireframe. Degenerate clouds (no segments, < 2 junctions, no candidate edge) give
+// a valid, possibly empty, wireframe and notes saying why; they never throw.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dataset/line_cloud.h"
+#include "dataset/pair_sampling.h"
+#include "dataset/samples.h"
+#include "infer/post_process.h"
+#include "nn/edge_net.h"
+#include "nn/junction_net.h"
+
+namespace lc2wf {
+
+// Sampling/patch options matching a junction model (G samples, N lines per patch), no augmentation.
+JunctionSampleOptions junction_sample_options(const JunctionNetConfig& config);
+// Patch options matching an edge model: each pair takes lines_per_patch / 2 lines around each junction.
+PatchOptions pair_patch_options(const EdgeNetConfig& config);
+
+// Every sample point's junction hypothesis: position (sample + offset, metres) and softmax confidence.
+// Runs in eval mode without a graph. A cloud without segments gives no candidates.
+PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud);
+
+// Class probabilities (P x 5, row-major) of the given pairs of one building, in eval mode without a graph.
+std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs);
+
+struct InferenceResult {
+  ScoredWireframe wireframe;       // final, metres
+  ScoredWireframe candidates;      // candidate edges before clean-up (post_process "before process")
+  PredictedJunctions junctions;    // all junction candidates of the junction model
+  JunctionSelection selection;     // the junctions that were paired
+  std::vector<std::string> notes;  // degenerate cases met on the way
+  double junction_seconds = 0.0;   // sampling + patches + junction model
+  double edge_seconds = 0.0;       // pair patches + edge model
+  double post_seconds = 0.0;       // selection + post-processing
+};
+
+// A trained model pair: `<dir>/junction.safetensors` and `<dir>/edge.safetensors` (written by lc2wf-train;
+// the networks are rebuilt from the configs stored in the files).
+class WireframePredictor {
+ public:
+  explicit WireframePredictor(const std::filesystem::path& weights_dir);
+  WireframePredictor(const std::filesystem::path& junction_weights, const std::filesystem::path& edge_weights);
+
+  InferenceResult predict(const LineCloud& cloud, const PostProcessOptions& options) const;
+  // The edge half alone, from given junction candidates (used by lc2wf-train's validation).
+  InferenceResult predict_from_junctions(const LineCloud& cloud, const PredictedJunctions& junctions,
+                                         const PostProcessOptions& options) const;
+
+  JunctionNet& junction_net() const { return *junction_; }
+  EdgeNet& edge_net() const { return *edge_; }
+
+ private:
+  std::unique_ptr<JunctionNet> junction_;
+  std::unique_ptr<EdgeNet> edge_;
+};
+
+// The edge half for a caller-owned network (lc2wf-train validates the model it is training).
+InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, const PredictedJunctions& junctions,
+                                  const PostProcessOptions& options);
+
+// Rebuilds a network from the config stored in a checkpoint written by lc2wf-train and loads its weights.
+std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path);
+std::unique_ptr<EdgeNet> load_edge_net(const std::filesystem::path& path);
+
+}  // namespace lc2wf

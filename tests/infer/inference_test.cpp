@@ -1,0 +1,146 @@
+// The inference pipeline with small randomly initialised networks: shapes and bookkeeping, degenerate
+// clouds (no segments, one segment, nothing above threshold) giving valid empty results with notes,
+// checkpoint loading errors, and the preview PNG.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "dataset/synthetic_building.h"
+#include "dataset/synthetic_line_cloud.h"
+#include "infer/inference.h"
+#include "infer/preview.h"
+#include "nn/checkpoint.h"
+
+namespace lc2wf {
+namespace {
+
+namespace fs = std::filesystem;
+
+LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features) {
+  LptConfig c;
+  c.input_dim = features;
+  c.patches = patches;
+  c.lines_per_patch = lines;
+  c.mlp_dims = {8, 16};
+  c.hidden_dim = 16;
+  c.num_heads = 2;
+  c.ffn_dim = 16;
+  return c;
+}
+
+class Inference : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lc2wf_inference_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    JunctionNetConfig jc;
+    jc.lpt = tiny_lpt(32, 8, 7);
+    jc.head.dims = {8};
+    EdgeNetConfig ec;
+    ec.lpt = tiny_lpt(16, 16, 6);
+    ec.head.dims = {8};
+    JunctionNet j(jc, 3);
+    EdgeNet e(ec, 4);
+    save_checkpoint(dir_ / "junction.safetensors", j, {{"stage", "junction"}, {"net", jc.to_json()}}, j.dropout_rng(),
+                    nullptr, {});
+    save_checkpoint(dir_ / "edge.safetensors", e, {{"stage", "edge"}, {"net", ec.to_json()}}, e.dropout_rng(), nullptr, {});
+    cloud_ = make_synthetic_line_cloud(make_rect_building("rect", RectBuildingSpec{}), 5);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path dir_;
+  LineCloud cloud_;
+};
+
+PostProcessOptions keep_every_junction() {
+  PostProcessOptions o;
+  o.junction_min_confidence = 0.0;  // random weights are never confident: let every candidate through
+  return o;
+}
+
+TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {
+  const WireframePredictor predictor(dir_);
+  const InferenceResult r = predictor.predict(cloud_, keep_every_junction());
+  EXPECT_EQ(r.junctions.positions.size(), 32u);  // one candidate per sample point
+  for (double c : r.junctions.confidence) EXPECT_TRUE(c >= 0.0 && c <= 1.0);
+  EXPECT_GE(r.selection.positions.size(), 2u);
+  EXPECT_NO_THROW(r.wireframe.check("prediction"));
+  EXPECT_NO_THROW(r.candidates.check("candidates"));
+  // Deterministic: the same input gives the same output.
+  const InferenceResult again = predictor.predict(cloud_, keep_every_junction());
+  EXPECT_EQ(again.junctions.confidence, r.junctions.confidence);
+  EXPECT_EQ(again.wireframe.edge_scores, r.wireframe.edge_scores);
+}
+
+TEST_F(Inference, PairProbabilitiesAreDistributions) {
+  const WireframePredictor predictor(dir_);
+  std::vector<JunctionPair> pairs(3);
+  pairs[0].u = Vec3(0, 0, 4), pairs[0].v = Vec3(5, 0, 4);
+  pairs[1].u = Vec3(1, 1, 1), pairs[1].v = Vec3(2, 2, 2);
+  pairs[2].u = Vec3(-3, 0, 0), pairs[2].v = Vec3(3, 0, 0);
+  const std::vector<float> p = predict_pair_probabilities(predictor.edge_net(), cloud_, pairs);
+  ASSERT_EQ(p.size(), 15u);
+  for (int k = 0; k < 3; ++k) {
+    double total = 0;
+    for (int c = 0; c < 5; ++c) total += p[k * 5 + c];
+    EXPECT_NEAR(total, 1.0, 1e-5);
+  }
+}
+
+TEST_F(Inference, DegenerateCloudsGiveEmptyWireframesWithNotes) {
+  const WireframePredictor predictor(dir_);
+  LineCloud empty;
+  empty.name = "empty";
+  InferenceResult r = predictor.predict(empty, PostProcessOptions{});
+  EXPECT_TRUE(r.wireframe.wireframe.edges.empty());
+  EXPECT_TRUE(r.junctions.positions.empty());
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.front().find("no segments"), std::string::npos);
+
+  LineCloud one;
+  one.name = "one";
+  one.segments.push_back({Vec3(0, 0, 0), Vec3(1, 0, 0)});
+  for (const PostProcessOptions& o : {PostProcessOptions{}, keep_every_junction(), PostProcessOptions::release_quirks()}) {
+    r = predictor.predict(one, o);
+    EXPECT_NO_THROW(r.wireframe.check("one"));
+  }
+  // Nothing above the default 0.85 confidence: fewer than 2 junctions, a note, no edge.
+  PostProcessOptions strict;
+  strict.junction_min_confidence = 0.999999;
+  r = predictor.predict(cloud_, strict);
+  EXPECT_TRUE(r.wireframe.wireframe.edges.empty());
+  EXPECT_FALSE(r.notes.empty());
+  // Every pair below the connect threshold: no candidate edge.
+  PostProcessOptions no_edges = keep_every_junction();
+  no_edges.connect_threshold = 0.999999;
+  r = predictor.predict(cloud_, no_edges);
+  EXPECT_TRUE(r.wireframe.wireframe.edges.empty());
+  EXPECT_FALSE(r.notes.empty());
+}
+
+TEST_F(Inference, WrongOrMissingWeightsAreNamed) {
+  try {
+    WireframePredictor(dir_ / "edge.safetensors", dir_ / "edge.safetensors");
+    FAIL() << "a junction model was loaded from an edge checkpoint";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("edge.safetensors"), std::string::npos) << e.what();
+  }
+  EXPECT_ANY_THROW(WireframePredictor(dir_ / "missing"));
+}
+
+TEST_F(Inference, PreviewIsAPng) {
+  const WireframePredictor predictor(dir_);
+  const InferenceResult r = predictor.predict(cloud_, keep_every_junction());
+  write_preview(dir_ / "p.png", cloud_, r.wireframe.wireframe, &cloud_.wireframe);
+  std::ifstream in(dir_ / "p.png", std::ios::binary);
+  std::string head(8, '\0');
+  in.read(head.data(), 8);
+  EXPECT_EQ(head.substr(1, 3), "PNG");
+  EXPECT_THROW(write_preview(dir_ / "q.png", cloud_, r.wireframe.wireframe, nullptr, PreviewOptions{10, 10}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lc2wf
