@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 #include <stdexcept>
 #include <string>
@@ -73,9 +74,53 @@ void map3(const T* a, const T* b, const T* c, T* out, int64_t n, F f) {
   });
 }
 
-// Dropout keeps element n when its 24-bit uniform draw is >= p; threshold in units of 2^-24.
-inline uint64_t dropout_threshold(double p) { return static_cast<uint64_t>(std::ceil(p * 16777216.0)); }
-inline bool dropout_keep(const Rng& rng, uint64_t n, uint64_t threshold) { return (rng.bits(n) >> 40) >= threshold; }
+// Counter-based dropout mask for one reserved block of draws starting at `first`: element i is kept
+// when a 24-bit hash of (seed, first, i) is >= p * 2^24. The per-element hash is two 32-bit
+// murmur finalisers so the mask loop vectorises; the key comes from the full 64-bit stream.
+class DropoutMask {
+ public:
+  DropoutMask() = default;
+  DropoutMask(const Rng& rng, uint64_t first, double p)
+      : threshold_(static_cast<uint32_t>(std::ceil(p * 16777216.0))) {
+    uint64_t key = rng.bits(first);
+    k0_ = static_cast<uint32_t>(key);
+    k1_ = static_cast<uint32_t>(key >> 32);
+  }
+  bool keep(uint64_t i) const {
+    uint32_t h = fmix32(static_cast<uint32_t>(i) ^ k0_);
+    h = fmix32(h + k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u);
+    return (h >> 8) >= threshold_;
+  }
+
+ private:
+  static uint32_t fmix32(uint32_t h) {
+    h ^= h >> 16;
+    h *= 0x85EBCA6Bu;
+    h ^= h >> 13;
+    h *= 0xC2B2AE35u;
+    return h ^ (h >> 16);
+  }
+  uint32_t threshold_ = 0, k0_ = 0, k1_ = 0;
+};
+
+// exp that vectorises (Cephes-style polynomial, ~1 ulp in float); exactly 0 below the float range.
+inline float fast_exp(float x) {
+  float xc = std::min(std::max(x, -87.0f), 88.3f);
+  float n = std::floor(xc * 1.44269504088896341f + 0.5f);
+  float r = xc - n * 0.693359375f + n * 2.12194440e-4f;
+  float p = 1.9875691500e-4f;
+  p = p * r + 1.3981999507e-3f;
+  p = p * r + 8.3334519073e-3f;
+  p = p * r + 4.1665795894e-2f;
+  p = p * r + 1.6666665459e-1f;
+  p = p * r + 5.0000001201e-1f;
+  float y = p * r * r + r + 1.0f;
+  int32_t e = (static_cast<int32_t>(n) + 127) << 23;
+  float scale;
+  std::memcpy(&scale, &e, sizeof(scale));
+  return x < -87.0f ? 0.0f : y * scale;
+}
+inline double fast_exp(double x) { return std::exp(x); }
 
 // Product of shape[begin, end).
 inline int64_t prod(const Shape& shape, size_t begin, size_t end) {

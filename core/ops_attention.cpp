@@ -8,6 +8,7 @@
 #include "core/autograd.h"
 #include "core/kernels.h"
 #include "core/ops.h"
+#include "core/small_gemm.h"
 
 namespace lc2wf {
 
@@ -24,149 +25,119 @@ struct AttnShape {
 };
 
 struct DropoutPlan {
-  Rng stream;
-  uint64_t first = 0;
-  uint64_t threshold = 0;
+  DropoutMask mask;
   double scale = 1.0;
   bool active = false;
 };
 
 constexpr int64_t kPairsPerTask = 4;
 
+// Softmax of one score row in place (scaled, masked keys excluded; all masked -> zeros), then the
+// dropped-out copy into pd. Element j of row `row` has dropout index row * Lk + j.
+template <class T>
+inline void softmax_dropout_row(T* pr, T* pd, int64_t Lk, T scale, const uint8_t* mrow, const DropoutPlan& drop,
+                                uint64_t row) {
+  T m = -std::numeric_limits<T>::infinity();
+  if (mrow) {
+    for (int64_t j = 0; j < Lk; ++j) m = mrow[j] ? m : std::max(m, pr[j] * scale);
+  } else {
+#pragma omp simd reduction(max : m)
+    for (int64_t j = 0; j < Lk; ++j) m = std::max(m, pr[j] * scale);
+  }
+  if (m == -std::numeric_limits<T>::infinity()) {
+    std::fill_n(pr, Lk, T(0));
+    std::fill_n(pd, Lk, T(0));
+    return;
+  }
+  T sum = 0;
+#pragma omp simd reduction(+ : sum)
+  for (int64_t j = 0; j < Lk; ++j) {
+    T e = fast_exp(pr[j] * scale - m);
+    e = (mrow && mrow[j]) ? T(0) : e;
+    pr[j] = e;
+    sum += e;
+  }
+  T inv = T(1) / sum;
+  if (drop.active) {
+    T sc = static_cast<T>(drop.scale);
+    uint64_t base = row * static_cast<uint64_t>(Lk);
+#pragma omp simd
+    for (int64_t j = 0; j < Lk; ++j) {
+      pr[j] *= inv;
+      pd[j] = drop.mask.keep(base + j) ? pr[j] * sc : T(0);
+    }
+  } else {
+#pragma omp simd
+    for (int64_t j = 0; j < Lk; ++j) {
+      pr[j] *= inv;
+      pd[j] = pr[j];
+    }
+  }
+}
+
 template <class T>
 void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, Layout lk, const T* v, Layout lv, T* o,
                        Layout lo, const uint8_t* mask, T scale, const DropoutPlan& drop, T* probs) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
-  parallel_for_work(s.B * s.H, kPairsPerTask, 4 * s.Lq * s.Lk * (s.D + 4), [&](int64_t p0, int64_t p1) {
-    std::vector<T> kt(static_cast<size_t>(D * Lk)), pd(static_cast<size_t>(Lk));
+  parallel_for_work(s.B * s.H, kPairsPerTask, 4 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
+    std::vector<T> kt(static_cast<size_t>(D * Lk)), pd(static_cast<size_t>(Lq * Lk));
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
-      const T* Q = q + lq.at(b, h);
-      const T* K = k + lk.at(b, h);
-      const T* V = v + lv.at(b, h);
-      T* O = o + lo.at(b, h);
-      T* P = probs + p * Lq * Lk;
       const uint8_t* mrow = mask ? mask + b * Lk : nullptr;
-      // K transposed so each score row is a run of vector FMAs over the keys.
-      for (int64_t j = 0; j < Lk; ++j)
-        for (int64_t d = 0; d < D; ++d) kt[d * Lk + j] = K[j * lk.row + d];
-      bool any_key = true;
-      if (mrow) {
-        any_key = false;
-        for (int64_t j = 0; j < Lk; ++j) any_key |= !mrow[j];
-      }
-      for (int64_t i = 0; i < Lq; ++i) {
-        T* pr = P + i * Lk;
-        T* orow = O + i * lo.row;
-        if (!any_key) {
-          std::fill_n(pr, Lk, T(0));
-          std::fill_n(orow, D, T(0));
-          continue;
-        }
-        const T* qi = Q + i * lq.row;
-        std::fill_n(pr, Lk, T(0));
-        for (int64_t d = 0; d < D; ++d) {
-          T qd = qi[d] * scale;
-          const T* kr = kt.data() + d * Lk;
-          for (int64_t j = 0; j < Lk; ++j) pr[j] += qd * kr[j];
-        }
-        T m = -std::numeric_limits<T>::infinity();
-        for (int64_t j = 0; j < Lk; ++j)
-          if (!mrow || !mrow[j]) m = std::max(m, pr[j]);
-        T sum = 0;
-        for (int64_t j = 0; j < Lk; ++j) {
-          T e = (mrow && mrow[j]) ? T(0) : std::exp(pr[j] - m);
-          pr[j] = e;
-          sum += e;
-        }
-        T inv = T(1) / sum;
-        for (int64_t j = 0; j < Lk; ++j) pr[j] *= inv;
-        const T* pw = pr;
-        if (drop.active) {
-          uint64_t base = drop.first + static_cast<uint64_t>((p * Lq + i) * Lk);
-          T sc = static_cast<T>(drop.scale);
-          for (int64_t j = 0; j < Lk; ++j) pd[j] = dropout_keep(drop.stream, base + j, drop.threshold) ? pr[j] * sc : T(0);
-          pw = pd.data();
-        }
-        std::fill_n(orow, D, T(0));
-        for (int64_t j = 0; j < Lk; ++j) {
-          T w = pw[j];
-          if (w == T(0)) continue;
-          const T* vr = V + j * lv.row;
-          for (int64_t d = 0; d < D; ++d) orow[d] += w * vr[d];
-        }
-      }
+      T* P = probs + p * Lq * Lk;
+      transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt.data());
+      small_gemm(Lq, Lk, D, q + lq.at(b, h), lq.row, kt.data(), Lk, P, Lk);  // raw scores
+      for (int64_t i = 0; i < Lq; ++i)
+        softmax_dropout_row(P + i * Lk, pd.data() + i * Lk, Lk, scale, mrow, drop, static_cast<uint64_t>(p * Lq + i));
+      small_gemm(Lq, D, Lk, pd.data(), Lk, v + lv.at(b, h), lv.row, o + lo.at(b, h), lo.row);
     }
   });
 }
 
-// dq/dk/dv must not alias each other's rows; every row of the three is written (dk/dv zeroed first).
+// Writes every row of dq, dk and dv for each (batch item, head).
 template <class T>
 void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, Layout lk, const T* v, Layout lv,
                         const T* go, Layout lo, const T* probs, T scale, const DropoutPlan& drop, T* dq, Layout ldq,
                         T* dk, Layout ldk, T* dv, Layout ldv) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
-  parallel_for_work(s.B * s.H, kPairsPerTask, 4 * s.Lq * s.Lk * (s.D + 4), [&](int64_t p0, int64_t p1) {
-    std::vector<T> vt(static_cast<size_t>(D * Lk)), dp(static_cast<size_t>(Lk)), pw(static_cast<size_t>(Lk));
-    std::vector<uint8_t> keep(static_cast<size_t>(Lk), 1);
+  parallel_for_work(s.B * s.H, kPairsPerTask, 8 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
+    size_t n = static_cast<size_t>(Lq * Lk);
+    std::vector<T> vt(static_cast<size_t>(D * Lk)), ds(n), pd(n), tr(n);
+    T sc = static_cast<T>(drop.scale);
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
       const T* Q = q + lq.at(b, h);
-      const T* K = k + lk.at(b, h);
-      const T* V = v + lv.at(b, h);
       const T* GO = go + lo.at(b, h);
       const T* P = probs + p * Lq * Lk;
-      T* DQ = dq + ldq.at(b, h);
-      T* DK = dk + ldk.at(b, h);
-      T* DV = dv + ldv.at(b, h);
-      for (int64_t j = 0; j < Lk; ++j) {
-        std::fill_n(DK + j * ldk.row, D, T(0));
-        std::fill_n(DV + j * ldv.row, D, T(0));
-        for (int64_t d = 0; d < D; ++d) vt[d * Lk + j] = V[j * lv.row + d];
-      }
-      T sc = static_cast<T>(drop.scale);
+      transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt.data());
+      small_gemm(Lq, Lk, D, GO, lo.row, vt.data(), Lk, ds.data(), Lk);  // dP (after dropout)
       for (int64_t i = 0; i < Lq; ++i) {
         const T* pr = P + i * Lk;
-        const T* gi = GO + i * lo.row;
-        const T* qi = Q + i * lq.row;
-        T* dqi = DQ + i * ldq.row;
+        T* dr = ds.data() + i * Lk;
+        T* pdr = pd.data() + i * Lk;
         if (drop.active) {
-          uint64_t base = drop.first + static_cast<uint64_t>((p * Lq + i) * Lk);
-          for (int64_t j = 0; j < Lk; ++j) keep[j] = dropout_keep(drop.stream, base + j, drop.threshold);
-        }
-        // dP_dropped = dO V^T, then through the dropout mask.
-        std::fill_n(dp.data(), Lk, T(0));
-        for (int64_t d = 0; d < D; ++d) {
-          T g = gi[d];
-          const T* vr = vt.data() + d * Lk;
-          for (int64_t j = 0; j < Lk; ++j) dp[j] += g * vr[j];
-        }
-        for (int64_t j = 0; j < Lk; ++j) {
-          pw[j] = drop.active ? (keep[j] ? pr[j] * sc : T(0)) : pr[j];
-          if (drop.active) dp[j] = keep[j] ? dp[j] * sc : T(0);
-        }
-        // dV += P_dropped^T dO
-        for (int64_t j = 0; j < Lk; ++j) {
-          T w = pw[j];
-          if (w == T(0)) continue;
-          T* dvr = DV + j * ldv.row;
-          for (int64_t d = 0; d < D; ++d) dvr[d] += w * gi[d];
-        }
-        // Softmax backward: dS = P * (dP - sum(P * dP)), folded with the score scale.
-        T dot = 0;
-        for (int64_t j = 0; j < Lk; ++j) dot += pr[j] * dp[j];
-        std::fill_n(dqi, D, T(0));
-        for (int64_t j = 0; j < Lk; ++j) {
-          T ds = pr[j] * (dp[j] - dot) * scale;
-          if (ds == T(0)) continue;
-          const T* kr = K + j * lk.row;
-          T* dkr = DK + j * ldk.row;
-          for (int64_t d = 0; d < D; ++d) {
-            dqi[d] += ds * kr[d];
-            dkr[d] += ds * qi[d];
+          uint64_t base = static_cast<uint64_t>((p * Lq + i) * Lk);
+#pragma omp simd
+          for (int64_t j = 0; j < Lk; ++j) {
+            bool keep = drop.mask.keep(base + j);
+            pdr[j] = keep ? pr[j] * sc : T(0);
+            dr[j] = keep ? dr[j] * sc : T(0);
           }
+        } else {
+          std::copy_n(pr, Lk, pdr);
         }
+        // Softmax backward folded with the score scale: dS = P * (dP - sum(P * dP)) * scale.
+        T dot = 0;
+#pragma omp simd reduction(+ : dot)
+        for (int64_t j = 0; j < Lk; ++j) dot += pr[j] * dr[j];
+#pragma omp simd
+        for (int64_t j = 0; j < Lk; ++j) dr[j] = pr[j] * (dr[j] - dot) * scale;
       }
+      small_gemm(Lq, D, Lk, ds.data(), Lk, k + lk.at(b, h), lk.row, dq + ldq.at(b, h), ldq.row);
+      transpose_into(Lq, Lk, ds.data(), Lk, tr.data());
+      small_gemm(Lk, D, Lq, tr.data(), Lq, Q, lq.row, dk + ldk.at(b, h), ldk.row);
+      transpose_into(Lq, Lk, pd.data(), Lk, tr.data());
+      small_gemm(Lk, D, Lq, tr.data(), Lq, GO, lo.row, dv + ldv.at(b, h), ldv.row);
     }
   });
 }
@@ -193,9 +164,7 @@ DropoutPlan make_dropout(double p, bool training, Rng& rng, uint64_t count, cons
   DropoutPlan plan;
   if (!training || p == 0.0) return plan;
   plan.active = true;
-  plan.first = rng.reserve(count);
-  plan.stream = rng;
-  plan.threshold = dropout_threshold(p);
+  plan.mask = DropoutMask(rng, rng.reserve(count), p);
   plan.scale = 1.0 / (1.0 - p);
   return plan;
 }

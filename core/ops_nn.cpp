@@ -99,19 +99,18 @@ Tensor dropout(const Tensor& a, double p, bool training, Rng& rng) {
   if (!(p >= 0.0 && p <= 1.0)) throw_arg("dropout: p must be in [0, 1], got " + std::to_string(p));
   if (!training || p == 0.0) return a;
   if (p == 1.0) return mul(a, 0.0);
-  uint64_t first = rng.reserve(static_cast<uint64_t>(a.numel()));
-  uint64_t thr = dropout_threshold(p);
-  Rng stream = rng;
+  DropoutMask mask(rng, rng.reserve(static_cast<uint64_t>(a.numel())), p);
   double scale = 1.0 / (1.0 - p);
   Tensor out = Tensor::empty(a.shape(), a.dtype());
-  auto apply = [stream, first, thr, scale](const Tensor& src, const Tensor& dst) {
+  auto apply = [mask, scale](const Tensor& src, const Tensor& dst) {
     dispatch_float(src.dtype(), "dropout", [&](auto tag) {
       using T = decltype(tag);
       const T* s = ptr<T>(src);
       T* d = ptr<T>(dst);
       T sc = static_cast<T>(scale);
       parallel_for_work(src.numel(), kElemGrain, 4, [&](int64_t b, int64_t e) {
-        for (int64_t i = b; i < e; ++i) d[i] = dropout_keep(stream, first + i, thr) ? s[i] * sc : T(0);
+#pragma omp simd
+        for (int64_t i = b; i < e; ++i) d[i] = mask.keep(static_cast<uint64_t>(i)) ? s[i] * sc : T(0);
       });
       return 0;
     });

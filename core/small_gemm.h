@@ -1,0 +1,78 @@
+// Register-blocked products for the small, cache-resident matrices of one attention head
+// (32 or 64 rows/cols): C = A B with A (M x K, row stride lda), B (K x N, ldb), C (M x N, ldc).
+#pragma once
+
+#include <cstdint>
+
+namespace lc2wf {
+
+// Four rows of C at a time so every row of B loaded from L1 feeds four FMAs; N is a compile-time
+// constant so the accumulators live in vector registers.
+template <class T, int N>
+inline void small_gemm_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                             int64_t ldc) {
+  int64_t i = 0;
+  for (; i + 4 <= M; i += 4) {
+    T acc0[N] = {}, acc1[N] = {}, acc2[N] = {}, acc3[N] = {};
+    const T* a = A + i * lda;
+    for (int64_t k = 0; k < K; ++k) {
+      const T* b = B + k * ldb;
+      T a0 = a[k], a1 = a[lda + k], a2 = a[2 * lda + k], a3 = a[3 * lda + k];
+      for (int n = 0; n < N; ++n) {
+        acc0[n] += a0 * b[n];
+        acc1[n] += a1 * b[n];
+        acc2[n] += a2 * b[n];
+        acc3[n] += a3 * b[n];
+      }
+    }
+    for (int n = 0; n < N; ++n) {
+      C[i * ldc + n] = acc0[n];
+      C[(i + 1) * ldc + n] = acc1[n];
+      C[(i + 2) * ldc + n] = acc2[n];
+      C[(i + 3) * ldc + n] = acc3[n];
+    }
+  }
+  for (; i < M; ++i) {
+    T acc[N] = {};
+    for (int64_t k = 0; k < K; ++k) {
+      T av = A[i * lda + k];
+      const T* b = B + k * ldb;
+      for (int n = 0; n < N; ++n) acc[n] += av * b[n];
+    }
+    for (int n = 0; n < N; ++n) C[i * ldc + n] = acc[n];
+  }
+}
+
+template <class T>
+inline void small_gemm_any(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                           int64_t ldc) {
+  for (int64_t i = 0; i < M; ++i) {
+    T* c = C + i * ldc;
+    for (int64_t n = 0; n < N; ++n) c[n] = T(0);
+    for (int64_t k = 0; k < K; ++k) {
+      T av = A[i * lda + k];
+      const T* b = B + k * ldb;
+      for (int64_t n = 0; n < N; ++n) c[n] += av * b[n];
+    }
+  }
+}
+
+template <class T>
+inline void small_gemm(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                       int64_t ldc) {
+  switch (N) {
+    case 16: small_gemm_fixed<T, 16>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 32: small_gemm_fixed<T, 32>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 64: small_gemm_fixed<T, 64>(M, K, A, lda, B, ldb, C, ldc); return;
+    default: small_gemm_any<T>(M, N, K, A, lda, B, ldb, C, ldc);
+  }
+}
+
+// dst (cols x rows, row stride rows) = src^T, src (rows x cols, row stride lds).
+template <class T>
+inline void transpose_into(int64_t rows, int64_t cols, const T* src, int64_t lds, T* dst) {
+  for (int64_t r = 0; r < rows; ++r)
+    for (int64_t c = 0; c < cols; ++c) dst[c * rows + r] = src[r * lds + c];
+}
+
+}  // namespace lc2wf
