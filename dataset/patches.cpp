@@ -1,6 +1,7 @@
 #include "dataset/patches.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -35,7 +36,7 @@ void PatchOptions::Check() const {
 
 SegmentSet::SegmentSet(const std::vector<Segment3>& segments) : segments_(segments) {
   const size_t n = segments.size();
-  for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_len_}) v->resize(n);
+  for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_len_, &far_}) v->resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 d = segments[i].b - segments[i].a;
     ax_[i] = segments[i].a.x();
@@ -46,34 +47,45 @@ SegmentSet::SegmentSet(const std::vector<Segment3>& segments) : segments_(segmen
     dz_[i] = d.z();
     const double len = d.norm();
     inv_len_[i] = len > 0 ? 1.0 / (len + 1e-6) : 0.0;
+    far_[i] = len > 0 ? 0.0 : kFar * kFar;
   }
   scratch_.resize(n);
-  order_.resize(n);
 }
 
 void SegmentSet::nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& dist) const {
   const size_t n = segments_.size();
   const double qx = q.x(), qy = q.y(), qz = q.z();
-  double* d = scratch_.data();
-  // Branch-free loop the compiler vectorises: |AB x (q - A)| / (|AB| + 1e-6).
+  double* d2 = scratch_.data();
+  // Squared |AB x (q - A)| / (|AB| + 1e-6): same order as the release's distance, no sqrt, vectorisable.
   for (size_t i = 0; i < n; ++i) {
     const double px = qx - ax_[i], py = qy - ay_[i], pz = qz - az_[i];
     const double cx = dy_[i] * pz - dz_[i] * py;
     const double cy = dz_[i] * px - dx_[i] * pz;
     const double cz = dx_[i] * py - dy_[i] * px;
-    d[i] = std::sqrt(cx * cx + cy * cy + cz * cz) * inv_len_[i];
+    d2[i] = (cx * cx + cy * cy + cz * cz) * (inv_len_[i] * inv_len_[i]) + far_[i];
   }
-  for (size_t i = 0; i < n; ++i) {
-    if (inv_len_[i] == 0.0) d[i] = kFar;
-  }
+  // Running top-k by insertion: after the first few hundred segments insertions become rare.
   const size_t m = std::min<size_t>(static_cast<size_t>(std::max(k, 0)), n);
-  std::iota(order_.begin(), order_.end(), 0);
-  auto less = [d](int a, int b) { return d[a] < d[b] || (d[a] == d[b] && a < b); };
-  if (m < n) std::nth_element(order_.begin(), order_.begin() + m, order_.end(), less);
-  std::sort(order_.begin(), order_.begin() + m, less);
-  idx.assign(order_.begin(), order_.begin() + m);
-  dist.resize(m);
-  for (size_t s = 0; s < m; ++s) dist[s] = d[idx[s]];
+  idx.clear();
+  dist.clear();
+  if (m == 0) return;
+  for (size_t i = 0; i < n; ++i) {
+    const double di = d2[i];
+    if (idx.size() == m && di >= dist.back()) continue;  // ties keep the lower index (already in)
+    size_t pos = idx.size() < m ? idx.size() : m - 1;
+    if (idx.size() < m) {
+      idx.push_back(0);
+      dist.push_back(0);
+    }
+    while (pos > 0 && dist[pos - 1] > di) {
+      idx[pos] = idx[pos - 1];
+      dist[pos] = dist[pos - 1];
+      --pos;
+    }
+    idx[pos] = static_cast<int>(i);
+    dist[pos] = di;
+  }
+  for (auto& v : dist) v = std::sqrt(v);
 }
 
 double SegmentSet::segment_distance(size_t i, const Vec3& q) const {
@@ -176,14 +188,19 @@ PairPatches build_pair_patches(const SegmentSet& segs, const std::vector<Junctio
   out.padded.assign(static_cast<size_t>(P) * L2, 1);
   out.label.resize(P);
   const double inv = 1.0 / o.frame.scale_m;
-  std::vector<int> idx;
-  std::vector<double> dist;
+  // Pairs share their junctions (512 pairs over ~100 points): query each distinct point once.
+  std::map<std::array<double, 3>, std::pair<std::vector<int>, std::vector<double>>> cache;
+  auto nearest = [&](const Vec3& q) -> const std::pair<std::vector<int>, std::vector<double>>& {
+    auto [it, fresh] = cache.try_emplace({q.x(), q.y(), q.z()});
+    if (fresh) segs.nearest_by_line(q, L, it->second.first, it->second.second);
+    return it->second;
+  };
   for (int p = 0; p < P; ++p) {
     const auto& pr = pairs[p];
     out.label[p] = pr.label;
     const Vec3 m = 0.5 * (pr.u + pr.v);
     for (int side = 0; side < 2; ++side) {
-      segs.nearest_by_line(side == 0 ? pr.u : pr.v, L, idx, dist);
+      const auto& [idx, dist] = nearest(side == 0 ? pr.u : pr.v);
       for (int s = 0; s < L; ++s) {
         const size_t slot = static_cast<size_t>(p) * L2 + side * L + s;
         const bool valid = s < static_cast<int>(idx.size()) && dist[s] <= o.radius_m;

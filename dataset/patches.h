@@ -43,8 +43,8 @@ class SegmentSet {
  private:
   std::vector<Segment3> segments_;
   std::vector<double> ax_, ay_, az_, dx_, dy_, dz_, inv_len_;  // A and B - A; 1 / (|AB| + 1e-6), 0 if zero length
-  mutable std::vector<double> scratch_;
-  mutable std::vector<int> order_;
+  std::vector<double> far_;                                     // squared 1e5 for zero-length segments, else 0
+  mutable std::vector<double> scratch_;  // per-query distances: one SegmentSet per thread
 };
 
 // Arrays have a leading batch dimension `batch` (1 for one building; stack() concatenates buildings).

@@ -37,14 +37,11 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
   o.Check();
   if (p.empty()) return {};
   const SpatialGrid grid(p, o.density_radius_m);
-  std::vector<int> near, cand;
+  std::vector<int> cand;
   std::vector<double> ratio(p.size(), 0.0);
-  const double inner2 = o.density_inner_radius_m * o.density_inner_radius_m;
   for (size_t i = 0; i < p.size(); ++i) {
-    grid.query(p[i], o.density_radius_m, near);
-    const int a = static_cast<int>(near.size());
-    int b = 0;
-    for (int j : near) b += (p[j] - p[i]).squaredNorm() <= inner2;
+    int a = 0, b = 0;
+    grid.count_within(p[i], o.density_radius_m, o.density_inner_radius_m, a, b);
     ratio[i] = b / (a + 1e-3);
     if (a > o.density_min_count && ratio[i] > o.density_min_ratio) cand.push_back(static_cast<int>(i));
   }
@@ -79,16 +76,23 @@ std::vector<int> farthest_point_sampling(const std::vector<Vec3>& p, int count, 
     out.push_back(0);
     taken[0] = 1;
   }
-  std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+  // Structure-of-arrays so the update loop vectorises.
+  std::vector<double> xs(n), ys(n), zs(n), dist(n, std::numeric_limits<double>::infinity());
+  for (int i = 0; i < n; ++i) {
+    xs[i] = p[i].x();
+    ys[i] = p[i].y();
+    zs[i] = p[i].z();
+  }
   auto relax = [&](int s) {
-    for (int i = 0; i < n; ++i) dist[i] = std::min(dist[i], (p[i] - p[s]).squaredNorm());
+    const double sx = xs[s], sy = ys[s], sz = zs[s];
+    for (int i = 0; i < n; ++i) {
+      const double dx = xs[i] - sx, dy = ys[i] - sy, dz = zs[i] - sz;
+      dist[i] = std::min(dist[i], dx * dx + dy * dy + dz * dz);
+    }
   };
   for (int s : out) relax(s);
   while (static_cast<int>(out.size()) < count) {
-    int best = 0;
-    for (int i = 1; i < n; ++i) {
-      if (dist[i] > dist[best]) best = i;
-    }
+    const int best = static_cast<int>(std::max_element(dist.begin(), dist.end()) - dist.begin());  // first on ties
     out.push_back(best);
     relax(best);
   }

@@ -7,18 +7,25 @@
 namespace lc2wf {
 
 SpatialGrid::SpatialGrid(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
-  if (!(cell > 0)) throw std::invalid_argument("SpatialGrid cell must be > 0");
+  if (!(cell > 0) || !std::isfinite(cell)) throw std::invalid_argument("SpatialGrid cell must be > 0");
   Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
   if (!points.empty()) lo = hi = points[0];
   for (const auto& p : points) {
+    if (!p.allFinite()) throw std::invalid_argument("SpatialGrid: non-finite point");
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
   origin_ = lo;
-  // Cap the cell count: a huge extent with a tiny cell would otherwise allocate without bound.
-  for (int k = 0; k < 3; ++k) {
-    const double n = std::floor((hi[k] - lo[k]) / cell_) + 1;
-    dims_[k] = static_cast<int>(std::clamp(n, 1.0, 128.0));
+  // Enlarge cells when the grid would be much larger than the point set (sparse points over a wide extent).
+  const double cell_budget = std::max(64.0, 4.0 * static_cast<double>(points.size()));
+  for (;;) {
+    double cells = 1;
+    for (int k = 0; k < 3; ++k) {
+      dims_[k] = static_cast<int>(std::floor((hi[k] - lo[k]) / cell_)) + 1;
+      cells *= dims_[k];
+    }
+    if (cells <= cell_budget) break;
+    cell_ *= std::max(1.1, std::cbrt(cells / cell_budget));
   }
   const int64_t cells = int64_t{dims_[0]} * dims_[1] * dims_[2];
   std::vector<int> count(cells + 1, 0);
@@ -60,7 +67,22 @@ void SpatialGrid::query_impl(const Vec3& q, double radius, std::vector<int>& out
       }
     }
   }
-  std::sort(out.begin(), out.end());
+}
+
+void SpatialGrid::count_within(const Vec3& q, double outer, double inner, int& n_outer, int& n_inner) const {
+  n_outer = n_inner = 0;
+  const Eigen::Vector3i lo = cell_of(q - Vec3::Constant(outer)), hi = cell_of(q + Vec3::Constant(outer));
+  const double o2 = outer * outer, i2 = inner * inner;
+  for (int z = lo[2]; z <= hi[2]; ++z) {
+    for (int y = lo[1]; y <= hi[1]; ++y) {
+      const int64_t row = key({lo[0], y, z});
+      for (int k = cell_start_[row]; k < cell_start_[row + hi[0] - lo[0] + 1]; ++k) {
+        const double d2 = (points_[items_[k]] - q).squaredNorm();
+        n_outer += d2 <= o2;
+        n_inner += d2 <= i2;
+      }
+    }
+  }
 }
 
 void SpatialGrid::query(const Vec3& q, double radius, std::vector<int>& out) const { query_impl<false>(q, radius, out); }

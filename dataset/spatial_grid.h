@@ -1,5 +1,5 @@
-// Uniform grid over 3D points for radius queries (density counts, point NMS). Deterministic: query
-// results come back in ascending point index.
+// Uniform grid over 3D points for radius queries (density counts, point NMS). Deterministic: results
+// come back in a fixed order (cell by cell, ascending index within a cell).
 #pragma once
 
 #include <cstdint>
@@ -13,8 +13,10 @@ class SpatialGrid {
  public:
   // `cell` should be about the largest query radius.
   SpatialGrid(const std::vector<Vec3>& points, double cell);
-  // Indices i with |points[i] - q| <= radius (radius <= cell), ascending.
+  // Indices i with |points[i] - q| <= radius.
   void query(const Vec3& q, double radius, std::vector<int>& out) const;
+  // Counts of points within `outer` and within `inner` (<=, inner <= outer) without allocating.
+  void count_within(const Vec3& q, double outer, double inner, int& n_outer, int& n_inner) const;
   // Same with strict < radius.
   void query_strict(const Vec3& q, double radius, std::vector<int>& out) const;
 

@@ -46,6 +46,7 @@ void CameraRingOptions::Check() const {
 void SyntheticCloudOptions::Check() const {
   if (!(edge_pieces_per_metre > 0)) throw std::invalid_argument("SyntheticCloudOptions.edge_pieces_per_metre must be > 0");
   if (!(piece_median_m > 0)) throw std::invalid_argument("SyntheticCloudOptions.piece_median_m must be > 0");
+  if (!(anchored_fraction >= 0 && anchored_fraction <= 1)) throw std::invalid_argument("SyntheticCloudOptions.anchored_fraction must be in [0, 1]");
   if (!(piece_log_sigma >= 0)) throw std::invalid_argument("SyntheticCloudOptions.piece_log_sigma must be >= 0");
   if (!(noise_m >= 0)) throw std::invalid_argument("SyntheticCloudOptions.noise_m must be >= 0");
   if (!(texture_per_roof_m2 >= 0)) throw std::invalid_argument("SyntheticCloudOptions.texture_per_roof_m2 must be >= 0");
@@ -104,7 +105,8 @@ LineCloud make_synthetic_line_cloud(const Building& b, uint64_t seed, const Synt
     const int pieces = std::max(1, static_cast<int>(std::lround(len * o.edge_pieces_per_metre)));
     for (int k = 0; k < pieces; ++k) {
       const double l = std::clamp(piece_length(), o.min_length_m, len);
-      const double t0 = rng.uniform(0.0, 1.0 - l / len);
+      const double free_t0 = rng.uniform(0.0, 1.0 - l / len);
+      const double t0 = rng.uniform() < o.anchored_fraction ? (rng.uniform() < 0.5 ? 0.0 : 1.0 - l / len) : free_t0;
       Segment3 s{A + t0 * (B - A) + noise3(rng, o.noise_m), A + (t0 + l / len) * (B - A) + noise3(rng, o.noise_m)};
       if (rng.uniform() < 0.5) std::swap(s.a, s.b);
       if (s.length() < o.min_length_m) continue;

@@ -28,6 +28,7 @@ struct SyntheticCloudOptions {
   double edge_pieces_per_metre = 2.0;   // redundant pieces per metre of GT edge (many views see each edge)
   double piece_median_m = 1.2;          // log-normal piece length (clipped to the edge)
   double piece_log_sigma = 0.6;
+  double anchored_fraction = 0.5;       // pieces starting at a GT junction (line detectors stop at corners)
   double noise_m = 0.02;                // per-endpoint 3D noise (isotropic Gaussian sigma)
   double texture_per_roof_m2 = 1.0;     // in-plane roof/wall texture lines per square metre of roof
   double clutter_fraction = 0.15;       // random segments around the building, relative to edge pieces

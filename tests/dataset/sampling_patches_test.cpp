@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "dataset/augmentation.h"
@@ -11,6 +12,7 @@
 #include "dataset/samples.h"
 #include "dataset/sampling.h"
 #include "dataset/synthetic_building.h"
+#include "dataset/spatial_grid.h"
 #include "dataset/synthetic_line_cloud.h"
 
 namespace lc2wf {
@@ -42,6 +44,34 @@ TEST(Constants, ReleaseValuesInMetres) {
   const Vec3 raw(100, -40, 75);
   const Vec3 release = (raw - Vec3(0.12249484, -0.3440005, 70.5140106)) / 266.2135032067564;
   EXPECT_NEAR((f.to_network(raw / 20) - release).norm(), 0, 1e-12);
+}
+
+TEST(SpatialGrid, MatchesBruteForceIncludingSparseExtents) {
+  Rng rng(2);
+  std::vector<Vec3> p;
+  for (int i = 0; i < 400; ++i) p.push_back(Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(0, 2)));
+  p.push_back(Vec3(500, 0, 0));  // a far outlier forces the enlarged-cell path
+  const SpatialGrid grid(p, 0.2);
+  std::vector<int> got;
+  for (int t = 0; t < 50; ++t) {
+    const Vec3 q = p[rng.below(p.size())];
+    for (double r : {0.2, 0.5}) {
+      grid.query(q, r, got);
+      std::sort(got.begin(), got.end());
+      std::vector<int> want;
+      int inner = 0;
+      for (int i = 0; i < static_cast<int>(p.size()); ++i) {
+        if ((p[i] - q).norm() <= r) want.push_back(i);
+        inner += (p[i] - q).norm() <= 0.1;
+      }
+      EXPECT_EQ(got, want);
+      int a = 0, b = 0;
+      grid.count_within(q, r, 0.1, a, b);
+      EXPECT_EQ(a, static_cast<int>(want.size()));
+      EXPECT_EQ(b, inner);
+    }
+  }
+  EXPECT_THROW(SpatialGrid({Vec3(0, 0, std::nan(""))}, 1.0), std::invalid_argument);
 }
 
 TEST(PointNms, SuppressorRuleOnAChainKeepsOnlyTheTop) {
