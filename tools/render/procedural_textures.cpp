@@ -44,8 +44,8 @@ Rgb roof_tiles(double u, double v, uint64_t seed) {
   const double cu = (u + shift) / kColumn;
   const double across = frac(cu), down = frac(v / kCourse);
   double shade = 0.88 + 0.12 * std::sin(across * 3.14159265);  // barrel profile of each tile
-  if (across < 0.16) shade *= 0.55;                            // groove between columns
-  if (down > 0.9) shade *= 0.78;                               // overlap shadow of the next course
+  if (across < 0.16) shade *= 0.45;                            // groove between columns
+  if (down > 0.9) shade *= 0.7;                                // overlap shadow of the next course
   shade *= 0.9 + 0.2 * cell_random(static_cast<int64_t>(std::floor(cu)), static_cast<int64_t>(course), seed);
   return scale({0.62f, 0.22f, 0.12f}, shade);
 }

@@ -1,0 +1,389 @@
+"""Renders batches of labelled building meshes with Blender 3.4 (headless) for the lc2wf dataset.
+
+Run:  blender -b --factory-startup --python-exit-code 1 --python render_building.py -- JOB.json
+
+JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z up):
+  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 8, "shadows": true,
+   "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
+   "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
+                  "labels": [1|2|3 ...], "edges": [[i,j]...],
+                  "cameras": [{"K": [9 floats, row-major], "R": [9], "t": [3], "width": W, "height": H}...]}]}
+
+Per building, in out_dir: view_000.png ..., cameras.json (K, R, t read back from Blender's cameras in the
+OpenCV convention: x_cam = R X + t, pixel (0,0) at the centre of the top-left pixel), views.json (per view
+the projected GT junctions and every GT edge as [i, j, visible, visible_fraction]) and, last, done.json.
+A building that fails gets error.txt instead and the batch goes on; the exit code is non-zero only when
+the job itself is unusable.
+"""
+import json
+import math
+import os
+import sys
+import time
+import traceback
+
+import bpy
+import numpy as np
+from mathutils import Matrix, Vector
+from mathutils.bvhtree import BVHTree
+
+ROOF, BASE, WALL = 1, 2, 3
+R_BCAM2CV = Matrix(((1, 0, 0), (0, -1, 0), (0, 0, -1)))  # Blender camera looks down -Z with +Y up
+TEX_PX_PER_M = 96
+
+
+# ----------------------------------------------------------------------------- procedural textures
+def _hash01(i, j, seed):
+    h = (i.astype(np.uint64) * np.uint64(0x632BE59BD9B4E019) + j.astype(np.uint64) + np.uint64(seed)) & np.uint64(0xFFFFFFFFFFFFFFFF)
+    h ^= h >> np.uint64(31)
+    h *= np.uint64(0x94D049BB133111EB)
+    h ^= h >> np.uint64(29)
+    return (h >> np.uint64(40)).astype(np.float64) / float(1 << 24)
+
+
+def _grid(width_m, height_m):
+    w, h = int(round(width_m * TEX_PX_PER_M)), int(round(height_m * TEX_PX_PER_M))
+    u, v = np.meshgrid((np.arange(w) + 0.5) / TEX_PX_PER_M, (np.arange(h) + 0.5) / TEX_PX_PER_M)
+    return u, v
+
+
+def roof_tiles(seed):
+    """Terracotta tiles: grooves between tile columns run down the slope (v), weaker course lines across."""
+    col, course_len = 0.32, 0.42
+    u, v = _grid(col * 8, course_len * 8)
+    course = np.floor(v / course_len)
+    cu = (u + np.mod(course, 2) * 0.5 * col) / col
+    across, down = cu - np.floor(cu), v / course_len - course
+    shade = 0.88 + 0.12 * np.sin(across * math.pi)
+    shade = np.where(across < 0.16, shade * 0.45, shade)
+    shade = np.where(down > 0.9, shade * 0.7, shade)
+    shade *= 0.9 + 0.2 * _hash01(np.floor(cu).astype(np.int64) % 8, course.astype(np.int64), seed)
+    return np.stack([0.62 * shade, 0.22 * shade, 0.12 * shade], -1)
+
+
+def siding(seed):
+    board = 0.28
+    u, z = _grid(3.0, board * 8)
+    t = z / board - np.floor(z / board)
+    shade = np.where(t < 0.12, 0.72, 1.0) * (0.9 + 0.1 * t)
+    return np.stack([0.80 * shade, 0.79 * shade, 0.74 * shade], -1)
+
+
+def brick(seed):
+    row, length, mortar = 0.16, 0.42, 0.02
+    u, z = _grid(length * 6, row * 12)
+    r = np.floor(z / row)
+    uu = u + np.mod(r, 2) * 0.5 * length
+    is_mortar = (np.mod(z, row) < mortar) | (np.mod(uu, length) < mortar)
+    j = 0.9 + 0.2 * _hash01(np.floor(uu / length).astype(np.int64), r.astype(np.int64), seed)
+    rgb = np.stack([0.62 * j, 0.52 * j, 0.40 * j], -1)
+    return np.where(is_mortar[..., None], np.array([0.82, 0.80, 0.76]), rgb)
+
+
+def _value_noise(u, v, period, seed):
+    x, y = u / period, v / period
+    ix, iy = np.floor(x).astype(np.int64), np.floor(y).astype(np.int64)
+    tx, ty = x - ix, y - iy
+    tx, ty = tx * tx * (3 - 2 * tx), ty * ty * (3 - 2 * ty)
+    n = int(round(u.shape[1] / TEX_PX_PER_M / period))  # lattice wraps so the tile repeats seamlessly
+    a, b = _hash01(ix % n, iy % n, seed), _hash01((ix + 1) % n, iy % n, seed)
+    c, d = _hash01(ix % n, (iy + 1) % n, seed), _hash01((ix + 1) % n, (iy + 1) % n, seed)
+    return (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty
+
+
+def flat_roof(seed):
+    u, v = _grid(8.0, 8.0)
+    n = 0.85 + 0.15 * _value_noise(u, v, 0.8, seed + 7)
+    return np.stack([0.30 * n, 0.29 * n, 0.28 * n], -1)
+
+
+def grass(seed):
+    u, v = _grid(16.0, 16.0)
+    n = 0.6 * _value_noise(u, v, 1.6, seed + 11) + 0.4 * _value_noise(u, v, 0.4, seed + 13)
+    s = 0.8 + 0.4 * n
+    return np.stack([0.11 * s, 0.20 * s, 0.06 * s], -1)
+
+
+def make_image(name, rgb):
+    h, w, _ = rgb.shape
+    img = bpy.data.images.new(name, width=w, height=h, alpha=False, float_buffer=True)
+    img.colorspace_settings.name = "Linear"  # before the pixels: changing it afterwards clears them
+    rgba = np.concatenate([rgb, np.ones((h, w, 1))], -1).astype(np.float32)
+    img.pixels.foreach_set(rgba.ravel())  # rows bottom-up; the patterns do not care
+    return img
+
+
+def make_material(name, rgb, tile_m):
+    """Image-textured material; tile_m = (width, height) in metres covered by one image tile."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nodes = m.node_tree.nodes
+    img = make_image(name + "_img", rgb)
+    tex = nodes.new("ShaderNodeTexImage")
+    tex.image = img
+    tex.interpolation = "Closest"  # crisp tile and board edges, as in the rasteriser
+    bsdf = nodes["Principled BSDF"]
+    bsdf.inputs["Roughness"].default_value = 0.9
+    bsdf.inputs["Specular"].default_value = 0.1
+    m.node_tree.links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
+    nodes.active = tex  # Workbench shows the active image texture node
+    m.diffuse_color = tuple(float(c) for c in rgb.reshape(-1, 3).mean(0)) + (1.0,)
+    return m, tile_m
+
+
+# ----------------------------------------------------------------------------- scene
+def face_frame(pts):
+    """Unit normal (Newell), horizontal in-plane axis u and down-slope axis v (as in the C++ rasteriser)."""
+    n = Vector((0.0, 0.0, 0.0))
+    for a, b in zip(pts, pts[1:] + pts[:1]):
+        n.x += (a.y - b.y) * (a.z + b.z)
+        n.y += (a.z - b.z) * (a.x + b.x)
+        n.z += (a.x - b.x) * (a.y + b.y)
+    n = n.normalized() if n.length > 0 else Vector((0, 0, 1))
+    if abs(n.z) > 0.985:
+        return n, Vector((1, 0, 0)), Vector((0, 1, 0))
+    u = n.cross(Vector((0, 0, 1))).normalized()
+    v = n.cross(u).normalized()
+    if v.z > 0:
+        v = -v
+    return n, u, v
+
+
+def surface_kind(label, n):
+    if label == BASE:
+        return "base"
+    if abs(n.z) > 0.985:
+        return "flat" if label == ROOF else "base"
+    if label == ROOF and abs(n.z) > 0.1:
+        return "roof"
+    return "wall"
+
+
+def build_scene(b, job):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    seed = int(b.get("seed", 0))
+    wall_style = brick if (seed >> 3) % 3 == 0 else siding
+    mats = {
+        "roof": make_material("roof", roof_tiles(seed), (0.32 * 8, 0.42 * 8)),
+        "flat": make_material("flat", flat_roof(seed), (8.0, 8.0)),
+        "wall": make_material("wall", wall_style(seed), (0.42 * 6, 0.16 * 12) if wall_style is brick else (3.0, 0.28 * 8)),
+        "base": make_material("base", np.full((4, 4, 3), 0.25), (1.0, 1.0)),
+        "grass": make_material("grass", grass(seed), (16.0, 16.0)),
+    }
+    order = ["roof", "flat", "wall", "base"]
+    verts = [Vector(v) for v in b["vertices"]]
+    faces, labels = b["faces"], b["labels"]
+    if len(faces) != len(labels):
+        raise ValueError(f"{len(faces)} faces but {len(labels)} labels")
+    me = bpy.data.meshes.new(b["name"])
+    me.from_pydata([tuple(v) for v in verts], [], [list(f) for f in faces])  # n-gons: no diagonal edges
+    me.validate(clean_customdata=False)
+    obj = bpy.data.objects.new(b["name"], me)
+    scene.collection.objects.link(obj)
+    for k in order:
+        me.materials.append(mats[k][0])
+    uv = me.uv_layers.new(name="uv")
+    for poly in me.polygons:
+        pts = [verts[i] for i in poly.vertices]
+        n, u, v = face_frame(pts)
+        kind = surface_kind(labels[poly.index], n)
+        poly.material_index = order.index(kind)
+        tw, th = mats[kind][1]
+        for li in poly.loop_indices:
+            p = verts[me.loops[li].vertex_index]
+            d = p - pts[0]
+            if kind == "wall":  # boards and bricks follow world height, like the rasteriser
+                uv.data[li].uv = (d.dot(u) / tw, p.z / th)
+            elif kind == "flat":
+                uv.data[li].uv = (p.x / tw, p.y / th)
+            else:
+                uv.data[li].uv = (d.dot(u) / tw, d.dot(v) / th)
+    # Ground: a large grass square at the lowest vertex, UVs in metres / tile size.
+    zmin = min(v.z for v in verts)
+    cx = sum(v.x for v in verts) / len(verts)
+    cy = sum(v.y for v in verts) / len(verts)
+    half = 400.0
+    gme = bpy.data.meshes.new("ground")
+    gv = [(cx - half, cy - half, zmin), (cx + half, cy - half, zmin), (cx + half, cy + half, zmin), (cx - half, cy + half, zmin)]
+    gme.from_pydata(gv, [], [[0, 1, 2, 3]])
+    gme.materials.append(mats["grass"][0])
+    guv = gme.uv_layers.new(name="uv")
+    for li, (x, y, _) in zip(gme.polygons[0].loop_indices, gv):
+        guv.data[li].uv = (x / 16.0, y / 16.0)
+    ground = bpy.data.objects.new("ground", gme)
+    scene.collection.objects.link(ground)
+    # Lower the ground a hair so it never z-fights with the base polygon.
+    ground.location.z = -1e-3
+    return scene, obj, verts
+
+
+def setup_render(scene, job, width, height):
+    engine = job.get("engine", "BLENDER_WORKBENCH")
+    samples = int(job.get("samples", 5))
+    shadows = bool(job.get("shadows", True))
+    az, el = math.radians(job.get("sun_azimuth_deg", 140.0)), math.radians(job.get("sun_elevation_deg", 55.0))
+    sun_dir = Vector((math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)))  # towards the sun
+    r = scene.render
+    r.engine = engine
+    r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+    r.pixel_aspect_x = r.pixel_aspect_y = 1.0
+    r.image_settings.file_format = "PNG"
+    r.image_settings.color_mode = "RGB"
+    r.dither_intensity = 1.0
+    scene.view_settings.view_transform = "Standard"
+    world = bpy.data.worlds.new("world")
+    world.color = (0.55, 0.65, 0.80)
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.55, 0.65, 0.80, 1.0)
+    world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.6
+    scene.world = world
+    if engine == "BLENDER_WORKBENCH":
+        sh = scene.display.shading
+        sh.light = "STUDIO"
+        sh.color_type = "TEXTURE"
+        sh.show_shadows = shadows
+        sh.shadow_intensity = 0.6
+        scene.display.light_direction = tuple(sun_dir)
+        scene.display.render_aa = str(samples) if str(samples) in ("5", "8", "11", "16", "32") else "8"
+    else:
+        sun = bpy.data.lights.new("sun", type="SUN")
+        sun.energy = 4.0
+        sun.angle = 0.01 if shadows else 0.0
+        sun_obj = bpy.data.objects.new("sun", sun)
+        sun_obj.rotation_euler = (-sun_dir).to_track_quat("-Z", "Y").to_euler()
+        scene.collection.objects.link(sun_obj)
+        if engine == "CYCLES":
+            scene.cycles.samples = samples
+            scene.cycles.device = "CPU"
+            sun.cycles.cast_shadow = shadows
+        else:
+            scene.eevee.taa_render_samples = samples
+            scene.eevee.use_soft_shadows = False
+            sun.use_shadow = shadows
+
+
+def place_camera(scene, cam_obj, K, R, t, width, height):
+    """Blender camera from OpenCV K, R, t (square pixels, horizontal sensor fit)."""
+    fx, fy, cx, cy = K[0][0], K[1][1], K[0][2], K[1][2]
+    if abs(fx - fy) > 1e-6 * fx or abs(K[0][1]) > 1e-9:
+        raise ValueError("cameras must have square pixels and no skew")
+    cd = cam_obj.data
+    cd.sensor_fit = "HORIZONTAL"
+    cd.sensor_width = 36.0
+    cd.lens = fx * cd.sensor_width / width
+    cd.shift_x = (width / 2.0 - 0.5 - cx) / width
+    cd.shift_y = (cy - height / 2.0 + 0.5) / width
+    cd.clip_start, cd.clip_end = 0.05, 1000.0
+    R = Matrix(R)
+    R_w2b = R_BCAM2CV @ R
+    C = -(R.transposed() @ Vector(t))
+    cam_obj.matrix_world = Matrix.Translation(C) @ R_w2b.transposed().to_4x4()
+    bpy.context.view_layer.update()  # matrix_world is stale otherwise
+
+
+def camera_to_opencv(scene, cam_obj):
+    """K, R, t of a Blender camera; -0.5 because Blender's pixel centres sit at +0.5."""
+    r = scene.render
+    s = r.resolution_percentage / 100.0
+    w, h = r.resolution_x * s, r.resolution_y * s
+    par = r.pixel_aspect_y / r.pixel_aspect_x
+    cd = cam_obj.data
+    fit = cd.sensor_fit
+    if fit == "AUTO":
+        fit = "HORIZONTAL" if r.pixel_aspect_x * w >= r.pixel_aspect_y * h else "VERTICAL"
+    sensor = cd.sensor_height if fit == "VERTICAL" else cd.sensor_width
+    view = w if fit == "HORIZONTAL" else par * h
+    fx = cd.lens / sensor * view
+    fy = fx / par
+    cx = w / 2.0 - cd.shift_x * view - 0.5
+    cy = h / 2.0 + cd.shift_y * view / par - 0.5
+    loc, rot = cam_obj.matrix_world.decompose()[0:2]
+    R_w2b = rot.to_matrix().transposed()
+    t_w2b = -1.0 * (R_w2b @ loc)
+    R = R_BCAM2CV @ R_w2b
+    t = R_BCAM2CV @ t_w2b
+    return [[fx, 0.0, cx], [0.0, fy, cy], [0.0, 0.0, 1.0]], [list(row) for row in R], list(t)
+
+
+def project(K, R, t, X):
+    xc = Matrix(R) @ X + Vector(t)
+    return [K[0][0] * xc.x / xc.z + K[0][2], K[1][1] * xc.y / xc.z + K[1][2]], xc.z
+
+
+def edge_visibility(bvh, K, R, t, w, h, a, b, samples=16, tol=0.02):
+    """Fraction of samples on edge (a, b) in front of the camera, inside the image and not hidden."""
+    C = -(Matrix(R).transposed() @ Vector(t))
+    seen = 0
+    for k in range(samples):
+        X = a + (b - a) * ((k + 0.5) / samples)
+        px, z = project(K, R, t, X)
+        if z <= 0 or not (-0.5 <= px[0] <= w - 0.5 and -0.5 <= px[1] <= h - 0.5):
+            continue
+        d = X - C
+        dist = d.length
+        hit = bvh.ray_cast(C, d.normalized(), dist - tol)
+        if hit[0] is None:
+            seen += 1
+    return seen / samples
+
+
+def render_building(b, job):
+    t0 = time.time()
+    out = b["out_dir"]
+    os.makedirs(out, exist_ok=True)
+    cams = b["cameras"]
+    if not cams:
+        raise ValueError("no cameras")
+    width, height = int(cams[0]["width"]), int(cams[0]["height"])
+    scene, obj, verts = build_scene(b, job)
+    setup_render(scene, job, width, height)
+    cam_obj = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    scene.collection.objects.link(cam_obj)
+    scene.camera = cam_obj
+    bvh = BVHTree.FromPolygons([tuple(v) for v in verts], [list(f) for f in b["faces"]])
+    exported, views = [], []
+    for i, c in enumerate(cams):
+        if int(c["width"]) != width or int(c["height"]) != height:
+            raise ValueError(f"camera {i} has a different image size")
+        K = [c["K"][0:3], c["K"][3:6], c["K"][6:9]]
+        R = [c["R"][0:3], c["R"][3:6], c["R"][6:9]]
+        place_camera(scene, cam_obj, K, R, c["t"], width, height)
+        scene.render.filepath = os.path.join(out, f"view_{i:03d}.png")
+        bpy.ops.render.render(write_still=True)
+        K2, R2, t2 = camera_to_opencv(scene, cam_obj)
+        exported.append({"K": [x for row in K2 for x in row], "R": [x for row in R2 for x in row], "t": t2,
+                         "width": width, "height": height})
+        junc2d = [project(K2, R2, t2, v)[0] for v in verts]
+        edges = []
+        for a, bb in b.get("edges", []):
+            frac = edge_visibility(bvh, K2, R2, t2, width, height, verts[a], verts[bb])
+            edges.append([a, bb, 1 if frac >= 0.5 else 0, round(frac, 4)])
+        views.append({"junc2D": junc2d, "edges": edges})
+    with open(os.path.join(out, "cameras.json"), "w") as f:
+        json.dump(exported, f)
+    with open(os.path.join(out, "views.json"), "w") as f:
+        json.dump(views, f)
+    with open(os.path.join(out, "done.json"), "w") as f:
+        json.dump({"views": len(cams), "seconds": time.time() - t0}, f)
+
+
+def main():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    if len(argv) != 1:
+        raise SystemExit("usage: blender -b --factory-startup --python-exit-code 1 --python render_building.py -- JOB.json")
+    with open(argv[0]) as f:
+        job = json.load(f)
+    failed = 0
+    for b in job["buildings"]:
+        try:
+            render_building(b, job)
+        except Exception:  # one bad building must not stop the batch
+            failed += 1
+            os.makedirs(b["out_dir"], exist_ok=True)
+            with open(os.path.join(b["out_dir"], "error.txt"), "w") as f:
+                f.write(traceback.format_exc())
+    print(f"render_building: {len(job['buildings']) - failed} rendered, {failed} failed", flush=True)
+
+
+main()

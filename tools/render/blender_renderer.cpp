@@ -1,0 +1,181 @@
+#include "tools/render/blender_renderer.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "dataset/atomic_file.h"
+#include "dataset/errors.h"
+
+namespace lc2wf {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+Json camera_json(const Camera& c) {
+  Json j;
+  std::vector<double> K, R;
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) {
+      K.push_back(c.K(r, k));
+      R.push_back(c.R(r, k));
+    }
+  j["K"] = K;
+  j["R"] = R;
+  j["t"] = {c.t.x(), c.t.y(), c.t.z()};
+  j["width"] = c.width;
+  j["height"] = c.height;
+  return j;
+}
+
+Camera camera_from_json(const Json& j, const std::string& source) {
+  Camera c;
+  const auto K = j.at("K").get<std::vector<double>>(), R = j.at("R").get<std::vector<double>>();
+  const auto t = j.at("t").get<std::vector<double>>();
+  if (K.size() != 9 || R.size() != 9 || t.size() != 3) throw DataError(source, "camera needs K[9], R[9], t[3]");
+  for (int r = 0; r < 3; ++r)
+    for (int k = 0; k < 3; ++k) {
+      c.K(r, k) = K[3 * r + k];
+      c.R(r, k) = R[3 * r + k];
+    }
+  c.t = Vec3(t[0], t[1], t[2]);
+  c.width = j.at("width").get<int>();
+  c.height = j.at("height").get<int>();
+  return c;
+}
+
+// Last non-empty line of a text file (the exception line of a Python traceback).
+std::string last_line(const fs::path& p) {
+  std::ifstream in(p);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+void BlenderOptions::Check() const {
+  if (executable.empty()) throw std::invalid_argument("BlenderOptions.executable is empty");
+  if (engine != "BLENDER_WORKBENCH" && engine != "BLENDER_EEVEE" && engine != "CYCLES")
+    throw std::invalid_argument("BlenderOptions.engine must be BLENDER_WORKBENCH, BLENDER_EEVEE or CYCLES, not " + engine);
+  if (samples < 1) throw std::invalid_argument("BlenderOptions.samples must be >= 1");
+  if (threads < 0) throw std::invalid_argument("BlenderOptions.threads must be >= 0");
+  if (sun_elevation_deg <= 0 || sun_elevation_deg > 90) throw std::invalid_argument("BlenderOptions.sun_elevation_deg must be in (0, 90]");
+}
+
+fs::path default_blender_script() {
+  if (const char* env = std::getenv("LC2WF_BLENDER_SCRIPT")) return env;
+  return fs::path(LC2WF_TOOLS_SOURCE_DIR) / "blender" / "render_building.py";
+}
+
+std::vector<RenderedView> read_blender_output(const fs::path& dir) {
+  const fs::path cams_path = dir / "cameras.json";
+  if (!fs::exists(dir / "done.json")) throw DataError(dir.string(), "Blender did not finish this building (no done.json)");
+  Json cams;
+  try {
+    cams = Json::parse(read_file(cams_path));
+  } catch (const Json::exception& e) {
+    throw DataError(cams_path.string(), std::string("bad JSON: ") + e.what());
+  }
+  if (!cams.is_array() || cams.empty()) throw DataError(cams_path.string(), "no cameras");
+  std::vector<RenderedView> views;
+  for (size_t i = 0; i < cams.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03zu.png", i);
+    RenderedView v;
+    v.camera = camera_from_json(cams[i], cams_path.string());
+    v.image = cv::imread((dir / name).string(), cv::IMREAD_COLOR);
+    if (v.image.empty()) throw DataError((dir / name).string(), "missing or unreadable render");
+    if (v.image.cols != v.camera.width || v.image.rows != v.camera.height)
+      throw DataError((dir / name).string(), "image size differs from the camera's");
+    views.push_back(std::move(v));
+  }
+  return views;
+}
+
+std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding>& batch, const BlenderOptions& options,
+                                               const fs::path& work_dir) {
+  options.Check();
+  std::vector<BlenderResult> results(batch.size());
+  if (batch.empty()) return results;
+  fs::create_directories(work_dir);
+  Json job;
+  job["engine"] = options.engine;
+  job["samples"] = options.samples;
+  job["shadows"] = options.shadows;
+  job["sun_azimuth_deg"] = options.sun_azimuth_deg;
+  job["sun_elevation_deg"] = options.sun_elevation_deg;
+  job["buildings"] = Json::array();
+  for (const BlenderBuilding& b : batch) {
+    fs::remove_all(b.out_dir);  // stale output from a killed run must not count as done
+    Json j;
+    j["name"] = b.building->name;
+    j["out_dir"] = fs::absolute(b.out_dir).string();
+    j["seed"] = b.seed;
+    Json verts = Json::array(), faces = Json::array(), labels = Json::array(), edges = Json::array(), cams = Json::array();
+    for (const Vec3& v : b.building->mesh.vertices) verts.push_back({v.x(), v.y(), v.z()});
+    for (const auto& f : b.building->mesh.faces) faces.push_back(f);
+    for (size_t f = 0; f < b.building->mesh.faces.size(); ++f)
+      labels.push_back(b.building->mesh.labels.empty() ? 3 : static_cast<int>(b.building->mesh.labels[f]));
+    for (const auto& e : b.building->wireframe.edges) edges.push_back({e[0], e[1]});
+    for (const Camera& c : b.cameras) cams.push_back(camera_json(c));
+    j["vertices"] = verts;
+    j["faces"] = faces;
+    j["labels"] = labels;
+    j["edges"] = edges;
+    j["cameras"] = cams;
+    job["buildings"].push_back(j);
+  }
+  const fs::path job_path = work_dir / "job.json", log_path = work_dir / "blender.log";
+  write_file_atomic(job_path, job.dump());
+  const fs::path script = options.script.empty() ? default_blender_script() : options.script;
+  std::ostringstream cmd;
+  cmd << shell_quote(options.executable) << " -b --factory-startup";
+  if (options.threads > 0) cmd << " -t " << options.threads;
+  cmd << " --python-exit-code 1 --python " << shell_quote(script.string()) << " -- " << shell_quote(job_path.string()) << " > "
+      << shell_quote(log_path.string()) << " 2>&1";
+  const int status = std::system(cmd.str().c_str());
+  std::string process_error;
+  if (status == -1) {
+    process_error = "could not start Blender (" + options.executable + ")";
+  } else if (WIFSIGNALED(status)) {
+    process_error = "Blender was killed by signal " + std::to_string(WTERMSIG(status)) + " (log: " + log_path.string() + ")";
+  } else if (WEXITSTATUS(status) == 127) {
+    process_error = "Blender executable not found: " + options.executable;
+  } else if (WEXITSTATUS(status) != 0) {
+    process_error = "Blender exited with code " + std::to_string(WEXITSTATUS(status)) + ": " + last_line(log_path) +
+                    " (log: " + log_path.string() + ")";
+  }
+  for (size_t i = 0; i < batch.size(); ++i) {
+    const fs::path& dir = batch[i].out_dir;
+    if (fs::exists(dir / "error.txt")) {
+      results[i].error = "Blender failed on this building: " + last_line(dir / "error.txt");
+      continue;
+    }
+    if (!fs::exists(dir / "done.json")) {
+      results[i].error = process_error.empty() ? "Blender produced no output for this building (log: " + log_path.string() + ")" : process_error;
+      continue;
+    }
+    try {
+      results[i].views = read_blender_output(dir);
+    } catch (const std::exception& e) {
+      results[i].error = e.what();
+    }
+  }
+  return results;
+}
+
+}  // namespace lc2wf
