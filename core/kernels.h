@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -86,10 +87,27 @@ class DropoutMask {
     k0_ = static_cast<uint32_t>(key);
     k1_ = static_cast<uint32_t>(key >> 32);
   }
-  bool keep(uint64_t i) const {
-    uint32_t h = fmix32(static_cast<uint32_t>(i) ^ k0_);
-    h = fmix32(h + k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u);
+  bool keep(uint64_t i) const { return keep_low(static_cast<uint32_t>(i), high_key(i)); }
+  // Split form for vector loops: high_key(i) is constant over any 2^32-aligned block.
+  uint32_t high_key(uint64_t i) const { return k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u; }
+  bool keep_low(uint32_t low, uint32_t high_key) const {
+    uint32_t h = fmix32(fmix32(low ^ k0_) + high_key);
     return (h >> 8) >= threshold_;
+  }
+
+  // d[i] = s[i] * (keep(i) ? scale : 0) for i in [begin, end).
+  template <class T>
+  void apply(const T* __restrict s, T* __restrict d, int64_t begin, int64_t end, T scale) const {
+    const uint32_t hk = high_key(static_cast<uint64_t>(begin));
+    const uint32_t k0 = k0_, thr = threshold_;
+    const uint32_t base = static_cast<uint32_t>(begin);
+    const int64_t n = end - begin;
+    s += begin;
+    d += begin;
+    for (int64_t i = 0; i < n; ++i) {
+      uint32_t h = fmix32(fmix32((base + static_cast<uint32_t>(i)) ^ k0) + hk);
+      d[i] = (h >> 8) >= thr ? s[i] * scale : T(0);
+    }
   }
 
  private:
@@ -106,7 +124,8 @@ class DropoutMask {
 // exp that vectorises (Cephes-style polynomial, ~1 ulp in float); exactly 0 below the float range.
 inline float fast_exp(float x) {
   float xc = std::min(std::max(x, -87.0f), 88.3f);
-  float n = std::floor(xc * 1.44269504088896341f + 0.5f);
+  // Round to nearest by the 1.5 * 2^23 trick (|x * log2 e| < 2^22 here); vectorises unlike floor().
+  float n = (xc * 1.44269504088896341f + 12582912.0f) - 12582912.0f;
   float r = xc - n * 0.693359375f + n * 2.12194440e-4f;
   float p = 1.9875691500e-4f;
   p = p * r + 1.3981999507e-3f;
@@ -115,9 +134,7 @@ inline float fast_exp(float x) {
   p = p * r + 1.6666665459e-1f;
   p = p * r + 5.0000001201e-1f;
   float y = p * r * r + r + 1.0f;
-  int32_t e = (static_cast<int32_t>(n) + 127) << 23;
-  float scale;
-  std::memcpy(&scale, &e, sizeof(scale));
+  float scale = std::bit_cast<float>((static_cast<int32_t>(n) + 127) << 23);
   return x < -87.0f ? 0.0f : y * scale;
 }
 inline double fast_exp(double x) { return std::exp(x); }

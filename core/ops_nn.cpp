@@ -13,28 +13,42 @@ namespace {
 constexpr int64_t kNormRows = 64;  // rows per block for column statistics (fixed => deterministic)
 
 // Softmax (or log-softmax) over contiguous rows of length R.
+// RC > 0 fixes the row length at compile time so short rows (attention's 32/64 keys) unroll fully.
+template <class T, int RC = 0>
+void softmax_row(const T* __restrict xr, T* __restrict yr, int64_t R_runtime, bool log_space) {
+  const int64_t R = RC > 0 ? RC : R_runtime;
+  T m = xr[0];
+#pragma omp simd reduction(max : m)
+  for (int64_t i = 0; i < R; ++i) m = std::max(m, xr[i]);
+  T s = 0;
+  if (log_space) {
+#pragma omp simd reduction(+ : s)
+    for (int64_t i = 0; i < R; ++i) s += fast_exp(xr[i] - m);
+    T lse = m + std::log(s);
+#pragma omp simd
+    for (int64_t i = 0; i < R; ++i) yr[i] = xr[i] - lse;
+  } else {
+#pragma omp simd reduction(+ : s)
+    for (int64_t i = 0; i < R; ++i) {
+      yr[i] = fast_exp(xr[i] - m);
+      s += yr[i];
+    }
+    T inv = T(1) / s;
+#pragma omp simd
+    for (int64_t i = 0; i < R; ++i) yr[i] *= inv;
+  }
+}
+
+// Softmax (or log-softmax) over contiguous rows of length R.
 template <class T>
 void softmax_rows(const T* x, T* y, int64_t rows, int64_t R, bool log_space) {
   parallel_for_work(rows, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, R)), 8 * R, [&](int64_t r0, int64_t r1) {
-    for (int64_t r = r0; r < r1; ++r) {
-      const T* xr = x + r * R;
-      T* yr = y + r * R;
-      T m = xr[0];
-      for (int64_t i = 1; i < R; ++i) m = std::max(m, xr[i]);
-      T s = 0;
-      if (log_space) {
-        for (int64_t i = 0; i < R; ++i) s += std::exp(xr[i] - m);
-        T lse = m + std::log(s);
-        for (int64_t i = 0; i < R; ++i) yr[i] = xr[i] - lse;
-      } else {
-        for (int64_t i = 0; i < R; ++i) {
-          yr[i] = std::exp(xr[i] - m);
-          s += yr[i];
-        }
-        T inv = T(1) / s;
-        for (int64_t i = 0; i < R; ++i) yr[i] *= inv;
-      }
-    }
+    if (R == 32)
+      for (int64_t r = r0; r < r1; ++r) softmax_row<T, 32>(x + r * R, y + r * R, R, log_space);
+    else if (R == 64)
+      for (int64_t r = r0; r < r1; ++r) softmax_row<T, 64>(x + r * R, y + r * R, R, log_space);
+    else
+      for (int64_t r = r0; r < r1; ++r) softmax_row<T>(x + r * R, y + r * R, R, log_space);
   });
 }
 
@@ -64,7 +78,7 @@ Tensor softmax_last(const Tensor& a, bool log_space) {
             T s = 0;
             if (log_space) {
               for (int64_t i = 0; i < R; ++i) s += gr[i];
-              for (int64_t i = 0; i < R; ++i) dr[i] = gr[i] - std::exp(yr[i]) * s;
+              for (int64_t i = 0; i < R; ++i) dr[i] = gr[i] - fast_exp(yr[i]) * s;
             } else {
               for (int64_t i = 0; i < R; ++i) s += gr[i] * yr[i];
               for (int64_t i = 0; i < R; ++i) dr[i] = yr[i] * (gr[i] - s);
@@ -109,8 +123,7 @@ Tensor dropout(const Tensor& a, double p, bool training, Rng& rng) {
       T* d = ptr<T>(dst);
       T sc = static_cast<T>(scale);
       parallel_for_work(src.numel(), kElemGrain, 4, [&](int64_t b, int64_t e) {
-#pragma omp simd
-        for (int64_t i = b; i < e; ++i) d[i] = mask.keep(static_cast<uint64_t>(i)) ? s[i] * sc : T(0);
+        mask.apply(s, d, b, e, sc);
       });
       return 0;
     });
@@ -155,13 +168,16 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
         const T* xr = px + r * C;
         T* yr = py + r * C;
         T s = 0;
+#pragma omp simd reduction(+ : s)
         for (int64_t i = 0; i < C; ++i) s += xr[i];
         T mean = s / static_cast<T>(C);
         T v = 0;
+#pragma omp simd reduction(+ : v)
         for (int64_t i = 0; i < C; ++i) v += (xr[i] - mean) * (xr[i] - mean);
         T rstd = T(1) / std::sqrt(v / static_cast<T>(C) + static_cast<T>(eps));
         pm[r] = mean;
         pr[r] = rstd;
+#pragma omp simd
         for (int64_t i = 0; i < C; ++i) {
           T h = (xr[i] - mean) * rstd;
           yr[i] = (pw ? h * pw[i] : h) + (pb ? pb[i] : T(0));
@@ -197,6 +213,7 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
                    const T* gr = pg + r * C;
                    T mean = pm[r], rstd = pr[r];
                    T s1 = 0, s2 = 0;  // sums of dxhat and dxhat * xhat
+#pragma omp simd reduction(+ : s1, s2)
                    for (int64_t i = 0; i < C; ++i) {
                      T h = (xr[i] - mean) * rstd;
                      T dh = pw ? gr[i] * pw[i] : gr[i];
@@ -208,6 +225,7 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
                    if (pd) {
                      T* dr = pd + r * C;
                      T invc = T(1) / static_cast<T>(C);
+#pragma omp simd
                      for (int64_t i = 0; i < C; ++i) {
                        T h = (xr[i] - mean) * rstd;
                        T dh = pw ? gr[i] * pw[i] : gr[i];
@@ -268,10 +286,12 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
         return total;
       };
       std::vector<T> s = column_pass([&](const T* xr, T* acc) {
+#pragma omp simd
         for (int64_t i = 0; i < C; ++i) acc[i] += xr[i];
       });
       for (int64_t i = 0; i < C; ++i) pm[i] = s[i] / static_cast<T>(M);
       std::vector<T> v = column_pass([&](const T* xr, T* acc) {
+#pragma omp simd
         for (int64_t i = 0; i < C; ++i) acc[i] += (xr[i] - pm[i]) * (xr[i] - pm[i]);
       });
       for (int64_t i = 0; i < C; ++i) pr[i] = T(1) / std::sqrt(v[i] / static_cast<T>(M) + static_cast<T>(eps));
@@ -307,6 +327,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
       for (int64_t r = r0; r < r1; ++r) {
         const T* xr = px + r * C;
         T* yr = py + r * C;
+#pragma omp simd
         for (int64_t i = 0; i < C; ++i) yr[i] = xr[i] * scale[i] + shift[i];
       }
     });
@@ -333,6 +354,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
                  for (int64_t r = r0; r < r1; ++r) {
                    const T* xr = px + r * C;
                    const T* gr = pg + r * C;
+#pragma omp simd
                    for (int64_t i = 0; i < C; ++i) {
                      sg[i] += gr[i];
                      sgh[i] += gr[i] * (xr[i] - pm[i]) * pr[i];
@@ -366,6 +388,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
                      const T* xr = px + r * C;
                      const T* gr = pg + r * C;
                      T* dr = pd + r * C;
+#pragma omp simd
                      for (int64_t i = 0; i < C; ++i) {
                        T h = (xr[i] - pm[i]) * pr[i];
                        dr[i] = k[i] * (gr[i] - c1[i] - h * c2[i]);
