@@ -15,7 +15,7 @@ namespace lc2wf {
 
 struct SupportLabelOptions {
   double pixel_tol = 3.0;          // px: both 2D endpoints within this of the projected GT edge's line
-  double angle_tol_deg = 5.0;      // 2D angle between the support and the projected edge
+  double angle_tol_deg = 10.0;     // 2D angle; short supports need it (0.5 px noise on 10 px is ~4 deg)
   double min_overlap = 0.5;        // fraction of the support's length inside the visible part of the edge
   double min_vote_fraction = 0.5;  // of the segment's supports that must vote for the same edge
   int min_views = 2;               // distinct views among those votes
