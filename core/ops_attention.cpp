@@ -102,7 +102,7 @@ void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, L
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
   parallel_for_work(s.B * s.H, kPairsPerTask, 8 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
     size_t n = static_cast<size_t>(Lq * Lk);
-    std::vector<T> vt(static_cast<size_t>(D * Lk)), ds(n), pd(n), tr(n);
+    std::vector<T> vt(static_cast<size_t>(D * Lk)), ds(n), pd(n);
     T sc = static_cast<T>(drop.scale);
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
@@ -134,10 +134,8 @@ void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, L
         for (int64_t j = 0; j < Lk; ++j) dr[j] = pr[j] * (dr[j] - dot) * scale;
       }
       small_gemm(Lq, D, Lk, ds.data(), Lk, k + lk.at(b, h), lk.row, dq + ldq.at(b, h), ldq.row);
-      transpose_into(Lq, Lk, ds.data(), Lk, tr.data());
-      small_gemm(Lk, D, Lq, tr.data(), Lq, Q, lq.row, dk + ldk.at(b, h), ldk.row);
-      transpose_into(Lq, Lk, pd.data(), Lk, tr.data());
-      small_gemm(Lk, D, Lq, tr.data(), Lq, GO, lo.row, dv + ldv.at(b, h), ldv.row);
+      small_gemm_tn(Lk, D, Lq, ds.data(), Lk, Q, lq.row, dk + ldk.at(b, h), ldk.row);
+      small_gemm_tn(Lk, D, Lq, pd.data(), Lk, GO, lo.row, dv + ldv.at(b, h), ldv.row);
     }
   });
 }

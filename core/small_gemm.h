@@ -43,6 +43,42 @@ inline void small_gemm_fixed(int64_t M, int64_t K, const T* A, int64_t lda, cons
   }
 }
 
+// C = A^T B with A stored (K x M, row stride lda): saves the explicit transpose of A.
+template <class T, int N>
+inline void small_gemm_tn_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                                int64_t ldc) {
+  int64_t i = 0;
+  for (; i + 4 <= M; i += 4) {
+    T acc0[N] = {}, acc1[N] = {}, acc2[N] = {}, acc3[N] = {};
+    for (int64_t k = 0; k < K; ++k) {
+      const T* b = B + k * ldb;
+      const T* a = A + k * lda + i;
+      T a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3];
+      for (int n = 0; n < N; ++n) {
+        acc0[n] += a0 * b[n];
+        acc1[n] += a1 * b[n];
+        acc2[n] += a2 * b[n];
+        acc3[n] += a3 * b[n];
+      }
+    }
+    for (int n = 0; n < N; ++n) {
+      C[i * ldc + n] = acc0[n];
+      C[(i + 1) * ldc + n] = acc1[n];
+      C[(i + 2) * ldc + n] = acc2[n];
+      C[(i + 3) * ldc + n] = acc3[n];
+    }
+  }
+  for (; i < M; ++i) {
+    T acc[N] = {};
+    for (int64_t k = 0; k < K; ++k) {
+      T av = A[k * lda + i];
+      const T* b = B + k * ldb;
+      for (int n = 0; n < N; ++n) acc[n] += av * b[n];
+    }
+    for (int n = 0; n < N; ++n) C[i * ldc + n] = acc[n];
+  }
+}
+
 template <class T>
 inline void small_gemm_any(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
                            int64_t ldc) {
@@ -65,6 +101,26 @@ inline void small_gemm(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda,
     case 32: small_gemm_fixed<T, 32>(M, K, A, lda, B, ldb, C, ldc); return;
     case 64: small_gemm_fixed<T, 64>(M, K, A, lda, B, ldb, C, ldc); return;
     default: small_gemm_any<T>(M, N, K, A, lda, B, ldb, C, ldc);
+  }
+}
+
+template <class T>
+inline void small_gemm_tn(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                          int64_t ldc) {
+  switch (N) {
+    case 16: small_gemm_tn_fixed<T, 16>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 32: small_gemm_tn_fixed<T, 32>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 64: small_gemm_tn_fixed<T, 64>(M, K, A, lda, B, ldb, C, ldc); return;
+    default:
+      for (int64_t i = 0; i < M; ++i) {
+        T* c = C + i * ldc;
+        for (int64_t n = 0; n < N; ++n) c[n] = T(0);
+        for (int64_t k = 0; k < K; ++k) {
+          T av = A[k * lda + i];
+          const T* b = B + k * ldb;
+          for (int64_t n = 0; n < N; ++n) c[n] += av * b[n];
+        }
+      }
   }
 }
 
