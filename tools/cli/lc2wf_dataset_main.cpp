@@ -1,0 +1,153 @@
+// lc2wf-dataset: Roof-Image meshes -> labelled 3D line clouds (render, LSD, triangulation, labels).
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include "dataset/errors.h"
+#include "tools/pipeline/dataset_run.h"
+
+namespace {
+
+constexpr const char* kUsage = R"(usage: lc2wf-dataset --meshes DIR --out DIR [options]
+
+Renders every building of DIR (*.polyshape, Roof-Image format) from a ring of oblique views, detects 2D
+segments (LSD), triangulates a 3D line cloud across the views and labels each 3D segment (f, i1, d1, i2,
+d2) against the GT wireframe. Writes OUT/clouds/<name>.lcloud, OUT/status/<name>.json and a summary
+(OUT/summary.json, or OUT/summary-shard-<i>-of-<n>.json). Finished buildings are skipped on re-runs.
+
+options:
+  --renderer raster|blender   built-in software rasteriser (default) or Blender 3.4
+  --views N                   views per building (default 20)
+  --size WxH                  image size (default 640x480)
+  -j, --threads N             worker threads (default: all cores)
+  --shard i/n                 process buildings k with k % n == i (for Slurm arrays, GNU parallel)
+  --limit K                   at most K buildings of the shard
+  --seed S                    cameras, textures and noise (default 0)
+  --keep-views                keep renders, cameras.json and views.json (projected GT with visibility)
+  --supersample N             rasteriser samples per pixel side (default 1)
+  --no-shadows                no cast shadows
+  --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
+  --samples N                 Blender anti-aliasing / render samples (default 5)
+  --blender PATH              Blender executable (default: blender on PATH)
+  --blender-batch N           buildings per Blender process (default 8)
+  --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.01)
+  --max-segments N            longest 2D segments kept per view (default 1000)
+  --min-score S               min cross-view score of a 3D line (default 1.0)
+  --no-progress               no progress bar
+  -h, --help                  this text
+
+exit codes: 0 every building done, 1 some buildings failed (see the summary), 2 bad arguments, 3 fatal error
+)";
+
+[[noreturn]] void usage_error(const std::string& msg) {
+  std::fprintf(stderr, "lc2wf-dataset: %s\n(run with --help for usage)\n", msg.c_str());
+  std::exit(2);
+}
+
+int to_int(const std::string& flag, const std::string& v) {
+  try {
+    size_t used = 0;
+    const int x = std::stoi(v, &used);
+    if (used != v.size()) throw std::invalid_argument(v);
+    return x;
+  } catch (const std::exception&) {
+    usage_error(flag + " expects an integer, got '" + v + "'");
+  }
+}
+
+double to_double(const std::string& flag, const std::string& v) {
+  try {
+    size_t used = 0;
+    const double x = std::stod(v, &used);
+    if (used != v.size()) throw std::invalid_argument(v);
+    return x;
+  } catch (const std::exception&) {
+    usage_error(flag + " expects a number, got '" + v + "'");
+  }
+}
+
+std::pair<int, int> split_pair(const std::string& flag, const std::string& v, char sep) {
+  const size_t p = v.find(sep);
+  if (p == std::string::npos) usage_error(flag + " expects A" + sep + "B, got '" + v + "'");
+  return {to_int(flag, v.substr(0, p)), to_int(flag, v.substr(p + 1))};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  lc2wf::DatasetRunOptions o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage_error(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    } else if (a == "--meshes") {
+      o.meshes = value();
+    } else if (a == "--out") {
+      o.out = value();
+    } else if (a == "--renderer") {
+      const std::string r = value();
+      if (r == "raster") o.renderer = lc2wf::RendererKind::Raster;
+      else if (r == "blender") o.renderer = lc2wf::RendererKind::Blender;
+      else usage_error("--renderer must be raster or blender, got '" + r + "'");
+    } else if (a == "--views") {
+      o.cameras.views = to_int(a, value());
+    } else if (a == "--size") {
+      std::tie(o.cameras.width, o.cameras.height) = split_pair(a, value(), 'x');
+    } else if (a == "-j" || a == "--threads") {
+      o.threads = to_int(a, value());
+    } else if (a == "--shard") {
+      std::tie(o.shard_index, o.shard_count) = split_pair(a, value(), '/');
+    } else if (a == "--limit") {
+      o.limit = to_int(a, value());
+    } else if (a == "--seed") {
+      o.seed = static_cast<uint64_t>(to_int(a, value()));
+    } else if (a == "--keep-views") {
+      o.keep_views = true;
+    } else if (a == "--supersample") {
+      o.raster.supersample = to_int(a, value());
+    } else if (a == "--no-shadows") {
+      o.raster.shadows = false;
+      o.blender.shadows = false;
+    } else if (a == "--engine") {
+      o.blender.engine = value();
+    } else if (a == "--samples") {
+      o.blender.samples = to_int(a, value());
+    } else if (a == "--blender") {
+      o.blender.executable = value();
+    } else if (a == "--blender-batch") {
+      o.blender_batch = to_int(a, value());
+    } else if (a == "--lsd-min-length") {
+      o.cloud.lsd.min_length_frac = to_double(a, value());
+    } else if (a == "--max-segments") {
+      o.cloud.lsd.max_segments = to_int(a, value());
+    } else if (a == "--min-score") {
+      o.cloud.triangulator.min_best_score = to_double(a, value());
+    } else if (a == "--no-progress") {
+      o.progress = false;
+    } else {
+      usage_error("unknown argument '" + a + "'");
+    }
+  }
+  if (o.meshes.empty()) usage_error("--meshes DIR is required");
+  if (o.out.empty()) usage_error("--out DIR is required");
+  try {
+    o.Check();
+  } catch (const std::invalid_argument& e) {
+    usage_error(e.what());
+  }
+  try {
+    const auto summary = lc2wf::run_dataset(o);
+    std::cout << summary.dump(2) << std::endl;
+    return summary["failed"].empty() ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lc2wf-dataset: %s\n", e.what());
+    return 3;
+  }
+}

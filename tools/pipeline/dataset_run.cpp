@@ -1,0 +1,369 @@
+#include "tools/pipeline/dataset_run.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <opencv2/imgcodecs.hpp>
+#include <stdexcept>
+
+#include "core/util/progress.h"
+#include "dataset/atomic_file.h"
+#include "dataset/errors.h"
+#include "dataset/labelling.h"
+#include "dataset/line_cloud_io.h"
+#include "dataset/visibility.h"
+
+namespace lc2wf {
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Upper bin edges of the length histogram, in units of the building's mean GT edge length.
+const std::vector<double> kLengthBins = {0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0};
+
+fs::path cloud_path(const fs::path& out, const std::string& name) { return out / "clouds" / (name + ".lcloud"); }
+fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
+
+bool is_done(const fs::path& out, const std::string& name) {
+  const fs::path sp = status_path(out, name);
+  if (!fs::exists(sp) || !fs::exists(cloud_path(out, name))) return false;
+  try {
+    return Json::parse(read_file(sp)).value("ok", false);
+  } catch (const std::exception&) {
+    return false;  // unreadable status: redo the building
+  }
+}
+
+Json camera_json(const Camera& c) {
+  Json j;
+  j["K"] = {c.K(0, 0), c.K(0, 1), c.K(0, 2), c.K(1, 0), c.K(1, 1), c.K(1, 2), c.K(2, 0), c.K(2, 1), c.K(2, 2)};
+  j["R"] = {c.R(0, 0), c.R(0, 1), c.R(0, 2), c.R(1, 0), c.R(1, 1), c.R(1, 2), c.R(2, 0), c.R(2, 1), c.R(2, 2)};
+  j["t"] = {c.t.x(), c.t.y(), c.t.z()};
+  j["width"] = c.width;
+  j["height"] = c.height;
+  return j;
+}
+
+// Renders, cameras and per-view projected GT (junctions; edges as [i, j, visible, visible_fraction]),
+// the same files the Blender script writes.
+void write_views(const fs::path& dir, const Building& b, const std::vector<RenderedView>& views) {
+  fs::create_directories(dir);
+  const MeshOccluder occ(b.mesh);
+  Json cams = Json::array(), per_view = Json::array();
+  for (size_t v = 0; v < views.size(); ++v) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03zu.png", v);
+    std::vector<uchar> png;
+    cv::imencode(".png", views[v].image, png);
+    write_file_atomic(dir / name, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+    const Camera& cam = views[v].camera;
+    cams.push_back(camera_json(cam));
+    Json junc = Json::array(), edges = Json::array();
+    for (const Vec3& j : b.wireframe.junctions) {
+      const Vec2 p = cam.project(j);
+      junc.push_back({p.x(), p.y()});
+    }
+    for (const auto& e : b.wireframe.edges) {
+      const ProjectedEdge pe = project_edge(cam, b.wireframe.junctions[e[0]], b.wireframe.junctions[e[1]], occ, 16, 0.02);
+      double frac = 0;
+      for (const auto& iv : pe.visible) frac += iv[1] - iv[0];
+      edges.push_back({e[0], e[1], frac >= 0.5 ? 1 : 0, frac});
+    }
+    per_view.push_back({{"junc2D", junc}, {"edges", edges}});
+  }
+  write_file_atomic(dir / "cameras.json", cams.dump());
+  write_file_atomic(dir / "views.json", per_view.dump());
+}
+
+// Counts and shape statistics of a finished cloud, for the status record.
+void describe_cloud(const LineCloud& cloud, Json& st) {
+  const Wireframe& wf = cloud.wireframe;
+  double mean_edge = 0;
+  for (const auto& e : wf.edges) mean_edge += (wf.junctions[e[0]] - wf.junctions[e[1]]).norm();
+  mean_edge /= std::max<size_t>(1, wf.edges.size());
+  int positives = 0, shorter = 0;
+  std::vector<int> hist(kLengthBins.size() + 1, 0);
+  std::vector<char> covered(wf.edges.size(), 0);
+  for (size_t i = 0; i < cloud.segments.size(); ++i) {
+    const double r = cloud.segments[i].length() / std::max(mean_edge, 1e-12);
+    shorter += r < 1.0;
+    ++hist[std::upper_bound(kLengthBins.begin(), kLengthBins.end(), r) - kLengthBins.begin()];
+    const SegmentLabel& l = cloud.labels[i];
+    if (!l.f) continue;
+    ++positives;
+    for (size_t e = 0; e < wf.edges.size(); ++e)
+      if ((wf.edges[e][0] == l.i1 && wf.edges[e][1] == l.i2) || (wf.edges[e][0] == l.i2 && wf.edges[e][1] == l.i1)) covered[e] = 1;
+  }
+  st["segments"] = cloud.segments.size();
+  st["positives"] = positives;
+  st["shorter_than_mean_gt_edge"] = shorter;
+  st["mean_gt_edge_m"] = mean_edge;
+  st["gt_edges"] = wf.edges.size();
+  st["gt_edges_covered"] = std::count(covered.begin(), covered.end(), 1);
+  st["length_histogram"] = hist;
+}
+
+struct Job {
+  std::string name;
+  Building building;
+  std::vector<Camera> cameras;
+  std::vector<RenderedView> views;
+  Json status;
+  bool failed = false;
+};
+
+void fail(Job& job, const std::string& reason) {
+  job.failed = true;
+  job.status["ok"] = false;
+  job.status["error"] = reason;
+}
+
+void load_job(Job& job, const DatasetRunOptions& o) {
+  const auto t = Clock::now();
+  try {
+    job.building = load_roof_image_building(o.meshes / (job.name + ".polyshape"), o.building);
+    CameraRingOptions ring = o.cameras;
+    ring.seed = building_seed(job.name, o.seed);
+    job.cameras = make_camera_ring(job.building.mesh.vertices, ring);
+  } catch (const std::exception& e) {
+    fail(job, std::string("load: ") + e.what());
+  }
+  job.status["seconds"]["load"] = since(t);
+}
+
+void render_raster(Job& job, const DatasetRunOptions& o) {
+  const auto t = Clock::now();
+  try {
+    RasterOptions ro = o.raster;
+    ro.seed = building_seed(job.name, o.seed);
+    const RasterRenderer renderer(job.building.mesh, ro);
+    for (size_t v = 0; v < job.cameras.size(); ++v) job.views.push_back({renderer.render(job.cameras[v], v).image, job.cameras[v]});
+  } catch (const std::exception& e) {
+    fail(job, std::string("render: ") + e.what());
+  }
+  job.status["seconds"]["render"] = since(t);
+}
+
+void finish_job(Job& job, const DatasetRunOptions& o) {
+  if (!job.failed) {
+    try {
+      if (o.keep_views && o.renderer == RendererKind::Raster) write_views(o.out / "views" / job.name, job.building, job.views);
+      CloudBuildStats cs;
+      const LineCloud cloud = build_line_cloud(job.building, job.views, o.cloud, &cs);
+      const auto t = Clock::now();
+      write_line_cloud(cloud_path(o.out, job.name), cloud);
+      job.status["seconds"]["write"] = since(t);
+      job.status["seconds"]["lsd"] = cs.seconds_lsd;
+      job.status["seconds"]["triangulation"] = cs.seconds_triangulation;
+      job.status["seconds"]["labelling"] = cs.seconds_labelling;
+      long long segs2d = 0;
+      for (int n : cs.segments_per_view) segs2d += n;
+      job.status["views"] = job.views.size();
+      job.status["segments_2d"] = segs2d;
+      describe_cloud(cloud, job.status);
+      job.status["ok"] = true;
+    } catch (const std::exception& e) {
+      fail(job, e.what());
+    }
+  }
+  if (o.renderer == RendererKind::Blender && !o.keep_views) fs::remove_all(o.out / "views" / job.name);
+  job.views.clear();
+  write_file_atomic(status_path(o.out, job.name), job.status.dump(1));
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+}  // namespace
+
+void DatasetRunOptions::Check() const {
+  if (meshes.empty()) throw std::invalid_argument("DatasetRunOptions.meshes is empty");
+  if (out.empty()) throw std::invalid_argument("DatasetRunOptions.out is empty");
+  cameras.Check();
+  raster.Check();
+  if (renderer == RendererKind::Blender) blender.Check();
+  cloud.Check();
+  building.Check();
+  if (blender_batch < 1) throw std::invalid_argument("DatasetRunOptions.blender_batch must be >= 1");
+  if (threads < 0) throw std::invalid_argument("DatasetRunOptions.threads must be >= 0");
+  if (shard_count < 1 || shard_index < 0 || shard_index >= shard_count)
+    throw std::invalid_argument("DatasetRunOptions.shard_index/shard_count must satisfy 0 <= index < count");
+  if (limit < 0) throw std::invalid_argument("DatasetRunOptions.limit must be >= 0");
+}
+
+uint64_t building_seed(const std::string& name, uint64_t seed) {
+  uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+  return h ^ (seed * 0x9E3779B97F4A7C15ull);
+}
+
+std::vector<std::string> shard_names(const std::vector<std::string>& sorted, int shard_index, int shard_count, int limit) {
+  std::vector<std::string> out;
+  for (size_t k = 0; k < sorted.size(); ++k)
+    if (static_cast<int>(k % shard_count) == shard_index) out.push_back(sorted[k]);
+  if (limit > 0 && static_cast<int>(out.size()) > limit) out.resize(limit);
+  return out;
+}
+
+Json summarise(const std::vector<Json>& statuses) {
+  Json s;
+  int done = 0;
+  Json failed = Json::array();
+  std::vector<double> segs, segs2d, pos_share, shorter_share, coverage;
+  std::vector<long long> hist(kLengthBins.size() + 1, 0);
+  long long total_segments = 0, total_pos = 0, total_shorter = 0;
+  std::map<std::string, double> seconds;
+  for (const Json& st : statuses) {
+    if (!st.value("ok", false)) {
+      failed.push_back({{"name", st.value("name", "")}, {"error", st.value("error", "unknown")}});
+      continue;
+    }
+    ++done;
+    const double n = st["segments"].get<double>();
+    segs.push_back(n);
+    segs2d.push_back(st["segments_2d"].get<double>());
+    pos_share.push_back(st["positives"].get<double>() / std::max(1.0, n));
+    shorter_share.push_back(st["shorter_than_mean_gt_edge"].get<double>() / std::max(1.0, n));
+    coverage.push_back(st["gt_edges_covered"].get<double>() / std::max(1.0, st["gt_edges"].get<double>()));
+    total_segments += st["segments"].get<long long>();
+    total_pos += st["positives"].get<long long>();
+    total_shorter += st["shorter_than_mean_gt_edge"].get<long long>();
+    const auto h = st["length_histogram"].get<std::vector<long long>>();
+    for (size_t i = 0; i < hist.size() && i < h.size(); ++i) hist[i] += h[i];
+    for (auto& [k, v] : st["seconds"].items()) seconds[k] += v.get<double>();
+  }
+  auto mean = [](const std::vector<double>& v) {
+    double m = 0;
+    for (double x : v) m += x;
+    return v.empty() ? 0.0 : m / v.size();
+  };
+  s["buildings"] = statuses.size();
+  s["done"] = done;
+  s["failed"] = failed;
+  s["segments_per_building"] = {{"mean", mean(segs)}, {"median", median(segs)}};
+  s["segments_2d_per_building"] = {{"mean", mean(segs2d)}, {"median", median(segs2d)}};
+  s["positive_share"] = {{"pooled", total_segments ? static_cast<double>(total_pos) / total_segments : 0.0}, {"mean", mean(pos_share)}};
+  s["shorter_than_mean_gt_edge_share"] = {{"pooled", total_segments ? static_cast<double>(total_shorter) / total_segments : 0.0},
+                                          {"mean", mean(shorter_share)}};
+  s["gt_edge_coverage_by_positives"] = {{"mean", mean(coverage)}, {"median", median(coverage)}};
+  Json h = Json::array();
+  for (size_t i = 0; i < hist.size(); ++i) {
+    const std::string hi = i < kLengthBins.size() ? std::to_string(kLengthBins[i]).substr(0, 4) : "inf";
+    h.push_back({{"below_x_mean_gt_edge", hi}, {"share", total_segments ? static_cast<double>(hist[i]) / total_segments : 0.0}});
+  }
+  s["length_histogram"] = h;
+  Json sec;
+  for (const auto& [k, v] : seconds) sec[k] = done ? v / done : 0.0;
+  s["seconds_per_building"] = sec;
+  return s;
+}
+
+Json run_dataset(const DatasetRunOptions& o) {
+  o.Check();
+  if (!fs::is_directory(o.meshes)) throw DataError(o.meshes.string(), "mesh folder does not exist");
+  const auto names = shard_names(list_polyshape_names(o.meshes), o.shard_index, o.shard_count, o.limit);
+  fs::create_directories(o.out / "clouds");
+  fs::create_directories(o.out / "status");
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+
+  std::vector<std::string> todo;
+  for (const auto& n : names)
+    if (!is_done(o.out, n)) todo.push_back(n);
+  const auto start = Clock::now();
+  {
+    std::mutex mu;
+    std::unique_ptr<Progress> bar;
+    if (o.progress) bar = std::make_unique<Progress>("lc2wf-dataset", static_cast<int64_t>(todo.size()));
+    int failed = 0;
+    auto report = [&](const Job& job) {
+      std::lock_guard<std::mutex> lock(mu);
+      failed += job.failed;
+      if (bar) bar->step(1, failed ? std::to_string(failed) + " failed" : "");
+    };
+    auto make_job = [](const std::string& name) {
+      Job job;
+      job.name = name;
+      job.status["name"] = name;
+      job.status["seconds"] = Json::object();
+      return job;
+    };
+    if (o.renderer == RendererKind::Raster) {
+#pragma omp parallel for schedule(dynamic, 1)
+      for (size_t i = 0; i < todo.size(); ++i) {
+        Job job = make_job(todo[i]);
+        load_job(job, o);
+        if (!job.failed) render_raster(job, o);
+        finish_job(job, o);
+        report(job);
+      }
+    } else {
+      for (size_t first = 0; first < todo.size(); first += o.blender_batch) {
+        const size_t last = std::min(todo.size(), first + o.blender_batch);
+        std::vector<Job> jobs;
+        for (size_t i = first; i < last; ++i) jobs.push_back(make_job(todo[i]));
+#pragma omp parallel for schedule(dynamic, 1)
+        for (size_t i = 0; i < jobs.size(); ++i) load_job(jobs[i], o);
+        std::vector<BlenderBuilding> batch;
+        std::vector<size_t> index;
+        for (size_t i = 0; i < jobs.size(); ++i) {
+          if (jobs[i].failed) continue;
+          batch.push_back({&jobs[i].building, jobs[i].cameras, o.out / "views" / jobs[i].name, building_seed(jobs[i].name, o.seed)});
+          index.push_back(i);
+        }
+        const auto t = Clock::now();
+        BlenderOptions bo = o.blender;
+        if (bo.threads == 0 && o.threads > 0) bo.threads = o.threads;
+        const auto results = render_with_blender(batch, bo, o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
+        const double per_building = since(t) / std::max<size_t>(1, batch.size());
+        for (size_t k = 0; k < index.size(); ++k) {
+          Job& job = jobs[index[k]];
+          job.status["seconds"]["render"] = per_building;
+          if (!results[k].error.empty())
+            fail(job, "render: " + results[k].error);
+          else
+            job.views = results[k].views;
+        }
+#pragma omp parallel for schedule(dynamic, 1)
+        for (size_t i = 0; i < jobs.size(); ++i) {
+          finish_job(jobs[i], o);
+          report(jobs[i]);
+        }
+      }
+      if (!o.keep_views) fs::remove_all(o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
+    }
+  }
+  std::vector<Json> statuses;
+  for (const auto& n : names) {
+    const fs::path sp = status_path(o.out, n);
+    if (!fs::exists(sp)) continue;
+    try {
+      statuses.push_back(Json::parse(read_file(sp)));
+    } catch (const std::exception& e) {
+      statuses.push_back({{"name", n}, {"ok", false}, {"error", std::string("unreadable status: ") + e.what()}});
+    }
+  }
+  Json summary = summarise(statuses);
+  summary["shard"] = std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count);
+  summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
+  summary["processed_this_run"] = todo.size();
+  summary["skipped_already_done"] = names.size() - todo.size();
+  summary["wall_seconds_this_run"] = since(start);
+  const std::string file = o.shard_count == 1 ? "summary.json"
+                                              : "summary-shard-" + std::to_string(o.shard_index) + "-of-" + std::to_string(o.shard_count) + ".json";
+  write_file_atomic(o.out / file, summary.dump(2));
+  return summary;
+}
+
+}  // namespace lc2wf
