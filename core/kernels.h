@@ -76,8 +76,9 @@ void map3(const T* a, const T* b, const T* c, T* out, int64_t n, F f) {
 }
 
 // Counter-based dropout mask for one reserved block of draws starting at `first`: element i is kept
-// when a 24-bit hash of (seed, first, i) is >= p * 2^24. The per-element hash is two 32-bit
-// murmur finalisers so the mask loop vectorises; the key comes from the full 64-bit stream.
+// when a 24-bit hash of (seed, first, i) is >= p * 2^24. The per-element hash is one 32-bit murmur
+// finaliser (a bijection, so the keep rate is exact over 2^32 draws) and vectorises; the keys come
+// from the full 64-bit stream.
 class DropoutMask {
  public:
   DropoutMask() = default;
@@ -91,7 +92,7 @@ class DropoutMask {
   // Split form for vector loops: high_key(i) is constant over any 2^32-aligned block.
   uint32_t high_key(uint64_t i) const { return k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u; }
   bool keep_low(uint32_t low, uint32_t high_key) const {
-    uint32_t h = fmix32(fmix32(low ^ k0_) + high_key);
+    uint32_t h = fmix32((low ^ k0_) + high_key);
     return (h >> 8) >= threshold_;
   }
 
@@ -105,7 +106,7 @@ class DropoutMask {
     s += begin;
     d += begin;
     for (int64_t i = 0; i < n; ++i) {
-      uint32_t h = fmix32(fmix32((base + static_cast<uint32_t>(i)) ^ k0) + hk);
+      uint32_t h = fmix32(((base + static_cast<uint32_t>(i)) ^ k0) + hk);
       d[i] = (h >> 8) >= thr ? s[i] * scale : T(0);
     }
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <malloc.h>
 #include <sstream>
 
 #include "core/autograd.h"
@@ -11,7 +12,19 @@
 
 namespace lc2wf {
 
+namespace {
+// Activations of tens of MB are allocated and freed every step. Served by fresh mmaps they would be
+// page-faulted and zeroed by the kernel each time (a large share of a step); keeping them in the
+// heap lets freed blocks be reused directly.
+const bool g_malloc_tuned = [] {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
+  return true;
+}();
+}  // namespace
+
 Storage::Storage(size_t n) : bytes(n) {
+  (void)g_malloc_tuned;
   size_t rounded = (n + 63) / 64 * 64;
   data = std::aligned_alloc(64, rounded == 0 ? 64 : rounded);
   if (data == nullptr) throw std::bad_alloc();
