@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "dataset/augmentation.h"
+#include "dataset/batch_loader.h"
 #include "dataset/errors.h"
 #include "dataset/pair_sampling.h"
 #include "dataset/patches.h"
@@ -326,6 +327,63 @@ TEST(Samples, JunctionSampleOnASyntheticBuilding) {
   EXPECT_NE(A1.features, P.features);
   EXPECT_EQ(A1.endpoint, P.endpoint);  // sampling happens before augmentation
   EXPECT_THROW(make_junction_sample(LineCloud{}, o, 1), DataError);
+}
+
+TEST(Samples, NearGtAndEndpointDistanceOptions) {
+  const Building b = make_rect_building("r", RectBuildingSpec{});
+  const LineCloud c = make_synthetic_line_cloud(b, 21);
+  JunctionSampleOptions o;
+  const auto plain = make_junction_sample(c, o, 3);
+  o.endpoint_label_max_distance_m = 0.5;
+  const auto near_only = make_junction_sample(c, o, 3);
+  int pos_plain = 0, pos_near = 0;
+  for (int g = 0; g < 256; ++g) {
+    pos_plain += plain.label[g] >= 0;
+    pos_near += near_only.label[g] >= 0;
+    if (near_only.label[g] >= 0) {
+      const Vec3 off(near_only.offset[3 * g], near_only.offset[3 * g + 1], near_only.offset[3 * g + 2]);
+      EXPECT_LT(off.norm() * o.patch.frame.scale_m, o.patch.radius_m + 0.5);  // junction near some patch endpoint
+    }
+  }
+  EXPECT_LT(pos_near, pos_plain);
+  EXPECT_GT(pos_near, 0);
+  o.sampling.near_gt_samples = 64;
+  const auto boosted = make_junction_sample(c, o, 3);
+  int pos_boosted = 0;
+  for (int g = 0; g < 256; ++g) pos_boosted += boosted.label[g] >= 0;
+  EXPECT_GT(pos_boosted, pos_near);
+  o.endpoint_label_max_distance_m = 0;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+}
+
+TEST(Samples, LoaderStacksJunctionSamplesDeterministically) {
+  std::vector<LineCloud> clouds;
+  for (uint64_t s = 0; s < 5; ++s) clouds.push_back(make_synthetic_line_cloud(make_random_building(s, "b"), s));
+  JunctionSampleOptions jo;
+  jo.augment_enabled = true;
+  auto build = [&](const std::vector<size_t>& items, uint64_t seed) {
+    std::vector<JunctionPatches> parts;
+    for (size_t k = 0; k < items.size(); ++k) parts.push_back(make_junction_sample(clouds[items[k]], jo, mix_seed(seed, k)));
+    return stack(parts);
+  };
+  auto run = [&](int workers) {
+    LoaderOptions lo;
+    lo.batch_size = 2;
+    lo.workers = workers;
+    BatchLoader<JunctionPatches> loader(clouds.size(), build, lo);
+    loader.start_epoch(3);
+    std::vector<JunctionPatches> out;
+    while (auto b = loader.next()) out.push_back(std::move(*b));
+    return out;
+  };
+  const auto a = run(1), b = run(3);
+  ASSERT_EQ(a.size(), 2u);  // drop_last: 5 buildings -> 2 batches of 2
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].batch, 2);
+    EXPECT_EQ(a[k].features.size(), 2u * 256 * 32 * 7);
+    EXPECT_EQ(a[k].features, b[k].features);
+    EXPECT_EQ(a[k].label, b[k].label);
+  }
 }
 
 TEST(Samples, PairSamplesOnASyntheticBuilding) {
