@@ -103,6 +103,7 @@ ScoredWireframe read_prediction(const std::filesystem::path& obj_path, const Uni
 void write_prediction(const std::filesystem::path& dir, const std::string& name, const ScoredWireframe& prediction,
                       const std::vector<std::string>& notes, const UnitTransform* raw_units) {
   prediction.check("prediction " + name);
+  std::filesystem::create_directories(dir);
   write_obj_wireframe(dir / (name + ".obj"), prediction.wireframe, raw_units);
   write_file_atomic(dir / (name + ".json"), scores_json_string(prediction, notes));
 }

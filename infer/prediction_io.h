@@ -33,7 +33,8 @@ std::filesystem::path scores_path_for(const std::filesystem::path& obj);
 // line up with edge_scores. Throws DataError naming the file.
 ScoredWireframe read_prediction(const std::filesystem::path& obj, const UnitTransform* raw_units = nullptr);
 
-// Writes `<dir>/<name>.obj` and `<dir>/<name>.json` atomically; `raw_units` writes raw coordinates.
+// Writes `<dir>/<name>.obj` and `<dir>/<name>.json` atomically (creating `dir`); `raw_units` writes raw
+// coordinates.
 void write_prediction(const std::filesystem::path& dir, const std::string& name, const ScoredWireframe& prediction,
                       const std::vector<std::string>& notes = {}, const UnitTransform* raw_units = nullptr);
 

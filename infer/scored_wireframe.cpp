@@ -1,6 +1,7 @@
 #include "infer/scored_wireframe.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace lc2wf {
@@ -13,6 +14,12 @@ void ScoredWireframe::check(const std::string& what) const {
   if (edge_scores.size() != wireframe.edges.size())
     throw std::invalid_argument(what + ": " + std::to_string(edge_scores.size()) + " edge scores for " +
                                 std::to_string(wireframe.edges.size()) + " edges");
+  for (size_t k = 0; k < junction_scores.size(); ++k)
+    if (!wireframe.junctions[k].allFinite() || !std::isfinite(junction_scores[k]))
+      throw std::invalid_argument(what + ": junction " + std::to_string(k) + " has a non-finite coordinate or score");
+  for (size_t e = 0; e < edge_scores.size(); ++e)
+    if (!std::isfinite(edge_scores[e]))
+      throw std::invalid_argument(what + ": edge " + std::to_string(e) + " has a non-finite score");
   for (size_t e = 0; e < wireframe.edges.size(); ++e) {
     const auto [a, b] = wireframe.edges[e];
     if (a < 0 || b < 0 || a >= n || b >= n)

@@ -14,7 +14,8 @@ struct ScoredWireframe {
   std::vector<double> junction_scores;  // one per wireframe.junctions entry (junction classifier confidence)
   std::vector<double> edge_scores;      // one per wireframe.edges entry (connect probability)
 
-  // Throws std::invalid_argument (prefixed with `what`) when score counts or edge indices are inconsistent.
+  // Throws std::invalid_argument (prefixed with `what`) on score counts that do not match, edge indices out of
+  // range, or non-finite coordinates/scores.
   void check(const std::string& what) const;
   // All scores set to 1: the ranking used for wireframes that come without confidences.
   static ScoredWireframe with_unit_scores(Wireframe wireframe);

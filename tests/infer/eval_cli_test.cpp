@@ -2,10 +2,13 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
+#include "dataset/building.h"
 #include "dataset/line_cloud_io.h"
+#include "infer/prediction_io.h"
 #include "test_files.h"
 
 namespace lc2wf {
@@ -124,6 +127,46 @@ TEST(EvalCli, BadInputsExitOneAndNameTheProblem) {
   EXPECT_EQ(no_gt.code, 1);
   EXPECT_NE(no_gt.err.find("ghost"), std::string::npos) << no_gt.err;
   EXPECT_FALSE(fs::exists(dir.path() / "o" / "metrics.json"));
+}
+
+fs::path shared_data_dir() {
+  if (const char* env = std::getenv("LC2WF_DATA_DIR"); env && *env) return env;
+  return LC2WF_SHARED_DATA_DIR;
+}
+
+TEST(EvalCli, RealBuildingsPredictedByTheirOwnGroundTruthScorePerfectly) {
+  const fs::path src = shared_data_dir() / "roof-image" / "res_building";
+  if (!fs::is_directory(src)) GTEST_SKIP() << "Roof-Image data not found at " << src << " (set LC2WF_DATA_DIR)";
+  testing::ScratchDir dir("cli_real");
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(src))
+    if (e.path().extension() == ".polyshape") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  ASSERT_GE(files.size(), 25u);
+  files.resize(25);
+  // Each prediction is the building's GT wireframe written back in raw units through its own transform.
+  fs::create_directories(dir.path() / "gt");
+  for (const fs::path& f : files) {
+    fs::copy_file(f, dir.path() / "gt" / f.filename());
+    const Building b = load_roof_image_building(f);
+    write_prediction(dir.path() / "pred", b.name, ScoredWireframe::with_unit_scores(b.wireframe), {}, &b.units);
+  }
+  const CliResult r = run_eval(dir.path(), "--pred " + (dir.path() / "pred").string() + " --gt " +
+                                               (dir.path() / "gt").string() + " --out " + (dir.path() / "out").string() +
+                                               " --units raw --strict-wed --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(testing::read_text(dir.path() / "out" / "metrics.json"));
+  EXPECT_EQ(j["buildings"], 25);
+  for (const char* k : {"vertex", "edge"})
+    for (const auto& t : j[k]) {
+      EXPECT_DOUBLE_EQ(t["ap"].get<double>(), 1.0) << k;
+      EXPECT_DOUBLE_EQ(t["recall"].get<double>(), 1.0) << k;
+    }
+  // The release's sqrt(raw distance) turns the OBJ writer's ~1e-7 raw rounding into ~1e-5 m per vertex.
+  EXPECT_EQ(j["wed"]["total_num"].get<double>(), 0.0);
+  EXPECT_LT(j["wed"]["total_dist"].get<double>(), 1e-2);
+  EXPECT_EQ(j["wed_strict"]["total_num"].get<double>(), 0.0);
+  EXPECT_LT(j["wed_strict"]["total_dist"].get<double>(), 1e-6);
 }
 
 }  // namespace

@@ -73,6 +73,9 @@ TEST(Evaluator, RejectsBadInputAndOptions) {
   ScoredWireframe p = ScoredWireframe::with_unit_scores(segment(0));
   p.edge_scores.clear();
   EXPECT_THROW(ev.add("x", p, segment(0)), std::invalid_argument);
+  ScoredWireframe nan_score = ScoredWireframe::with_unit_scores(segment(0));
+  nan_score.junction_scores[1] = std::nan("");
+  EXPECT_THROW(ev.add("z", nan_score, segment(0)), std::invalid_argument);
   Wireframe bad_gt = segment(0);
   bad_gt.edges.push_back({0, 7});
   EXPECT_THROW(ev.add("y", ScoredWireframe{}, bad_gt), std::invalid_argument);
