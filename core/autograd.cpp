@@ -18,7 +18,9 @@ bool input_requires_grad(const Tensor& t) { return t.defined() && t.requires_gra
 // aliases a buffer that another node might still hold.
 void accumulate_leaf(TensorImpl& leaf, const Tensor& g) {
   if (!leaf.grad.defined()) {
-    leaf.grad = g.detach().clone();
+    // A gradient nobody else references can be adopted as is; anything shared is copied.
+    bool unique = g.impl_ptr().use_count() == 1 && g.impl()->storage.use_count() == 1 && !g.impl()->grad_fn;
+    leaf.grad = unique ? g : g.detach().clone();
     return;
   }
   Tensor& acc = leaf.grad;

@@ -272,28 +272,39 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
     T* pm = ptr<T>(mean_t);
     T* pr = ptr<T>(rstd_t);
     if (training) {
-      std::vector<T> part(static_cast<size_t>(nblk * C));
-      // Column sums per row block, then the block partials in block order.
-      auto column_pass = [&](auto row_value) {
-        std::fill(part.begin(), part.end(), T(0));
-        parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
-          T* acc = part.data() + (r0 / kNormRows) * C;
-          for (int64_t r = r0; r < r1; ++r) row_value(px + r * C, acc);
-        });
-        std::vector<T> total(part.begin(), part.begin() + C);
-        for (int64_t b = 1; b < nblk; ++b)
-          for (int64_t i = 0; i < C; ++i) total[i] += part[b * C + i];
-        return total;
-      };
-      std::vector<T> s = column_pass([&](const T* xr, T* acc) {
+      // One pass over memory: each 64-row block (L2-resident) gets its own mean and sum of squared
+      // deviations, and the blocks are merged in block order with Chan's pairwise formula.
+      std::vector<T> bmean(static_cast<size_t>(nblk * C)), bm2(static_cast<size_t>(nblk * C));
+      parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {
+        T* mu = bmean.data() + (r0 / kNormRows) * C;
+        T* m2 = bm2.data() + (r0 / kNormRows) * C;
+        std::fill_n(mu, C, T(0));
+        std::fill_n(m2, C, T(0));
+        for (int64_t r = r0; r < r1; ++r) {
+          const T* xr = px + r * C;
 #pragma omp simd
-        for (int64_t i = 0; i < C; ++i) acc[i] += xr[i];
-      });
-      for (int64_t i = 0; i < C; ++i) pm[i] = s[i] / static_cast<T>(M);
-      std::vector<T> v = column_pass([&](const T* xr, T* acc) {
+          for (int64_t i = 0; i < C; ++i) mu[i] += xr[i];
+        }
+        T inv = T(1) / static_cast<T>(r1 - r0);
 #pragma omp simd
-        for (int64_t i = 0; i < C; ++i) acc[i] += (xr[i] - pm[i]) * (xr[i] - pm[i]);
+        for (int64_t i = 0; i < C; ++i) mu[i] *= inv;
+        for (int64_t r = r0; r < r1; ++r) {
+          const T* xr = px + r * C;
+#pragma omp simd
+          for (int64_t i = 0; i < C; ++i) m2[i] += (xr[i] - mu[i]) * (xr[i] - mu[i]);
+        }
       });
+      std::vector<T> v(bm2.begin(), bm2.begin() + C);
+      std::copy_n(bmean.begin(), C, pm);
+      for (int64_t b = 1; b < nblk; ++b) {
+        T na = static_cast<T>(b * kNormRows), nb = static_cast<T>(std::min(kNormRows, M - b * kNormRows));
+        T n = na + nb;
+        for (int64_t i = 0; i < C; ++i) {
+          T delta = bmean[b * C + i] - pm[i];
+          pm[i] += delta * (nb / n);
+          v[i] += bm2[b * C + i] + delta * delta * (na * nb / n);
+        }
+      }
       for (int64_t i = 0; i < C; ++i) pr[i] = T(1) / std::sqrt(v[i] / static_cast<T>(M) + static_cast<T>(eps));
       if (running_mean.defined()) {
         T* rm = ptr<T>(running_mean);
