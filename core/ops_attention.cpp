@@ -34,9 +34,10 @@ constexpr int64_t kPairsPerTask = 4;
 
 // Softmax of one score row in place (scaled, masked keys excluded; all masked -> zeros), then the
 // dropped-out copy into pd. Element j of row `row` has dropout index row * Lk + j.
-template <class T>
-inline void softmax_dropout_row(T* pr, T* pd, int64_t Lk, T scale, const uint8_t* mrow, const DropoutPlan& drop,
-                                uint64_t row) {
+template <class T, int LKC = 0>
+inline void softmax_dropout_row(T* pr, T* pd, int64_t Lk_runtime, T scale, const uint8_t* mrow,
+                                const DropoutPlan& drop, uint64_t row) {
+  const int64_t Lk = LKC > 0 ? LKC : Lk_runtime;
   T m = -std::numeric_limits<T>::infinity();
   if (mrow) {
     for (int64_t j = 0; j < Lk; ++j) m = mrow[j] ? m : std::max(m, pr[j] * scale);
@@ -87,8 +88,17 @@ void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, La
       T* P = probs + p * Lq * Lk;
       transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt.data());
       small_gemm(Lq, Lk, D, q + lq.at(b, h), lq.row, kt.data(), Lk, P, Lk);  // raw scores
-      for (int64_t i = 0; i < Lq; ++i)
-        softmax_dropout_row(P + i * Lk, pd.data() + i * Lk, Lk, scale, mrow, drop, static_cast<uint64_t>(p * Lq + i));
+      for (int64_t i = 0; i < Lq; ++i) {
+        T* pr = P + i * Lk;
+        T* pdr = pd.data() + i * Lk;
+        uint64_t row = static_cast<uint64_t>(p * Lq + i);
+        if (Lk == 32)
+          softmax_dropout_row<T, 32>(pr, pdr, Lk, scale, mrow, drop, row);
+        else if (Lk == 64)
+          softmax_dropout_row<T, 64>(pr, pdr, Lk, scale, mrow, drop, row);
+        else
+          softmax_dropout_row<T>(pr, pdr, Lk, scale, mrow, drop, row);
+      }
       small_gemm(Lq, D, Lk, pd.data(), Lk, v + lv.at(b, h), lv.row, o + lo.at(b, h), lo.row);
     }
   });

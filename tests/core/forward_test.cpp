@@ -280,3 +280,41 @@ TEST(Forward, AttentionDropoutIsDeterministicPerStreamState) {
 
 }  // namespace
 }  // namespace lc2wf
+
+namespace lc2wf {
+namespace {
+
+// The F32 kernels (vectorised exp, register transposes, fixed-size head products) against the F64 path.
+TEST(Forward, AttentionF32KernelsMatchF64ForwardAndBackward) {
+  for (int64_t L : {32, 64, 13}) {
+    Rng rng(static_cast<uint64_t>(L));
+    int64_t B = 3, H = 4, E = 128;
+    Tensor qkv64 = test::random_tensor({B, L, 3 * E}, rng, -2, 2);
+    std::vector<uint8_t> m(static_cast<size_t>(B * L), 0);
+    for (int64_t j = L / 2; j < L; ++j) m[static_cast<size_t>(L + j)] = 1;  // item 1: half the keys masked
+    for (int64_t j = 0; j < L; ++j) m[static_cast<size_t>(2 * L + j)] = 1;  // item 2: every key masked
+    Tensor mask = Tensor::from_mask(m, {B, L});
+    Tensor seed64 = test::random_tensor({B, L, E}, rng);
+    Tensor q64 = qkv64.clone().set_requires_grad();
+    Tensor q32 = qkv64.to(DType::F32).set_requires_grad();
+    Rng r64(4), r32(4);
+    Tensor o64 = packed_attention(q64, H, mask, 0.2, true, r64);
+    Tensor o32 = packed_attention(q32, H, mask, 0.2, true, r32);
+    o64.backward(seed64);
+    o32.backward(seed64.to(DType::F32));
+    expect_near(vals(o32), vals(o64), 2e-5);
+    expect_near(vals(q32.grad()), vals(q64.grad()), 2e-4);
+  }
+}
+
+TEST(Forward, SoftmaxF32MatchesF64) {
+  Rng rng(12);
+  for (int64_t R : {32, 64, 7}) {
+    Tensor x = test::random_tensor({5, R}, rng, -30, 30);
+    expect_near(vals(softmax(x.to(DType::F32), -1)), vals(softmax(x, -1)), 1e-6);
+    expect_near(vals(log_softmax(x.to(DType::F32), -1)), vals(log_softmax(x, -1)), 1e-4);
+  }
+}
+
+}  // namespace
+}  // namespace lc2wf
