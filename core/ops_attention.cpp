@@ -81,11 +81,13 @@ void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, La
                        Layout lo, const uint8_t* mask, T scale, const DropoutPlan& drop, T* probs) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
   parallel_for_work(s.B * s.H, kPairsPerTask, 4 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
+    // Without a caller that needs the probabilities (inference), they live in a per-task scratch block.
     std::vector<T> kt(static_cast<size_t>(D * Lk)), pd(static_cast<size_t>(Lq * Lk));
+    std::vector<T> scratch(probs ? 0 : static_cast<size_t>(Lq * Lk));
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
       const uint8_t* mrow = mask ? mask + b * Lk : nullptr;
-      T* P = probs + p * Lq * Lk;
+      T* P = probs ? probs + p * Lq * Lk : scratch.data();
       transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt.data());
       small_gemm(Lq, Lk, D, q + lq.at(b, h), lq.row, kt.data(), Lk, P, Lk);  // raw scores
       for (int64_t i = 0; i < Lq; ++i) {
@@ -203,20 +205,21 @@ Tensor scaled_dot_product_attention(const Tensor& q, const Tensor& k, const Tens
   DropoutPlan drop = make_dropout(dropout_p, training, rng, static_cast<uint64_t>(s.B * s.H * s.Lq * s.Lk), op);
   Layout lq{s.H * s.Lq * s.D, s.Lq * s.D, s.D}, lk{s.H * s.Lk * s.D, s.Lk * s.D, s.D};
   Tensor out = Tensor::empty(q.shape(), q.dtype());
-  Tensor probs = Tensor::empty({s.B, s.H, s.Lq, s.Lk}, q.dtype());
+  bool grad = needs_grad({&q, &k, &v});
+  Tensor probs = grad || attn_weights ? Tensor::empty({s.B, s.H, s.Lq, s.Lk}, q.dtype()) : Tensor();
   const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
   double scale = s.D > 0 ? 1.0 / std::sqrt(static_cast<double>(s.D)) : 1.0;
   dispatch_float(q.dtype(), op, [&](auto tag) {
     using T = decltype(tag);
     attention_forward<T>(s, ptr<T>(q), lq, ptr<T>(k), lk, ptr<T>(v), lk, ptr<T>(out), lq, mask,
-                         static_cast<T>(scale), drop, ptr<T>(probs));
+                         static_cast<T>(scale), drop, probs.defined() ? ptr<T>(probs) : nullptr);
     if (attn_weights) {
       *attn_weights = Tensor::empty({s.B, s.Lq, s.Lk}, q.dtype());
       head_average<T>(s, ptr<T>(probs), ptr<T>(*attn_weights));
     }
     return 0;
   });
-  if (needs_grad({&q, &k, &v})) {
+  if (grad) {
     record(out, op, {q, k, v},
            [qd = q.detach(), kd = k.detach(), vd = v.detach(), probs, drop, s, lq, lk, scale](const Tensor& g) -> std::vector<Tensor> {
              Tensor dq = Tensor::empty(qd.shape(), g.dtype());
@@ -250,21 +253,22 @@ Tensor packed_attention(const Tensor& qkv, int64_t num_heads, const Tensor& key_
   DropoutPlan drop = make_dropout(dropout_p, training, rng, static_cast<uint64_t>(B * num_heads * L * L), op);
   Layout lin{L * 3 * E, Dh, 3 * E}, lout{L * E, Dh, E};
   Tensor out = Tensor::empty({B, L, E}, qkv.dtype());
-  Tensor probs = Tensor::empty({B, num_heads, L, L}, qkv.dtype());
+  bool grad = needs_grad({&qkv});
+  Tensor probs = grad || attn_weights ? Tensor::empty({B, num_heads, L, L}, qkv.dtype()) : Tensor();
   const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
   double scale = Dh > 0 ? 1.0 / std::sqrt(static_cast<double>(Dh)) : 1.0;
   dispatch_float(qkv.dtype(), op, [&](auto tag) {
     using T = decltype(tag);
     const T* base = ptr<T>(qkv);
     attention_forward<T>(s, base, lin, base + E, lin, base + 2 * E, lin, ptr<T>(out), lout, mask,
-                         static_cast<T>(scale), drop, ptr<T>(probs));
+                         static_cast<T>(scale), drop, probs.defined() ? ptr<T>(probs) : nullptr);
     if (attn_weights) {
       *attn_weights = Tensor::empty({B, L, L}, qkv.dtype());
       head_average<T>(s, ptr<T>(probs), ptr<T>(*attn_weights));
     }
     return 0;
   });
-  if (needs_grad({&qkv})) {
+  if (grad) {
     record(out, op, {qkv}, [xd = qkv.detach(), probs, drop, s, lin, lout, scale, E](const Tensor& g) -> std::vector<Tensor> {
       Tensor dx = Tensor::empty(xd.shape(), g.dtype());
       dispatch_float(g.dtype(), "packed_attention backward", [&](auto tag) {
