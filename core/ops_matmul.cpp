@@ -3,6 +3,7 @@
 #include "core/gemm.h"
 #include "core/kernels.h"
 #include "core/ops.h"
+#include "core/small_gemm.h"
 
 namespace lc2wf {
 
@@ -10,6 +11,10 @@ namespace {
 
 // Below this many multiply-adds per batch item, batches run in parallel with one serial GEMM each.
 constexpr int64_t kSmallGemm = 1 << 21;
+
+// linear with at most this many input features takes the direct small-K kernel, in row blocks.
+constexpr int64_t kSmallK = 16;
+constexpr int64_t kSmallKRows = 256;
 
 // Batched op(A) op(B) over contiguous (nb, rows, cols) tensors; no autograd.
 Tensor bmm_raw(const Tensor& A, const Tensor& B, bool ta, bool tb) {
@@ -136,8 +141,23 @@ Tensor linear(const Tensor& x, const Tensor& weight, const Tensor& bias) {
   Tensor out = Tensor::empty(out_shape, x.dtype());
   dispatch_float(x.dtype(), "linear", [&](auto tag) {
     using T = decltype(tag);
-    gemm<T>(false, true, M, outf, in, ptr<T>(x), in, ptr<T>(weight), in, ptr<T>(out), outf, false,
-            bias.defined() ? ptr<T>(bias) : nullptr);
+    const T* pb = bias.defined() ? ptr<T>(bias) : nullptr;
+    if (in <= kSmallK && in > 0) {
+      // Tiny K (the first MLP layer sees 6-7 features): a direct register-blocked loop over Wᵀ beats
+      // a packed GEMM, whose packing then costs more than the arithmetic.
+      std::vector<T> wt(static_cast<size_t>(in * outf));
+      transpose_into(outf, in, ptr<T>(weight), in, wt.data());
+      const T* px = ptr<T>(x);
+      T* py = ptr<T>(out);
+      parallel_for_work(M, kSmallKRows, in * outf, [&](int64_t r0, int64_t r1) {
+        small_gemm(r1 - r0, outf, in, px + r0 * in, in, wt.data(), outf, py + r0 * outf, outf);
+        if (pb)
+          for (int64_t r = r0; r < r1; ++r)
+            for (int64_t j = 0; j < outf; ++j) py[r * outf + j] += pb[j];
+      });
+    } else {
+      gemm<T>(false, true, M, outf, in, ptr<T>(x), in, ptr<T>(weight), in, ptr<T>(out), outf, false, pb);
+    }
     return 0;
   });
   if (needs_grad({&x, &weight, &bias})) {

@@ -119,6 +119,15 @@ void BM_LinearForwardBackward(benchmark::State& state) {
 }
 BENCHMARK(BM_LinearForwardBackward)->UseRealTime()->Unit(benchmark::kMillisecond);
 
+// The LPT's first MLP layer: 7 line features -> 64 over B*G*N = 16384 lines (tiny K).
+void BM_LinearSmallKForward(benchmark::State& state) {
+  Tensor x = rand32({16384, 7}, 1), w = rand32({64, 7}, 2), b = rand32({64}, 3);
+  NoGradGuard no_grad;
+  for (auto _ : state) benchmark::DoNotOptimize(linear(x, w, b).impl());
+  report_flops(state, 2.0 * 16384 * 7 * 64);
+}
+BENCHMARK(BM_LinearSmallKForward)->UseRealTime()->Unit(benchmark::kMillisecond);
+
 // ---------------------------------------------------------------- attention: 8192 tokens, patches of L
 // FLOPs: Q.K^T and P.V, 2 * L * L * Dh multiply-adds each per (patch, head); backward does 4 such products.
 double attention_flops(int64_t patches, int64_t L) { return 4.0 * patches * L * L * kWidth; }

@@ -100,6 +100,25 @@ TEST(Forward, LargeGemmMatchesNaive) {
     }
 }
 
+TEST(Forward, SmallKLinearMatchesNaive) {  // the first MLP layer's shape takes a dedicated kernel
+  Rng rng(6);
+  for (int64_t out : {64, 20}) {
+    Tensor a = test::random_tensor({1000, 7}, rng, -1, 1, DType::F32);
+    Tensor w = test::random_tensor({out, 7}, rng, -1, 1, DType::F32);
+    Tensor b = test::random_tensor({out}, rng, -1, 1, DType::F32);
+    Tensor y = linear(a, w, b);
+    const float* pa = a.data<float>();
+    const float* pw = w.data<float>();
+    const float* py = y.data<float>();
+    for (int64_t i = 0; i < 1000; i += 7)
+      for (int64_t j = 0; j < out; ++j) {
+        double s = b.data<float>()[j];
+        for (int64_t k = 0; k < 7; ++k) s += double(pa[i * 7 + k]) * pw[j * 7 + k];
+        EXPECT_NEAR(py[i * out + j], s, 1e-5);
+      }
+  }
+}
+
 TEST(Forward, ShapeOps) {
   Tensor a = Tensor::from_vector(std::vector<float>{0, 1, 2, 3, 4, 5}, {2, 3});
   expect_near(vals(a.transpose(0, 1)), {0, 3, 1, 4, 2, 5});
