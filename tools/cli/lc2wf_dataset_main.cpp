@@ -34,6 +34,7 @@ options:
   --blender-batch N           buildings per Blender process (default 8)
   --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.01)
   --max-segments N            longest 2D segments kept per view (default 1000)
+  --lsd-refine std|adv        LSD refinement (default std; adv drops many segments on clean renders)
   --min-score S               min cross-view score of a 3D line (default 1.0)
   --no-progress               no progress bar
   -h, --help                  this text
@@ -125,6 +126,10 @@ int main(int argc, char** argv) {
       o.blender_batch = to_int(a, value());
     } else if (a == "--lsd-min-length") {
       o.cloud.lsd.min_length_frac = to_double(a, value());
+    } else if (a == "--lsd-refine") {
+      const std::string r = value();
+      if (r != "std" && r != "adv") usage_error("--lsd-refine must be std or adv, got '" + r + "'");
+      o.cloud.lsd.refine_advanced = r == "adv";
     } else if (a == "--max-segments") {
       o.cloud.lsd.max_segments = to_int(a, value());
     } else if (a == "--min-score") {

@@ -1,0 +1,123 @@
+// Software rasteriser and camera rings.
+#include <gtest/gtest.h>
+
+#include <opencv2/imgproc.hpp>
+
+#include "dataset/synthetic_building.h"
+#include "tools/render/camera_ring.h"
+#include "tools/render/raster_renderer.h"
+
+namespace lc2wf {
+namespace {
+
+Building house() {
+  RectBuildingSpec spec;
+  spec.west = RoofEnd::Gable;
+  return make_rect_building("house", spec);
+}
+
+TEST(CameraRing, FramesTheWholeBuildingWithinTheElevationBand) {
+  const Building b = house();
+  CameraRingOptions o;
+  o.views = 16;
+  o.seed = 3;
+  const auto cams = make_camera_ring(b.mesh.vertices, o);
+  ASSERT_EQ(cams.size(), 16u);
+  for (const Camera& c : cams) {
+    EXPECT_LT((c.R * c.R.transpose() - Eigen::Matrix3d::Identity()).norm(), 1e-12);
+    EXPECT_NEAR(c.R.determinant(), 1.0, 1e-12);
+    for (const Vec3& v : b.mesh.vertices) {
+      ASSERT_GT(c.to_camera(v).z(), 0);
+      const Vec2 p = c.project(v);
+      EXPECT_GE(p.x(), o.margin * o.width - 0.5 - 1e-6);
+      EXPECT_LE(p.x(), o.width * (1 - o.margin) - 0.5 + 1e-6);
+      EXPECT_GE(p.y(), o.margin * o.height - 0.5 - 1e-6);
+      EXPECT_LE(p.y(), o.height * (1 - o.margin) - 0.5 + 1e-6);
+    }
+    const Vec3 dir = (c.center() - Vec3(0, 0, 2)).normalized();
+    const double elev = std::asin(dir.z()) * 180 / M_PI;
+    EXPECT_GT(elev, o.min_elevation_deg - 5);
+    EXPECT_LT(elev, o.max_elevation_deg + 5);
+  }
+  const auto again = make_camera_ring(b.mesh.vertices, o);
+  EXPECT_EQ(again[5].t, cams[5].t);
+  o.seed = 4;
+  EXPECT_NE(make_camera_ring(b.mesh.vertices, o)[5].t, cams[5].t);
+  o.views = 0;
+  EXPECT_THROW(make_camera_ring(b.mesh.vertices, o), std::invalid_argument);
+}
+
+TEST(RasterRenderer, DepthMapMatchesTheMeshAndFaceIds) {
+  const Building b = house();
+  CameraRingOptions o;
+  o.views = 3;
+  const auto cams = make_camera_ring(b.mesh.vertices, o);
+  const RasterRenderer r(b.mesh, RasterOptions{});
+  cv::Mat depth, ids;
+  r.depth_map(cams[0], depth, ids);
+  int hits = 0;
+  for (int y = 0; y < depth.rows; y += 7)
+    for (int x = 0; x < depth.cols; x += 7) {
+      const int f = ids.at<int>(y, x);
+      if (f < 0) continue;
+      ++hits;
+      // Back-project the pixel to the stored depth: the point lies on face f's plane.
+      const double z = depth.at<float>(y, x);
+      const Vec3 m((x - cams[0].K(0, 2)) / cams[0].K(0, 0), (y - cams[0].K(1, 2)) / cams[0].K(1, 1), 1.0);
+      const Vec3 X = cams[0].R.transpose() * (m * z - cams[0].t);
+      const FaceFrame& fr = r.mesh().frames[f];
+      EXPECT_NEAR(fr.normal.dot(X), fr.offset, 2e-5 * z);
+    }
+  EXPECT_GT(hits, 500);
+}
+
+TEST(RasterRenderer, IsDeterministicAndShadowsDarkenTheGround) {
+  const Building b = house();
+  CameraRingOptions o;
+  o.views = 2;
+  const auto cams = make_camera_ring(b.mesh.vertices, o);
+  RasterOptions ro;
+  ro.seed = 9;
+  const RasterRenderer lit(b.mesh, ro);
+  const cv::Mat a = lit.render(cams[0], 0).image, a2 = lit.render(cams[0], 0).image;
+  ASSERT_EQ(a.type(), CV_8UC3);
+  EXPECT_EQ(cv::norm(a, a2, cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(a, lit.render(cams[0], 1).image, cv::NORM_L1), 0.0);  // noise differs per view
+  ro.shadows = false;
+  const cv::Mat flat = RasterRenderer(b.mesh, ro).render(cams[0], 0).image;
+  cv::Mat ga, gf;
+  cv::cvtColor(a, ga, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(flat, gf, cv::COLOR_BGR2GRAY);
+  EXPECT_LT(cv::mean(ga)[0], cv::mean(gf)[0] - 0.5);
+  ro.supersample = 9;
+  EXPECT_THROW(RasterRenderer(b.mesh, ro), std::invalid_argument);
+}
+
+TEST(RasterRenderer, SupersampledCameraKeepsPixelCentres) {
+  Camera c;
+  c.K << 600, 0, 319.5, 0, 600, 239.5, 0, 0, 1;
+  c.width = 640;
+  c.height = 480;
+  const Camera s = supersampled_camera(c, 2);
+  EXPECT_EQ(s.width, 1280);
+  const Vec3 X(0.3, -0.2, 5.0);
+  const Vec2 p = c.project(X), q = s.project(X);
+  EXPECT_NEAR((q.x() + 0.5) / 2 - 0.5, p.x(), 1e-12);
+  EXPECT_NEAR((q.y() + 0.5) / 2 - 0.5, p.y(), 1e-12);
+}
+
+TEST(FaceFrames, EarClippingCoversNonConvexPolygons) {
+  // An L-shaped hexagon of area 3.
+  const std::vector<Vec2> poly = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  const auto tris = ear_clip(poly);
+  ASSERT_EQ(tris.size(), 4u);
+  double area = 0;
+  for (const auto& t : tris) {
+    const Vec2 a = poly[t[1]] - poly[t[0]], b = poly[t[2]] - poly[t[0]];
+    area += 0.5 * std::abs(a.x() * b.y() - a.y() * b.x());
+  }
+  EXPECT_NEAR(area, 3.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace lc2wf
