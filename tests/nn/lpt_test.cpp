@@ -1,0 +1,126 @@
+// Behaviour of the Line-Patch Transformer beyond the golden fixtures: input validation, pooling modes,
+// loss validation and determinism of training-mode forward passes (dropout) across thread counts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/ops.h"
+#include "core/parallel.h"
+#include "nn/edge_net.h"
+#include "nn/junction_net.h"
+#include "nn/losses.h"
+
+namespace lc2wf {
+namespace {
+
+JunctionNetConfig small(const std::string& pool = "mean_all") {
+  JunctionNetConfig c;
+  c.lpt.lines_per_patch = 6;
+  c.lpt.patches = 4;
+  c.lpt.mlp_dims = {8, 16};
+  c.lpt.hidden_dim = 16;
+  c.lpt.num_heads = 4;
+  c.lpt.ffn_dim = 16;
+  c.lpt.pool = pool;
+  c.head.dims = {8};
+  return c;
+}
+
+Tensor inputs(int64_t B, int64_t G, int64_t N, int64_t F, uint64_t seed) {
+  Rng rng(seed);
+  std::vector<float> v(B * G * N * F);
+  for (auto& x : v) x = static_cast<float>(rng.next_uniform(-1, 1));
+  return Tensor::from_vector(v, {B, G, N, F});
+}
+
+Tensor mask_every(int64_t B, int64_t G, int64_t N, int64_t k) {
+  std::vector<uint8_t> m(B * G * N);
+  for (size_t i = 0; i < m.size(); ++i) m[i] = k > 0 && static_cast<int64_t>(i % N) % k == k - 1;
+  return Tensor::from_mask(m, {B, G, N});
+}
+
+std::string error_of(JunctionNet& net, const Tensor& x, const Tensor& mask) {
+  try {
+    net.forward(x, mask);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Lpt, RejectsBadInputsWithClearMessages) {
+  JunctionNet net(small());
+  const Tensor mask = mask_every(2, 4, 6, 3);
+  EXPECT_NE(error_of(net, inputs(2, 4, 5, 7, 1), mask_every(2, 4, 5, 3)).find("expected input (B, G, 6, 7)"),
+            std::string::npos);
+  EXPECT_NE(error_of(net, inputs(2, 4, 6, 6, 1), mask).find("got [2, 4, 6, 6]"), std::string::npos);
+  EXPECT_NE(error_of(net, inputs(2, 4, 6, 7, 1), Tensor::zeros({2, 4, 6})).find("Bool mask"), std::string::npos);
+  EXPECT_NE(error_of(net, inputs(2, 4, 6, 7, 1), Tensor()).find("undefined"), std::string::npos);
+  EXPECT_THROW(JunctionNet bad(small("max")), std::invalid_argument);
+}
+
+TEST(Lpt, PoolingModesAgreeWithoutPaddingAndDifferWithIt) {
+  JunctionNet all(small("mean_all"), 3), valid(small("mean_valid"), 3);
+  all.eval();
+  valid.eval();
+  NoGradGuard no_grad;
+  const Tensor x = inputs(1, 4, 6, 7, 2);
+  const auto a0 = all.forward(x, mask_every(1, 4, 6, 0)).logits.to_vector();
+  const auto v0 = valid.forward(x, mask_every(1, 4, 6, 0)).logits.to_vector();
+  for (size_t i = 0; i < a0.size(); ++i) EXPECT_NEAR(a0[i], v0[i], 1e-5);
+  const auto a1 = all.forward(x, mask_every(1, 4, 6, 2)).logits.to_vector();
+  const auto v1 = valid.forward(x, mask_every(1, 4, 6, 2)).logits.to_vector();
+  double diff = 0;
+  for (size_t i = 0; i < a1.size(); ++i) diff = std::max(diff, std::abs(a1[i] - v1[i]));
+  EXPECT_GT(diff, 1e-4);
+}
+
+TEST(Lpt, TrainingForwardIsDeterministicAcrossThreadCounts) {
+  JunctionNetConfig c = small();
+  c.lpt.mlp_dims = {64, 64};
+  c.lpt.hidden_dim = 64;
+  c.lpt.ffn_dim = 64;
+  const Tensor x = inputs(4, 16, 6, 7, 5);
+  const Tensor mask = mask_every(4, 16, 6, 4);
+  auto run = [&](int threads) {
+    set_num_threads(threads);
+    JunctionNet net(c, 9);
+    const JunctionOutput out = net.forward(x, mask);
+    sum(out.logits).backward();
+    return std::make_pair(out.offsets.to_vector(), net.named_parameters()[0].second.grad().to_vector());
+  };
+  const auto one = run(1), two = run(2), again = run(2);
+  set_num_threads(0);
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(two, again);
+}
+
+TEST(Lpt, DropoutStreamAdvancesOnlyInTraining) {
+  JunctionNet net(small(), 4);
+  const Tensor x = inputs(1, 4, 6, 7, 6);
+  const Tensor mask = mask_every(1, 4, 6, 3);
+  const uint64_t start = net.dropout_rng().counter();
+  net.forward(x, mask);
+  const uint64_t after_train = net.dropout_rng().counter();
+  EXPECT_GT(after_train, start);
+  net.eval();
+  net.forward(x, mask);
+  EXPECT_EQ(net.dropout_rng().counter(), after_train);
+}
+
+TEST(Losses, RejectBadTargets) {
+  JunctionNet net(small());
+  const JunctionOutput out = net.forward(inputs(1, 4, 6, 7, 1), mask_every(1, 4, 6, 3));
+  const Tensor offsets = Tensor::zeros({1, 4, 3});
+  EXPECT_THROW(junction_loss(out, {Tensor::zeros({1, 4}), offsets}, {}), std::invalid_argument);  // F32 labels
+  EXPECT_THROW(junction_loss(out, {Tensor::from_vector(std::vector<int64_t>{0, 1, 2, 0}, {1, 4}), offsets}, {}),
+               std::invalid_argument);  // label 2
+  EXPECT_THROW(junction_loss(out, {Tensor::from_vector(std::vector<int64_t>{0, 1, 1, 0}, {1, 4}), Tensor::zeros({1, 4, 2})}, {}),
+               std::invalid_argument);
+  EXPECT_THROW(edge_loss(Tensor::zeros({1, 3, 4}), Tensor::from_vector(std::vector<int64_t>{0, 1, 2}, {1, 3}), {}),
+               std::invalid_argument);  // 4 logits, 5 class weights
+}
+
+}  // namespace
+}  // namespace lc2wf
