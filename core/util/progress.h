@@ -23,9 +23,10 @@ class Progress {
   void step(int64_t n = 1, const std::string& note = "") {
     done_ += n;
     note_ = note;
+    if (done_ >= total_) return finish();
     const auto now = Clock::now();
     const double since = std::chrono::duration<double>(now - last_print_).count();
-    if ((tty_ && since >= 0.1) || (!tty_ && since >= 5.0) || done_ >= total_) {
+    if ((tty_ && since >= 0.1) || (!tty_ && since >= 5.0)) {
       last_print_ = now;
       print(false);
     }
