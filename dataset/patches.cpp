@@ -49,13 +49,14 @@ SegmentSet::SegmentSet(const std::vector<Segment3>& segments) : segments_(segmen
     inv_len_[i] = len > 0 ? 1.0 / (len + 1e-6) : 0.0;
     far_[i] = len > 0 ? 0.0 : kFar * kFar;
   }
-  scratch_.resize(n);
 }
 
 void SegmentSet::nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& dist) const {
   const size_t n = segments_.size();
   const double qx = q.x(), qy = q.y(), qz = q.z();
-  double* d2 = scratch_.data();
+  thread_local std::vector<double> scratch;  // per-thread, so concurrent queries on one set are safe
+  scratch.resize(n);
+  double* d2 = scratch.data();
   // Squared |AB x (q - A)| / (|AB| + 1e-6): same order as the release's distance, no sqrt, vectorisable.
   for (size_t i = 0; i < n; ++i) {
     const double px = qx - ax_[i], py = qy - ay_[i], pz = qz - az_[i];

@@ -28,7 +28,7 @@ struct PatchOptions {
   void Check() const;
 };
 
-// Segments prepared for repeated queries.
+// Segments prepared for repeated queries (read-only after construction; queries are thread-safe).
 class SegmentSet {
  public:
   explicit SegmentSet(const std::vector<Segment3>& segments);
@@ -44,7 +44,6 @@ class SegmentSet {
   std::vector<Segment3> segments_;
   std::vector<double> ax_, ay_, az_, dx_, dy_, dz_, inv_len_;  // A and B - A; 1 / (|AB| + 1e-6), 0 if zero length
   std::vector<double> far_;                                     // squared 1e5 for zero-length segments, else 0
-  mutable std::vector<double> scratch_;  // per-query distances: one SegmentSet per thread
 };
 
 // Arrays have a leading batch dimension `batch` (1 for one building; stack() concatenates buildings).
