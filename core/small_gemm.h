@@ -11,9 +11,10 @@
 namespace lc2wf {
 
 // Four rows of C at a time so every row of B loaded from L1 feeds four FMAs; N is a compile-time
-// constant so the accumulators live in vector registers.
+// constant so the accumulators live in vector registers. Kept out of line: inlined into the large
+// attention loops the accumulators were spilled to the stack.
 template <class T, int N>
-inline void small_gemm_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+__attribute__((noinline)) void small_gemm_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
                              int64_t ldc) {
   int64_t i = 0;
   for (; i + 4 <= M; i += 4) {
@@ -49,7 +50,7 @@ inline void small_gemm_fixed(int64_t M, int64_t K, const T* A, int64_t lda, cons
 
 // C = A^T B with A stored (K x M, row stride lda): saves the explicit transpose of A.
 template <class T, int N>
-inline void small_gemm_tn_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+__attribute__((noinline)) void small_gemm_tn_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
                                 int64_t ldc) {
   int64_t i = 0;
   for (; i + 4 <= M; i += 4) {
