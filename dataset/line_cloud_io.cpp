@@ -1,6 +1,7 @@
 #include "dataset/line_cloud_io.h"
 
 #include <bit>
+#include <cstdio>
 #include <cstring>
 #include <nlohmann/json.hpp>
 

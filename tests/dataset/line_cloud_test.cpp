@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 
 #include "dataset/atomic_file.h"
@@ -158,6 +159,13 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
   expect_error(bin.substr(0, bin.size() - 8), "outside the binary block");
   expect_error(replace_once(bin, bin.substr(0, bin.find('\n')), "LC2WF-LINECLOUD 1 999999"), "header runs past");
   expect_error(replace_once(bin, "LC2WF-LINECLOUD 1", "LC2WF-LINECLOUD 7"), "unsupported version 7");
+  // A NaN written straight into the binary block (segments come first in the blob).
+  const size_t first_line = bin.find('\n');
+  const size_t header_len = std::stoul(bin.substr(bin.rfind(' ', first_line) + 1, first_line));
+  std::string nan_bin = bin;
+  const double nan = std::nan("");
+  std::memcpy(&nan_bin[first_line + 1 + header_len], &nan, sizeof nan);
+  expect_error(nan_bin, "segment 0 has a non-finite coordinate");
 }
 
 TEST(LineCloudIo, MissingFileIsNamed) {
