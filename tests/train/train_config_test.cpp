@@ -1,0 +1,125 @@
+// The configs in configs/ parse, share one key set, and bad keys/values are rejected by name.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "train/train_config.h"
+
+namespace lc2wf {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kConfigs = fs::path(LC2WF_SOURCE_DIR) / "configs";
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+void collect_keys(const nlohmann::json& j, const std::string& prefix, std::set<std::string>& out) {
+  if (!j.is_object()) return;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    out.insert(prefix + it.key());
+    collect_keys(it.value(), prefix + it.key() + ".", out);
+  }
+}
+
+std::string error_of(const nlohmann::json& j) {
+  try {
+    TrainConfig::from_json(j);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(TrainConfig, BaseHoldsThePaperSettings) {
+  const TrainConfig c = TrainConfig::from_file(kConfigs / "base.json");
+  EXPECT_EQ(c.seed, 1555u);
+  EXPECT_EQ(c.junction.net.lpt.patches, 256);
+  EXPECT_EQ(c.junction.net.lpt.lines_per_patch, 32);
+  EXPECT_EQ(c.edge.net.lpt.lines_per_patch, 64);
+  EXPECT_EQ(c.edge.net.lpt.patches, 512);
+  EXPECT_EQ(c.junction.schedule.batch_size, 16);
+  EXPECT_EQ(c.edge.schedule.batch_size, 32);
+  EXPECT_EQ(c.junction.schedule.epochs, 41);
+  EXPECT_EQ(c.edge.schedule.epochs, 31);
+  EXPECT_EQ(c.junction.optim.milestones, (std::vector<int64_t>{15, 30, 41}));
+  EXPECT_EQ(c.edge.optim.milestones, (std::vector<int64_t>{15, 25, 31}));
+  EXPECT_EQ(c.junction.optim.optimizer, "adamw");
+  EXPECT_DOUBLE_EQ(c.junction.optim.lr, 1e-3);
+  EXPECT_EQ(c.junction.loss.kind, "release");
+  // The networks are the nn defaults (the release's): base.json only spells them out.
+  EXPECT_EQ(c.junction.net.to_json(), JunctionNetConfig().to_json());
+  EXPECT_EQ(c.edge.net.to_json(), EdgeNetConfig().to_json());
+}
+
+TEST(TrainConfig, EveryConfigHasTheSameKeys) {
+  std::set<std::string> base_keys;
+  collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
+  for (const char* name : {"small.json", "demo.json"}) {
+    std::set<std::string> keys;
+    collect_keys(read_json(kConfigs / name), "", keys);
+    EXPECT_EQ(keys, base_keys) << name;
+    EXPECT_NO_THROW(TrainConfig::from_file(kConfigs / name)) << name;
+  }
+}
+
+TEST(TrainConfig, RoundTripsThroughJson) {
+  const TrainConfig c = TrainConfig::from_file(kConfigs / "small.json");
+  EXPECT_EQ(TrainConfig::from_json(c.to_json()).to_json(), c.to_json());
+}
+
+TEST(TrainConfig, RejectsUnknownKeysByName) {
+  nlohmann::json j = read_json(kConfigs / "base.json");
+  j["junction"]["optim"]["learning_rate"] = 0.1;
+  EXPECT_NE(error_of(j).find("junction.optim"), std::string::npos) << error_of(j);
+  EXPECT_NE(error_of(j).find("learning_rate"), std::string::npos);
+  j = read_json(kConfigs / "base.json");
+  j["epochs"] = 3;
+  EXPECT_NE(error_of(j).find("'epochs'"), std::string::npos) << error_of(j);
+}
+
+TEST(TrainConfig, RejectsBadValuesByName) {
+  struct Case {
+    std::vector<std::string> path;
+    nlohmann::json value;
+    std::string expected;
+  };
+  const std::vector<Case> cases{
+      {{"junction", "optim", "lr"}, -1.0, "junction.optim.lr"},
+      {{"edge", "batch_size"}, 0, "edge.batch_size"},
+      {{"data", "format"}, "csv", "data.format"},
+      {{"threads"}, 0, "threads"},
+      {{"junction", "net", "lpt", "hidden_dim"}, "wide", "junction.net.lpt.hidden_dim"},
+      {{"edge", "net", "lpt", "lines_per_patch"}, 63, "edge.net.lpt.lines_per_patch"},
+      {{"junction", "net", "lpt", "input_dim"}, 6, "junction.net.lpt.input_dim"},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json j = read_json(kConfigs / "base.json");
+    nlohmann::json* node = &j;
+    for (const auto& key : c.path) node = &(*node)[key];
+    *node = c.value;
+    const std::string err = error_of(j);
+    EXPECT_NE(err.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << err;
+  }
+}
+
+TEST(TrainConfig, FileErrorsNameTheFile) {
+  const fs::path p = fs::temp_directory_path() / ("lc2wf_bad_config_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(p) << "{\"seed\": ";
+  try {
+    TrainConfig::from_file(p);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos);
+  }
+  fs::remove(p);
+}
+
+}  // namespace
+}  // namespace lc2wf

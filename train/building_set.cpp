@@ -1,0 +1,30 @@
+#include "train/building_set.h"
+
+#include <memory>
+
+#include "core/util/progress.h"
+#include "dataset/errors.h"
+#include "infer/cloud_input.h"
+#include "infer/eval_inputs.h"
+
+namespace lc2wf {
+
+BuildingSet load_building_set(const DataConfig& data, const std::filesystem::path& split_file, bool quiet) {
+  BuildingSet set;
+  set.split = split_file.string();
+  const std::vector<std::string> names = read_name_list(split_file);
+  if (names.empty()) throw DataError(split_file.string(), "split lists no building");
+  const CloudFormat format = parse_cloud_format(data.format, "data.format");
+  std::unique_ptr<Progress> progress;
+  if (!quiet) progress = std::make_unique<Progress>("loading " + split_file.filename().string(), names.size());
+  for (const std::string& name : names) {
+    LineCloud cloud = load_line_cloud(find_cloud_file(data.dir, name), format, data.raw_per_metre);
+    cloud.name = name;
+    if (cloud.segments.empty()) throw DataError(name, "line cloud has no segments (cannot be trained on)");
+    set.clouds.push_back(std::move(cloud));
+    if (progress) progress->step();
+  }
+  return set;
+}
+
+}  // namespace lc2wf

@@ -1,0 +1,23 @@
+// The line clouds of one split, loaded into memory once (a building's cloud is small next to the cost of
+// one training step).
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dataset/line_cloud.h"
+#include "train/train_config.h"
+
+namespace lc2wf {
+
+struct BuildingSet {
+  std::string split;  // split file it came from
+  std::vector<LineCloud> clouds;
+};
+
+// Reads the names of `split_file` and their clouds from data.dir (format data.format). Throws DataError
+// naming the file on a missing building, an empty split or a cloud without segments.
+BuildingSet load_building_set(const DataConfig& data, const std::filesystem::path& split_file, bool quiet);
+
+}  // namespace lc2wf

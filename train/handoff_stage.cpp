@@ -1,0 +1,63 @@
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+
+#include "core/util/atomic_file.h"
+#include "core/util/progress.h"
+#include "infer/inference.h"
+#include "nn/checkpoint.h"
+#include "train/junction_handoff.h"
+#include "train/stage_loop.h"
+#include "train/stages.h"
+
+namespace lc2wf {
+
+namespace fs = std::filesystem;
+
+fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run) {
+  const fs::path dir = run.out / "predicted_junctions", manifest = dir / "manifest.json";
+  const fs::path weights = best_checkpoint_path(run.out, "junction");
+  if (!fs::exists(weights)) throw std::runtime_error(weights.string() + ": no junction model yet (run --stage junction first)");
+  const int64_t step = read_checkpoint_info(weights).position.step;
+
+  std::vector<const LineCloud*> clouds;
+  for (const BuildingSet* set : {&train, &val})
+    for (const LineCloud& c : set->clouds) clouds.push_back(&c);
+
+  if (run.resume && fs::exists(manifest)) {
+    std::ifstream in(manifest);
+    const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
+    bool complete = !m.is_discarded() && m.value("junction_step", int64_t{-1}) == step;
+    for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
+    if (complete) {
+      if (!run.quiet) std::fprintf(stderr, "handoff: predicted junctions in %s are up to date\n", dir.string().c_str());
+      return dir;
+    }
+  }
+  fs::remove(manifest);
+  log.rewind("handoff", 0, stage_order());
+
+  std::unique_ptr<JunctionNet> net = load_junction_net(weights);
+  std::unique_ptr<Progress> bar;
+  if (!run.quiet) bar = std::make_unique<Progress>("predicting junctions", static_cast<int64_t>(clouds.size()));
+  const auto t0 = std::chrono::steady_clock::now();
+  nlohmann::json names = nlohmann::json::array();
+  for (const LineCloud* c : clouds) {
+    write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c));
+    names.push_back(c->name);
+    if (bar) bar->step();
+  }
+  if (bar) bar->finish();
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  write_text_atomically(manifest, nlohmann::json{{"format", "lc2wf-predicted-junctions-manifest"},
+                                                 {"junction_checkpoint", weights.string()},
+                                                 {"junction_step", step},
+                                                 {"buildings", names}}
+                                      .dump(2) + "\n");
+  log.append({{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},
+              {"seconds", seconds}, {"buildings_per_s", seconds > 0 ? clouds.size() / seconds : 0.0}});
+  return dir;
+}
+
+}  // namespace lc2wf

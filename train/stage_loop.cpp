@@ -1,0 +1,162 @@
+#include "train/stage_loop.h"
+
+#include <chrono>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+
+#include "core/util/progress.h"
+#include "nn/checkpoint.h"
+#include "nn/optimizer.h"
+
+namespace lc2wf {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::vector<std::string>& stage_order() {
+  static const std::vector<std::string> order{"junction", "handoff", "edge"};
+  return order;
+}
+
+fs::path best_checkpoint_path(const fs::path& out, const std::string& stage) { return out / (stage + ".safetensors"); }
+fs::path last_checkpoint_path(const fs::path& out, const std::string& stage) {
+  return out / "checkpoints" / (stage + "_last.safetensors");
+}
+
+namespace {
+
+struct Best {
+  double score = -std::numeric_limits<double>::infinity();
+  double loss = std::numeric_limits<double>::infinity();
+  int64_t epoch = 0;
+  nlohmann::json to_json() const {
+    return {{"score", std::isfinite(score) ? nlohmann::json(score) : nlohmann::json(nullptr)},
+            {"loss", std::isfinite(loss) ? nlohmann::json(loss) : nlohmann::json(nullptr)},
+            {"epoch", epoch}};
+  }
+  static Best from_json(const nlohmann::json& j) {
+    Best b;
+    if (j.contains("score") && j["score"].is_number()) b.score = j["score"].get<double>();
+    if (j.contains("loss") && j["loss"].is_number()) b.loss = j["loss"].get<double>();
+    b.epoch = j.value("epoch", int64_t{0});
+    return b;
+  }
+};
+
+}  // namespace
+
+int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, RunLog& log, const StageCallbacks& cb) {
+  const std::string& stage = o.stage;
+  const fs::path last_path = last_checkpoint_path(o.out, stage), best_path = best_checkpoint_path(o.out, stage);
+  std::unique_ptr<Optimizer> optimizer = make_optimizer(model, o.optim);
+  const MultiStepLR schedule(o.optim.lr, o.optim.milestones, o.optim.gamma);
+  const int64_t spe = cb.batches_per_epoch;
+  if (spe < 1) throw std::runtime_error(stage + " stage: the training split gives no full batch (fewer buildings than batch_size?)");
+
+  TrainingPosition pos;
+  Best best;
+  if (o.resume && fs::exists(last_path)) {
+    const CheckpointInfo stored = read_checkpoint_info(last_path);
+    if (stored.config.value("net", nlohmann::json()) != o.model_config.at("net"))
+      throw std::runtime_error(last_path.string() + ": the network config differs from the one being resumed");
+    const CheckpointInfo info = load_checkpoint(last_path, model, &dropout_rng, optimizer.get());
+    pos = info.position;
+    best = Best::from_json(info.config.value("best", nlohmann::json::object()));
+    if (!o.quiet)
+      std::fprintf(stderr, "%s: resuming from %s (epoch %lld, step %lld)\n", stage.c_str(), last_path.string().c_str(),
+                   static_cast<long long>(pos.epoch), static_cast<long long>(pos.step));
+  } else if (o.resume && !o.quiet) {
+    std::fprintf(stderr, "%s: no checkpoint at %s, starting from scratch\n", stage.c_str(), last_path.string().c_str());
+  }
+  if (pos.epoch >= o.schedule.epochs) {  // complete: its log and the later stages' stay as they are
+    if (!o.quiet) std::fprintf(stderr, "%s: already trained for %lld epochs\n", stage.c_str(), static_cast<long long>(pos.epoch));
+    return 0;
+  }
+  log.rewind(stage, pos.step, stage_order());
+
+  auto config_with_best = [&] {
+    nlohmann::json c = o.model_config;
+    c["best"] = best.to_json();
+    return c;
+  };
+  auto save_last = [&] { save_checkpoint(last_path, model, config_with_best(), dropout_rng, optimizer.get(), pos); };
+
+  int64_t steps_run = 0;
+  model.train();
+  for (int64_t epoch = pos.epoch; epoch < o.schedule.epochs; ++epoch) {
+    const double lr = schedule.lr_at(epoch);
+    optimizer->set_lr(lr);
+    const int64_t first = pos.step - epoch * spe;  // > 0 only when resuming mid-epoch
+    if (first < 0 || first > spe) throw std::runtime_error(last_path.string() + ": step does not match the schedule");
+    cb.start_epoch(epoch, first);
+    std::unique_ptr<Progress> bar;
+    if (!o.quiet)
+      bar = std::make_unique<Progress>(stage + " epoch " + std::to_string(epoch + 1) + "/" + std::to_string(o.schedule.epochs),
+                                       spe - first);
+    const auto epoch_start = Clock::now();
+    double epoch_loss = 0.0;
+    int64_t epoch_steps = 0, epoch_buildings = 0;
+    for (;;) {
+      const auto t0 = Clock::now();
+      std::optional<StageStep> s = cb.train_step();
+      if (!s) break;
+      if (!std::isfinite(s->loss))
+        throw std::runtime_error(stage + " stage: loss is " + std::to_string(s->loss) + " at step " + std::to_string(pos.step + 1));
+      double grad_norm = -1.0;
+      if (o.optim.clip_grad_norm > 0) grad_norm = clip_grad_norm(model.parameters(), o.optim.clip_grad_norm);
+      optimizer->step();
+      optimizer->zero_grad();
+      ++pos.step;
+      ++steps_run;
+      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+      nlohmann::json line = {{"stage", stage}, {"type", "step"}, {"epoch", epoch + 1}, {"step", pos.step},
+                             {"loss", s->loss}, {"lr", lr}, {"seconds", seconds},
+                             {"buildings_per_s", seconds > 0 ? s->buildings / seconds : 0.0}};
+      for (auto it = s->terms.begin(); it != s->terms.end(); ++it) line[it.key()] = it.value();
+      if (grad_norm >= 0) line["grad_norm"] = grad_norm;
+      log.append(line);
+      epoch_loss += s->loss;
+      ++epoch_steps;
+      epoch_buildings += s->buildings;
+      if (bar) {
+        char note[64];
+        std::snprintf(note, sizeof note, "loss %.4f", s->loss);
+        bar->step(1, note);
+      }
+      const bool epoch_end = pos.step == (epoch + 1) * spe;
+      if (o.schedule.checkpoint_every_steps > 0 && pos.step % o.schedule.checkpoint_every_steps == 0 && !epoch_end) {
+        pos.epoch = epoch;
+        save_last();
+      }
+    }
+    if (bar) bar->finish();
+    const double epoch_seconds = std::chrono::duration<double>(Clock::now() - epoch_start).count();
+    pos.epoch = epoch + 1;
+
+    if ((epoch + 1) % o.schedule.val_every == 0 || epoch + 1 == o.schedule.epochs) {
+      const auto v0 = Clock::now();
+      const StageValidation v = cb.validate();
+      model.train();
+      const bool improved = v.score > best.score || (v.score == best.score && v.loss < best.loss);
+      if (improved) best = {v.score, v.loss, epoch + 1};
+      nlohmann::json line = {{"stage", stage}, {"type", "val"}, {"epoch", epoch + 1}, {"step", pos.step},
+                             {"score", v.score}, {"loss", v.loss}, {"best", improved},
+                             {"seconds", std::chrono::duration<double>(Clock::now() - v0).count()}};
+      for (auto it = v.metrics.begin(); it != v.metrics.end(); ++it) line[it.key()] = it.value();
+      log.append(line);
+      if (improved) save_checkpoint(best_path, model, config_with_best(), dropout_rng, nullptr, pos);
+      if (!o.quiet)
+        std::fprintf(stderr, "%s epoch %lld: validation score %.4f loss %.4f%s\n", stage.c_str(),
+                     static_cast<long long>(epoch + 1), v.score, v.loss, improved ? " (best)" : "");
+    }
+    log.append({{"stage", stage}, {"type", "epoch"}, {"epoch", epoch + 1}, {"step", pos.step},
+                {"train_loss", epoch_steps ? epoch_loss / epoch_steps : 0.0}, {"lr", lr}, {"seconds", epoch_seconds},
+                {"buildings_per_s", epoch_seconds > 0 ? epoch_buildings / epoch_seconds : 0.0}});
+    save_last();
+  }
+  return steps_run;
+}
+
+}  // namespace lc2wf

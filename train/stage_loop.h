@@ -1,0 +1,66 @@
+// The epoch/step loop shared by both training stages: learning-rate schedule, optimiser steps, gradient
+// clipping, validation every k epochs, best and last checkpoints, the JSONL log, the progress bar and
+// exact resume. A stage supplies its batches, its loss and its validation through callbacks.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/rng.h"
+#include "nn/config.h"
+#include "nn/module.h"
+#include "train/run_log.h"
+#include "train/train_config.h"
+
+namespace lc2wf {
+
+// Stage order in a run (for log rewinding).
+const std::vector<std::string>& stage_order();
+
+// `<out>/<stage>.safetensors` (best, weights only) and `<out>/checkpoints/<stage>_last.safetensors`.
+std::filesystem::path best_checkpoint_path(const std::filesystem::path& out, const std::string& stage);
+std::filesystem::path last_checkpoint_path(const std::filesystem::path& out, const std::string& stage);
+
+struct StageStep {
+  double loss = 0.0;          // total loss of the batch
+  nlohmann::json terms;       // extra loss terms for the log
+  int64_t buildings = 0;      // buildings in the batch
+};
+
+struct StageValidation {
+  double score = 0.0;     // higher is better (selects the best checkpoint)
+  double loss = 0.0;      // tie-breaker: lower is better
+  nlohmann::json metrics; // everything logged
+};
+
+struct StageCallbacks {
+  int64_t batches_per_epoch = 0;
+  // Prepares the batches of `epoch`, starting at batch `first_batch`.
+  std::function<void(int64_t epoch, int64_t first_batch)> start_epoch;
+  // Runs forward and backward on the next batch (the loop steps the optimiser); nullopt ends the epoch.
+  std::function<std::optional<StageStep>()> train_step;
+  std::function<StageValidation()> validate;
+};
+
+struct StageLoopOptions {
+  std::string stage;          // "junction" or "edge"
+  StageSchedule schedule;
+  OptimConfig optim;
+  nlohmann::json model_config;  // {"stage", "net", ...}: stored in every checkpoint
+  std::filesystem::path out;
+  bool resume = false;
+  bool quiet = false;
+};
+
+// Trains `model` to the end of the schedule (or returns at once when a resumed stage is complete).
+// Returns the number of optimiser steps run by this call.
+int64_t run_stage(const StageLoopOptions& options, Module& model, Rng& dropout_rng, RunLog& log,
+                  const StageCallbacks& callbacks);
+
+}  // namespace lc2wf

@@ -1,0 +1,35 @@
+// The three steps of `lc2wf-train`: the junction model, the hand-off (predicted junctions of the train and
+// validation buildings from the frozen best junction model, train/junction_handoff.h), and the edge model
+// on GT + predicted pairs. Each validates on the validation split only.
+#pragma once
+
+#include <filesystem>
+
+#include "train/building_set.h"
+#include "train/run_log.h"
+#include "train/train_config.h"
+
+namespace lc2wf {
+
+struct StageRun {
+  std::filesystem::path out;
+  bool resume = false;
+  bool quiet = false;
+};
+
+// Best weights `<out>/junction.safetensors`; selection by mean vAP (eta 0.15/0.25/0.35 m) of the
+// point-NMS'd candidates of the validation buildings.
+void train_junction_stage(const TrainConfig& config, const BuildingSet& train, const BuildingSet& val, RunLog& log,
+                          const StageRun& run);
+
+// `<out>/predicted_junctions/<name>.json` for every train and validation building, plus manifest.json.
+// With run.resume a complete hand-off of the same junction checkpoint is kept.
+std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log,
+                                             const StageRun& run);
+
+// Best weights `<out>/edge.safetensors`; selection by mean sAP (eta 0.25/0.35/0.50 m) of the post-processed
+// wireframes of the validation buildings.
+void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const BuildingSet& val,
+                      const std::filesystem::path& handoff_dir, RunLog& log, const StageRun& run);
+
+}  // namespace lc2wf

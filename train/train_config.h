@@ -1,0 +1,89 @@
+// The training configuration read by lc2wf-train (documented in train/README.md). Defaults are the
+// paper/release settings (reference spec §2.7, §3.7); configs/*.json differ only in values. Unknown keys
+// and bad values are rejected with the key's dotted name ("junction.optim.lr must be > 0").
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "nn/config.h"
+
+namespace lc2wf {
+
+class JsonFields;
+
+struct DataConfig {
+  std::string format = "lc2wf";  // "lc2wf" (lc2wf-dataset line clouds) or "release" (LineCloud JSON)
+  std::string dir;               // one file per building, file stem = building name
+  std::string train_split;       // building names, one per line
+  std::string val_split;         // validation names (never the test split)
+  double raw_per_metre = 20.0;   // release JSON only: raw units per metre
+
+  void Check() const;
+  nlohmann::json to_json() const;
+  static DataConfig from_json(const nlohmann::json& j, const std::string& where, DataConfig base);
+};
+
+// Options shared by both stages' loops.
+struct StageSchedule {
+  int64_t epochs = 41;
+  int64_t batch_size = 16;
+  int64_t max_steps_per_epoch = 0;  // 0 = every full batch of the split
+  int64_t val_every = 1;            // validate after every k-th epoch (and after the last)
+  int64_t checkpoint_every_steps = 0;  // also save "last" mid-epoch every k steps (0 = per epoch only)
+  bool augment = true;              // the release's per-building scale + shift
+  bool drop_last = true;
+
+  void Check(const std::string& where) const;
+  void read(JsonFields& f);  // the schedule keys live directly in the stage object
+  nlohmann::json to_json() const;
+};
+
+struct JunctionStageConfig {
+  JunctionNetConfig net;  // G = net.lpt.patches samples of N = net.lpt.lines_per_patch lines
+  JunctionLossConfig loss;
+  OptimConfig optim;      // milestones [15, 30, 41]
+  StageSchedule schedule;
+  int64_t near_gt_samples = 0;                // the paper's near-GT training samples (the release has none)
+  double endpoint_label_max_distance_m = -1;  // <= 0: the plain (f, i1, i2) endpoint labels
+
+  void Check() const;
+  nlohmann::json to_json() const;
+  static JunctionStageConfig from_json(const nlohmann::json& j, const std::string& where, JunctionStageConfig base);
+};
+
+struct EdgeStageConfig {
+  EdgeNetConfig net;  // pairs per building = net.lpt.patches, lines per pair = net.lpt.lines_per_patch (2 x 32)
+  EdgeLossConfig loss;
+  OptimConfig optim = edge_optim_defaults();  // milestones [15, 25, 31]
+  StageSchedule schedule = edge_schedule_defaults();
+  int64_t max_static_pairs = 256;
+  int64_t top_k = 100;
+
+  void Check() const;
+  nlohmann::json to_json() const;
+  static EdgeStageConfig from_json(const nlohmann::json& j, const std::string& where, EdgeStageConfig base);
+  static OptimConfig edge_optim_defaults();
+  static StageSchedule edge_schedule_defaults();
+};
+
+struct TrainConfig {
+  uint64_t seed = 1555;
+  int64_t threads = 2;         // compute threads (set_num_threads)
+  int64_t loader_workers = 1;  // threads building batches ahead of the compute
+  std::string out = "runs/base";
+  DataConfig data;
+  JunctionStageConfig junction;
+  EdgeStageConfig edge;
+
+  void Check() const;
+  nlohmann::json to_json() const;
+  static TrainConfig from_json(const nlohmann::json& j);
+  // Parses and checks; errors name the file and the key.
+  static TrainConfig from_file(const std::filesystem::path& path);
+};
+
+}  // namespace lc2wf

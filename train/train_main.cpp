@@ -1,0 +1,135 @@
+// lc2wf-train: trains the junction model, writes the hand-off, trains the edge model (train/README.md).
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+
+#include "core/parallel.h"
+#include "core/util/atomic_file.h"
+#include "train/building_set.h"
+#include "train/run_log.h"
+#include "train/stages.h"
+#include "train/train_config.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace lc2wf;
+
+constexpr int kExitError = 1;
+constexpr int kExitUsage = 2;
+
+const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [--stage junction|edge|all] [--resume] [--out DIR] [--quiet]
+
+Trains LC2WF's two networks as the paper's release does, one after the other:
+  1. junction  the junction model (best weights: OUT/junction.safetensors)
+  2. handoff   predicted junctions of every train and validation building from the frozen best junction
+               model (OUT/predicted_junctions/<name>.json)
+  3. edge      the edge model on GT + predicted pairs (best weights: OUT/edge.safetensors)
+Validation runs on the config's validation split only. OUT/log.jsonl logs losses, metrics, learning
+rate and throughput; OUT/checkpoints/ holds the last state of each stage for --resume.
+
+  --stage S   junction (step 1), edge (steps 2-3, needs OUT/junction.safetensors) or all (default)
+  --resume    continue from OUT/checkpoints/ exactly where the last run stopped (same losses as an
+              uninterrupted run); completed stages are skipped
+  --out DIR   output folder (default: the config's "out")
+  --quiet     no progress output
+  -h, --help  this text
+
+Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR.
+Exit codes: 0 success, 1 bad config / data / I/O error, 2 bad command line.
+)";
+
+struct Args {
+  fs::path config;
+  std::string stage = "all";
+  bool resume = false, quiet = false;
+  std::string out;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(f + " needs a value");
+      return argv[++i];
+    };
+    if (f == "--stage") {
+      a.stage = value();
+      if (a.stage != "junction" && a.stage != "edge" && a.stage != "all")
+        throw UsageError("--stage must be junction, edge or all, got '" + a.stage + "'");
+    } else if (f == "--resume") {
+      a.resume = true;
+    } else if (f == "--quiet") {
+      a.quiet = true;
+    } else if (f == "--out") {
+      a.out = value();
+    } else if (!f.empty() && f[0] == '-') {
+      throw UsageError("unknown option '" + f + "'");
+    } else if (a.config.empty()) {
+      a.config = f;
+    } else {
+      throw UsageError("more than one config file given ('" + a.config.string() + "', '" + f + "')");
+    }
+  }
+  if (a.config.empty()) throw UsageError("a config file is required");
+  return a;
+}
+
+int run(const Args& a) {
+  TrainConfig config = TrainConfig::from_file(a.config);
+  if (!a.out.empty()) config.out = a.out;
+  set_num_threads(static_cast<int>(config.threads));
+  const StageRun run{config.out, a.resume, a.quiet};
+  fs::create_directories(run.out);
+  write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
+  RunLog log(run.out / "log.jsonl");
+
+  const BuildingSet train = load_building_set(config.data, config.data.train_split, a.quiet);
+  const BuildingSet val = load_building_set(config.data, config.data.val_split, a.quiet);
+  if (!a.quiet)
+    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %lld threads, output %s\n",
+                 train.clouds.size(), val.clouds.size(), static_cast<long long>(config.threads), run.out.string().c_str());
+  if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
+  if (a.stage == "edge" || a.stage == "all") {
+    const fs::path handoff = write_junction_handoff(train, val, log, run);
+    train_edge_stage(config, train, val, handoff, log, run);
+  }
+  if (!a.quiet) {
+    std::fprintf(stderr, "lc2wf-train: done. Log: %s\n", log.path().string().c_str());
+    if (a.stage != "junction")
+      std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors); run lc2wf-infer --weights %s ...\n",
+                   run.out.string().c_str(), run.out.string().c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    if (f == "-h" || f == "--help") {
+      std::fputs(kUsage, stdout);
+      return 0;
+    }
+  }
+  Args args;
+  try {
+    args = parse_args(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lc2wf-train: %s\nRun 'lc2wf-train --help' for usage.\n", e.what());
+    return kExitUsage;
+  }
+  try {
+    return run(args);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "\nlc2wf-train: error: %s\n", e.what());
+    return kExitError;
+  }
+}
