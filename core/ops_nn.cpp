@@ -1,6 +1,11 @@
 // softmax / log_softmax, dropout, layer_norm and batch_norm with fused backward passes.
 #include <cmath>
 #include <cstring>
+#include <type_traits>
+
+#ifdef __AVX512F__
+#include <immintrin.h>
+#endif
 
 #include "core/autograd.h"
 #include "core/kernels.h"
@@ -12,8 +17,44 @@ namespace {
 
 constexpr int64_t kNormRows = 64;  // rows per block for column statistics (fixed => deterministic)
 
-// Softmax (or log-softmax) over contiguous rows of length R.
-// RC > 0 fixes the row length at compile time so short rows (attention's 32/64 keys) unroll fully.
+#ifdef __AVX512F__
+// exp on 16 lanes with the same polynomial as fast_exp; scalef applies 2^n exactly.
+inline __m512 exp16(__m512 x) {
+  __m512 xc = _mm512_min_ps(_mm512_max_ps(x, _mm512_set1_ps(-87.0f)), _mm512_set1_ps(88.3f));
+  __m512 n = _mm512_roundscale_ps(_mm512_mul_ps(xc, _mm512_set1_ps(1.44269504088896341f)),
+                                  _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);
+  __m512 r = _mm512_fnmadd_ps(n, _mm512_set1_ps(0.693359375f), xc);
+  r = _mm512_fmadd_ps(n, _mm512_set1_ps(2.12194440e-4f), r);
+  __m512 p = _mm512_set1_ps(1.9875691500e-4f);
+  p = _mm512_fmadd_ps(p, r, _mm512_set1_ps(1.3981999507e-3f));
+  p = _mm512_fmadd_ps(p, r, _mm512_set1_ps(8.3334519073e-3f));
+  p = _mm512_fmadd_ps(p, r, _mm512_set1_ps(4.1665795894e-2f));
+  p = _mm512_fmadd_ps(p, r, _mm512_set1_ps(1.6666665459e-1f));
+  p = _mm512_fmadd_ps(p, r, _mm512_set1_ps(5.0000001201e-1f));
+  __m512 y = _mm512_add_ps(_mm512_fmadd_ps(_mm512_mul_ps(p, r), r, r), _mm512_set1_ps(1.0f));
+  y = _mm512_scalef_ps(y, n);
+  return _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(x, _mm512_set1_ps(-87.0f), _CMP_GE_OQ), y);
+}
+
+// Rows of exactly 32 floats (attention-sized): two registers per row, no loop overhead.
+inline void softmax_row32(const float* xr, float* yr, bool log_space) {
+  __m512 a = _mm512_loadu_ps(xr), b = _mm512_loadu_ps(xr + 16);
+  __m512 m = _mm512_set1_ps(_mm512_reduce_max_ps(_mm512_max_ps(a, b)));
+  __m512 ea = exp16(_mm512_sub_ps(a, m)), eb = exp16(_mm512_sub_ps(b, m));
+  float s = _mm512_reduce_add_ps(_mm512_add_ps(ea, eb));
+  if (log_space) {
+    __m512 lse = _mm512_add_ps(m, _mm512_set1_ps(std::log(s)));
+    _mm512_storeu_ps(yr, _mm512_sub_ps(a, lse));
+    _mm512_storeu_ps(yr + 16, _mm512_sub_ps(b, lse));
+  } else {
+    __m512 inv = _mm512_set1_ps(1.0f / s);
+    _mm512_storeu_ps(yr, _mm512_mul_ps(ea, inv));
+    _mm512_storeu_ps(yr + 16, _mm512_mul_ps(eb, inv));
+  }
+}
+#endif
+
+// One softmax (or log-softmax) row. RC > 0 fixes the row length at compile time so short rows (attention's 32/64 keys) unroll fully.
 template <class T, int RC = 0>
 void softmax_row(const T* __restrict xr, T* __restrict yr, int64_t R_runtime, bool log_space) {
   const int64_t R = RC > 0 ? RC : R_runtime;
@@ -39,10 +80,19 @@ void softmax_row(const T* __restrict xr, T* __restrict yr, int64_t R_runtime, bo
   }
 }
 
+
 // Softmax (or log-softmax) over contiguous rows of length R.
 template <class T>
 void softmax_rows(const T* x, T* y, int64_t rows, int64_t R, bool log_space) {
   parallel_for_work(rows, std::max<int64_t>(1, kElemGrain / std::max<int64_t>(1, R)), 8 * R, [&](int64_t r0, int64_t r1) {
+#ifdef __AVX512F__
+    if constexpr (std::is_same_v<T, float>) {
+      if (R == 32) {
+        for (int64_t r = r0; r < r1; ++r) softmax_row32(x + r * R, y + r * R, log_space);
+        return;
+      }
+    }
+#endif
     if (R == 32)
       for (int64_t r = r0; r < r1; ++r) softmax_row<T, 32>(x + r * R, y + r * R, R, log_space);
     else if (R == 64)

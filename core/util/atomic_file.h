@@ -2,12 +2,14 @@
 // so a killed process never leaves a truncated checkpoint or dataset file behind.
 #pragma once
 
+#include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <unistd.h>
 
 namespace lc2wf {
@@ -18,7 +20,9 @@ inline void write_file_atomically(const std::filesystem::path& path,
                                   std::ios::openmode mode = std::ios::binary) {
   namespace fs = std::filesystem;
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
-  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
+  // Unique per process and call, so threads writing different files never share a temporary name.
+  static std::atomic<unsigned> counter{0};
+  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
   {
     std::ofstream out(tmp, mode | std::ios::out | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot open " + tmp.string() + " for writing");
@@ -26,20 +30,26 @@ inline void write_file_atomically(const std::filesystem::path& path,
     out.flush();
     if (!out) {
       out.close();
-      fs::remove(tmp);
+      std::error_code ignored;
+      fs::remove(tmp, ignored);
       throw std::runtime_error("failed writing " + tmp.string() + " (disk full?)");
     }
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
-    fs::remove(tmp);
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
     throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
   }
 }
 
+inline void write_file_atomic(const std::filesystem::path& path, std::string_view bytes) {
+  write_file_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+}
+
 inline void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+  write_file_atomic(path, text);
 }
 
 }  // namespace lc2wf
