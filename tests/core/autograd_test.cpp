@@ -107,6 +107,17 @@ TEST(Autograd, IntermediateGradientDoesNotAliasLeafGradient) {
   EXPECT_EQ(y.grad().to_vector()[0], 1.0);
 }
 
+TEST(Autograd, NodeReachedWithoutGradientStillReleasesItsInputs) {
+  // y feeds two consumers; one of them passes no gradient back. x must still get the other path's.
+  Tensor x = leaf({1, 2}, {2});
+  Tensor y = x * 3.0;
+  Tensor silent = Tensor::zeros({2}, DType::F64);
+  record(silent, "silent", {y}, [](const Tensor&) -> std::vector<Tensor> { return {Tensor()}; });
+  Tensor loss = sum(silent + y * 2.0);
+  loss.backward();
+  EXPECT_EQ(x.grad().to_vector(), (std::vector<double>{6, 6}));
+}
+
 TEST(Errors, ShapeMismatchNamesBothShapes) {
   Tensor a = Tensor::zeros({2, 3}), b = Tensor::zeros({4});
   try {

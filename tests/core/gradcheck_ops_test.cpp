@@ -239,5 +239,24 @@ TEST_F(GradCheck, AttentionWithMaskAndDropout) {
       {rand({1, 2, 3, 4}), rand({1, 2, 5, 4}), rand({1, 2, 5, 4})}));
 }
 
+TEST_F(GradCheck, EncoderBlockComposite) {
+  // A pre-norm encoder layer as the LPT builds it: every op chained, masked keys, dropout on.
+  Tensor mask = Tensor::from_mask({0, 0, 0, 1, 0, 1, 1, 1}, {2, 4});
+  Tensor pool_w = Tensor::from_vector(std::vector<double>{1. / 3, 1. / 3, 1. / 3, 0, 1, 0, 0, 0}, {2, 4, 1});
+  EXPECT_TRUE(gradcheck(
+      [&](auto& p) {
+        Rng r(21);
+        const Tensor& x = p[0];
+        Tensor h = layer_norm(x, p[1], p[2]);
+        Tensor qkv = linear(h, p[3], p[4]);
+        Tensor a = packed_attention(qkv, 2, mask, 0.25, true, r);
+        Tensor y = x + dropout(linear(a, p[5]), 0.25, true, r);
+        Tensor f = linear(relu(linear(layer_norm(y, Tensor(), Tensor()), p[6])), p[7]);
+        return sum((y + f) * pool_w, {1});
+      },
+      {rand({2, 4, 8}), rand({8}, 0.5, 1.5), rand({8}), rand({24, 8}), rand({24}), rand({8, 8}), rand({16, 8}),
+       rand({8, 16})}));
+}
+
 }  // namespace
 }  // namespace lc2wf
