@@ -51,6 +51,7 @@ Splits make_splits(const std::vector<std::string>& names, const SplitRule& rule)
 std::vector<std::string> read_name_list(const std::filesystem::path& path) {
   std::istringstream in(read_file(path));
   std::vector<std::string> out;
+  std::set<std::string> seen;
   std::string line;
   int line_no = 0;
   while (std::getline(in, line)) {
@@ -58,6 +59,10 @@ std::vector<std::string> read_name_list(const std::filesystem::path& path) {
     const std::string_view t = trim(line);
     if (t.empty() || t.front() == '#') continue;
     if (t.find_first_of(" \t") != std::string_view::npos) throw DataError(path.string(), line_no, "a name must not contain whitespace");
+    if (t.find_first_of("/\\") != std::string_view::npos)
+      throw DataError(path.string(), line_no, "'" + std::string(t) + "' is a path; expected a building name");
+    if (!seen.insert(std::string(t)).second)
+      throw DataError(path.string(), line_no, "duplicate building name '" + std::string(t) + "'");
     out.emplace_back(t);
   }
   return out;

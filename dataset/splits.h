@@ -27,8 +27,8 @@ uint64_t split_key(const std::string& name, uint64_t seed);
 // Throws std::invalid_argument on duplicate names or fewer names than test + val.
 Splits make_splits(const std::vector<std::string>& names, const SplitRule& rule = {});
 
-// One name per line; blank lines and '#' comments ignored. Throws DataError naming file and line on
-// names with whitespace.
+// One name per line; blank lines and '#' comments ignored, spaces trimmed. Throws DataError naming file
+// and line on names with whitespace or path separators, and on duplicates.
 std::vector<std::string> read_name_list(const std::filesystem::path& path);
 void write_name_list(const std::filesystem::path& path, const std::vector<std::string>& names);
 

@@ -14,26 +14,6 @@
 namespace lc2wf {
 namespace fs = std::filesystem;
 
-std::vector<std::string> read_name_list(const fs::path& path) {
-  const std::string text = read_file(path);
-  std::vector<std::string> names;
-  std::set<std::string> seen;
-  size_t start = 0;
-  int line_no = 0;
-  while (start <= text.size()) {
-    const size_t end = std::min(text.find('\n', start), text.size());
-    ++line_no;
-    const std::string name(trim(std::string_view(text).substr(start, end - start)));
-    start = end + 1;
-    if (name.empty() || name.front() == '#') continue;
-    if (name.find_first_of("/\\") != std::string::npos)
-      throw DataError(path.string(), line_no, "'" + name + "' is a path; expected a building name");
-    if (!seen.insert(name).second) throw DataError(path.string(), line_no, "duplicate building name '" + name + "'");
-    names.push_back(name);
-  }
-  return names;
-}
-
 std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const std::string& name) {
   if (source.kind == GroundTruthSource::Kind::kMeshDir) {
     const fs::path obj = source.dir / (name + ".obj");

@@ -8,13 +8,10 @@
 #include <vector>
 
 #include "dataset/geometry.h"
+#include "dataset/splits.h"  // read_name_list
 #include "infer/scored_wireframe.h"
 
 namespace lc2wf {
-
-// Building names, one per line; blank lines and lines starting with '#' are skipped, spaces trimmed.
-// Throws DataError naming the file (unreadable, duplicate name, name containing a path separator).
-std::vector<std::string> read_name_list(const std::filesystem::path& path);
 
 enum class CoordinateUnits { kMetres, kRaw };
 
