@@ -8,6 +8,7 @@
 
 namespace lc2wf {
 
+// Default: OMP_NUM_THREADS when set, else all hardware threads.
 void set_num_threads(int n);  // <= 0 means all hardware threads
 int num_threads();
 
