@@ -42,6 +42,7 @@ JunctionSampleOptions junction_sample_options(const JunctionNetConfig& config) {
   JunctionSampleOptions o;
   o.sampling.num_samples = static_cast<int>(config.lpt.patches);
   o.patch.lines_per_patch = static_cast<int>(config.lpt.lines_per_patch);
+  o.patch.negative_noise_count = (o.patch.lines_per_patch + 1) / 2;  // the release's 16 of 32: half the slots
   o.augment_enabled = false;
   return o;
 }
@@ -49,6 +50,7 @@ JunctionSampleOptions junction_sample_options(const JunctionNetConfig& config) {
 PatchOptions pair_patch_options(const EdgeNetConfig& config) {
   PatchOptions o;
   o.lines_per_patch = static_cast<int>(config.lpt.lines_per_patch / 2);
+  o.negative_noise_count = (o.lines_per_patch + 1) / 2;  // unused for pairs, kept valid
   return o;
 }
 

@@ -1,5 +1,6 @@
 #include "train/stage_loop.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <limits>
@@ -21,8 +22,8 @@ const std::vector<std::string>& stage_order() {
 }
 
 fs::path best_checkpoint_path(const fs::path& out, const std::string& stage) { return out / (stage + ".safetensors"); }
-fs::path last_checkpoint_path(const fs::path& out, const std::string& stage) {
-  return out / "checkpoints" / (stage + "_last.safetensors");
+fs::path last_checkpoint_path(const fs::path& out, const std::string& stage, int slot) {
+  return out / "checkpoints" / (stage + "_last_" + std::to_string(slot) + ".safetensors");
 }
 
 namespace {
@@ -49,7 +50,7 @@ struct Best {
 
 int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, RunLog& log, const StageCallbacks& cb) {
   const std::string& stage = o.stage;
-  const fs::path last_path = last_checkpoint_path(o.out, stage), best_path = best_checkpoint_path(o.out, stage);
+  const fs::path best_path = best_checkpoint_path(o.out, stage);
   std::unique_ptr<Optimizer> optimizer = make_optimizer(model, o.optim);
   const MultiStepLR schedule(o.optim.lr, o.optim.milestones, o.optim.gamma);
   const int64_t spe = cb.batches_per_epoch;
@@ -57,18 +58,43 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
 
   TrainingPosition pos;
   Best best;
-  if (o.resume && fs::exists(last_path)) {
-    const CheckpointInfo stored = read_checkpoint_info(last_path);
-    if (stored.config.value("net", nlohmann::json()) != o.model_config.at("net"))
-      throw std::runtime_error(last_path.string() + ": the network config differs from the one being resumed");
-    const CheckpointInfo info = load_checkpoint(last_path, model, &dropout_rng, optimizer.get());
-    pos = info.position;
-    best = Best::from_json(info.config.value("best", nlohmann::json::object()));
-    if (!o.quiet)
-      std::fprintf(stderr, "%s: resuming from %s (epoch %lld, step %lld)\n", stage.c_str(), last_path.string().c_str(),
-                   static_cast<long long>(pos.epoch), static_cast<long long>(pos.step));
-  } else if (o.resume && !o.quiet) {
-    std::fprintf(stderr, "%s: no checkpoint at %s, starting from scratch\n", stage.c_str(), last_path.string().c_str());
+  int slot = 0;  // the "last" slot the next save goes to
+  if (o.resume) {
+    // Newest slot that loads completely (weights + matching optimiser state) wins.
+    std::vector<std::pair<int64_t, int>> slots;
+    for (int k : {0, 1}) {
+      const fs::path p = last_checkpoint_path(o.out, stage, k);
+      if (!fs::exists(p)) continue;
+      try {
+        slots.push_back({read_checkpoint_info(p).position.step, k});
+      } catch (const std::exception& e) {
+        if (!o.quiet) std::fprintf(stderr, "%s: ignoring %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
+      }
+    }
+    std::sort(slots.rbegin(), slots.rend());
+    bool loaded = false;
+    for (const auto& [step, k] : slots) {
+      const fs::path p = last_checkpoint_path(o.out, stage, k);
+      if (read_checkpoint_info(p).config.value("net", nlohmann::json()) != o.model_config.at("net"))
+        throw std::runtime_error(p.string() + ": the network config differs from the one being resumed");
+      try {
+        const CheckpointInfo info = load_checkpoint(p, model, &dropout_rng, optimizer.get());
+        pos = info.position;
+        best = Best::from_json(info.config.value("best", nlohmann::json::object()));
+        slot = 1 - k;
+        loaded = true;
+        if (!o.quiet)
+          std::fprintf(stderr, "%s: resuming from %s (epoch %lld, step %lld)\n", stage.c_str(), p.string().c_str(),
+                       static_cast<long long>(pos.epoch), static_cast<long long>(pos.step));
+        break;
+      } catch (const std::exception& e) {  // a pair torn by a kill: fall back to the other slot
+        if (!o.quiet) std::fprintf(stderr, "%s: cannot resume from %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
+      }
+    }
+    if (!loaded) {
+      if (!slots.empty()) throw std::runtime_error(stage + ": no usable checkpoint to resume from in " + (o.out / "checkpoints").string());
+      if (!o.quiet) std::fprintf(stderr, "%s: no checkpoint in %s, starting from scratch\n", stage.c_str(), (o.out / "checkpoints").string().c_str());
+    }
   }
   if (pos.epoch >= o.schedule.epochs) {  // complete: its log and the later stages' stay as they are
     if (!o.quiet) std::fprintf(stderr, "%s: already trained for %lld epochs\n", stage.c_str(), static_cast<long long>(pos.epoch));
@@ -81,7 +107,10 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
     c["best"] = best.to_json();
     return c;
   };
-  auto save_last = [&] { save_checkpoint(last_path, model, config_with_best(), dropout_rng, optimizer.get(), pos); };
+  auto save_last = [&] {
+    save_checkpoint(last_checkpoint_path(o.out, stage, slot), model, config_with_best(), dropout_rng, optimizer.get(), pos);
+    slot = 1 - slot;
+  };
 
   int64_t steps_run = 0;
   model.train();
@@ -89,7 +118,7 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
     const double lr = schedule.lr_at(epoch);
     optimizer->set_lr(lr);
     const int64_t first = pos.step - epoch * spe;  // > 0 only when resuming mid-epoch
-    if (first < 0 || first > spe) throw std::runtime_error(last_path.string() + ": step does not match the schedule");
+    if (first < 0 || first > spe) throw std::runtime_error(stage + ": checkpoint step " + std::to_string(pos.step) + " does not match the schedule");
     cb.start_epoch(epoch, first);
     std::unique_ptr<Progress> bar;
     if (!o.quiet)

@@ -23,9 +23,11 @@ namespace lc2wf {
 // Stage order in a run (for log rewinding).
 const std::vector<std::string>& stage_order();
 
-// `<out>/<stage>.safetensors` (best, weights only) and `<out>/checkpoints/<stage>_last.safetensors`.
+// `<out>/<stage>.safetensors` (best, weights only) and the two alternating "last" slots
+// `<out>/checkpoints/<stage>_last_<slot>.safetensors` (+ `.optim.safetensors`): a checkpoint is a pair of
+// files, so a kill between the two writes leaves the other slot as a consistent fallback.
 std::filesystem::path best_checkpoint_path(const std::filesystem::path& out, const std::string& stage);
-std::filesystem::path last_checkpoint_path(const std::filesystem::path& out, const std::string& stage);
+std::filesystem::path last_checkpoint_path(const std::filesystem::path& out, const std::string& stage, int slot);
 
 struct StageStep {
   double loss = 0.0;          // total loss of the batch

@@ -29,15 +29,19 @@ namespace fs = std::filesystem;
 
 std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
-int run(const std::string& command) {
-  const int status = std::system((command + " > /dev/null 2>&1").c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 std::string read_text(const fs::path& p) {
   std::ifstream in(p);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
+
+const fs::path kCommandLog = fs::temp_directory_path() / ("lc2wf_train_it_cmd_" + std::to_string(::getpid()) + ".log");
+
+// Exit code of a command; its output is kept in kCommandLog for failure messages (command_output()).
+int run(const std::string& command) {
+  const int status = std::system((command + " > " + kCommandLog.string() + " 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+std::string command_output() { return read_text(kCommandLog); }
 
 std::vector<nlohmann::json> log_lines(const fs::path& p, const std::string& type) {
   std::vector<nlohmann::json> out;
@@ -93,7 +97,10 @@ class TrainIntegration : public ::testing::Test {
                          {"epochs", 6}, {"batch_size", 2}, {"val_every", 3}, {"checkpoint_every_steps", 1}}}};
     std::ofstream(dir_ / "tiny.json") << config_.dump(2);
   }
-  static void TearDownTestSuite() { fs::remove_all(dir_); }
+  static void TearDownTestSuite() {
+    fs::remove_all(dir_);
+    fs::remove(kCommandLog);
+  }
 
   static std::string train_cmd(const fs::path& out) {
     return std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "tiny.json") + " --quiet --out " + quote(out);
@@ -107,9 +114,9 @@ nlohmann::json TrainIntegration::config_;
 
 TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   const fs::path straight = dir_ / "straight";
-  ASSERT_EQ(run(train_cmd(straight)), 0);
-  for (const char* f : {"junction.safetensors", "edge.safetensors", "checkpoints/junction_last.safetensors",
-                        "checkpoints/junction_last.optim.safetensors", "checkpoints/edge_last.safetensors",
+  ASSERT_EQ(run(train_cmd(straight)), 0) << command_output();
+  for (const char* f : {"junction.safetensors", "edge.safetensors", "checkpoints/junction_last_0.safetensors", "checkpoints/junction_last_1.safetensors",
+                        "checkpoints/junction_last_0.optim.safetensors", "checkpoints/edge_last_0.safetensors",
                         "predicted_junctions/ell.json", "predicted_junctions/rect.json", "predicted_junctions/manifest.json",
                         "config.json", "log.jsonl"})
     EXPECT_TRUE(fs::exists(straight / f)) << f;
@@ -149,10 +156,10 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   }
   if (killed) waitpid(pid, nullptr, 0);
   EXPECT_TRUE(killed) << "training finished before it could be killed";
-  ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0);
+  ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0) << command_output();
   EXPECT_EQ(step_losses(resumed / "log.jsonl"), straight_losses);
   // A completed run resumed again does nothing and keeps its log.
-  ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0);
+  ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0) << command_output();
   EXPECT_EQ(step_losses(resumed / "log.jsonl"), straight_losses);
 
   // Inference on the held-out building, with a preview.
