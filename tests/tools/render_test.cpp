@@ -91,6 +91,9 @@ TEST(RasterRenderer, IsDeterministicAndShadowsDarkenTheGround) {
   EXPECT_LT(cv::mean(ga)[0], cv::mean(gf)[0] - 0.5);
   ro.supersample = 9;
   EXPECT_THROW(RasterRenderer(b.mesh, ro), std::invalid_argument);
+  ro.supersample = 1;
+  ro.blur_sigma_px = -1;
+  EXPECT_THROW(RasterRenderer(b.mesh, ro), std::invalid_argument);
 }
 
 TEST(RasterRenderer, SupersampledCameraKeepsPixelCentres) {

@@ -27,6 +27,7 @@ options:
   --seed S                    cameras, textures and noise (default 0)
   --keep-views                keep renders, cameras.json and views.json (projected GT with visibility)
   --supersample N             rasteriser samples per pixel side (default 1)
+  --blur SIGMA                rasteriser optical blur in pixels (default 1.0; 0 = none)
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
   --samples N                 Blender anti-aliasing / render samples (default 5)
@@ -113,6 +114,8 @@ int main(int argc, char** argv) {
       o.keep_views = true;
     } else if (a == "--supersample") {
       o.raster.supersample = to_int(a, value());
+    } else if (a == "--blur") {
+      o.raster.blur_sigma_px = to_double(a, value());
     } else if (a == "--no-shadows") {
       o.raster.shadows = false;
       o.blender.shadows = false;

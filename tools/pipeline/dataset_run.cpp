@@ -341,7 +341,8 @@ Json run_dataset(const DatasetRunOptions& o) {
           report(jobs[i]);
         }
       }
-      if (!o.keep_views) fs::remove_all(o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
+      // The batch folder holds job.json and blender.log: kept when something failed, for the error messages.
+      if (!o.keep_views && failed == 0) fs::remove_all(o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
     }
   }
   std::vector<Json> statuses;

@@ -92,6 +92,7 @@ void RasterOptions::Check() const {
     throw std::invalid_argument("RasterOptions.sun_elevation_deg must be in (0, 90]");
   if (ambient < 0 || ambient > 1) throw std::invalid_argument("RasterOptions.ambient must be in [0, 1]");
   if (noise_sigma < 0) throw std::invalid_argument("RasterOptions.noise_sigma must be >= 0");
+  if (blur_sigma_px < 0 || blur_sigma_px > 10) throw std::invalid_argument("RasterOptions.blur_sigma_px must be in [0, 10]");
   if (shadow_map_size < 16 || shadow_map_size > 8192)
     throw std::invalid_argument("RasterOptions.shadow_map_size must be in [16, 8192]");
 }
@@ -240,6 +241,7 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
     }
   }
   if (options_.supersample > 1) cv::resize(linear, linear, cv::Size(camera.width, camera.height), 0, 0, cv::INTER_AREA);
+  if (options_.blur_sigma_px > 0) cv::GaussianBlur(linear, linear, cv::Size(), options_.blur_sigma_px);
   RasterImage result;
   result.image = cv::Mat(camera.height, camera.width, CV_8UC3);
   // Gaussian noise from a seeded table of Box-Muller draws (raw engine bits: identical on every platform,
