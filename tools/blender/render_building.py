@@ -256,6 +256,7 @@ def setup_render(scene, job, width, height):
         if engine == "CYCLES":
             scene.cycles.samples = samples
             scene.cycles.device = "CPU"
+            scene.cycles.use_denoising = False  # Debian's Blender has no OpenImageDenoise
             sun.cycles.cast_shadow = shadows
         else:
             scene.eevee.taa_render_samples = samples
