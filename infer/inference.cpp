@@ -102,10 +102,7 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   r.notes = r.selection.notes;
   r.post_seconds = seconds_since(t0);
   const int n = static_cast<int>(r.selection.positions.size());
-  if (n < 2) {
-    r.notes.push_back("fewer than 2 junctions above the confidence threshold: empty wireframe");
-    return r;
-  }
+  if (n < 2) return r;  // select_junctions' note says why
   std::vector<JunctionPair> pairs;
   for (const auto& [i, j] : all_pairs(n)) {
     JunctionPair p;

@@ -4,5 +4,24 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=${LC2WF_BUILD_DIR:-$root/build}
 LC2WF_BUILD_TESTS=OFF "$root/tools/build.sh"
-# Until the full pipeline lands, the demo is the engine's smallest real job: train a small MLP.
-exec "$build_dir/train/lc2wf-mlp-demo" "$@"
+# The demo: the project's own synthetic buildings as line clouds (no external data needed), a small model
+# trained with configs/demo.json on 2 threads, then inference + Table-2 metrics on held-out buildings.
+# Deterministic: same files and numbers on every run. Outputs under runs/ (git-ignored).
+cd "$root"
+data=runs/demo-data
+out=runs/demo
+rm -rf "$data" "$out"
+"$build_dir/train/lc2wf-synthetic-data" --out "$data" --count 64 --val 4 --test 6 --seed 1555
+"$build_dir/train/lc2wf-train" configs/demo.json --out "$out"
+echo
+echo "== Held-out test buildings, sound post-processing (default) =="
+"$build_dir/infer/lc2wf-eval" --weights "$out" --data "$data/clouds" --split "$data/test.txt" \
+  --out "$out/eval" --previews --method "lc2wf demo"
+echo
+echo "== Same buildings, the release's post-processing (--release-quirks) =="
+"$build_dir/infer/lc2wf-eval" --weights "$out" --data "$data/clouds" --split "$data/test.txt" \
+  --out "$out/eval-release-quirks" --release-quirks --method "lc2wf demo, release quirks" --quiet
+echo
+echo "Wireframes (.obj + scores .json): $root/$out/eval/predictions/"
+echo "Previews (grey: line cloud, red: prediction, green: ground truth): $root/$out/eval/previews/"
+echo "Metrics: $root/$out/eval/metrics.md (also metrics.json, per_building.csv); training log: $root/$out/log.jsonl"

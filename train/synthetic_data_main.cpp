@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -82,7 +83,8 @@ int main(int argc, char** argv) {
   try {
     std::vector<std::string> names;
     fs::create_directories(out / "clouds");
-    Progress bar("synthetic buildings", count, stderr);
+    std::unique_ptr<Progress> bar;
+    if (!quiet) bar = std::make_unique<Progress>("synthetic buildings", count, stderr);
     for (int i = 0; i < count; ++i) {
       char name[32];
       std::snprintf(name, sizeof name, "synth_%04d", i);
@@ -92,9 +94,9 @@ int main(int argc, char** argv) {
       cloud.name = name;
       write_line_cloud(out / "clouds" / (std::string(name) + ".lc2wf"), cloud);
       names.push_back(name);
-      if (!quiet) bar.step();
+      if (bar) bar->step();
     }
-    if (!quiet) bar.finish();
+    if (bar) bar->finish();
     const int train = count - val - test;
     auto write_split = [&](const std::string& file, int first, int n) {
       std::string text;
