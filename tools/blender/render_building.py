@@ -218,12 +218,17 @@ def build_scene(b, job):
     return scene, obj, verts
 
 
+def sun_direction(job):
+    """Unit vector towards the sun (world frame)."""
+    az, el = math.radians(job.get("sun_azimuth_deg", 140.0)), math.radians(job.get("sun_elevation_deg", 55.0))
+    return Vector((math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)))
+
+
 def setup_render(scene, job, width, height):
     engine = job.get("engine", "BLENDER_WORKBENCH")
     samples = int(job.get("samples", 5))
     shadows = bool(job.get("shadows", True))
-    az, el = math.radians(job.get("sun_azimuth_deg", 140.0)), math.radians(job.get("sun_elevation_deg", 55.0))
-    sun_dir = Vector((math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)))  # towards the sun
+    sun_dir = sun_direction(job)
     r = scene.render
     r.engine = engine
     r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
