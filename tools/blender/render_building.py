@@ -249,7 +249,9 @@ def setup_render(scene, job, width, height):
         sh.color_type = "TEXTURE"
         sh.show_shadows = shadows
         sh.shadow_intensity = 0.6
-        scene.display.light_direction = tuple(sun_dir)
+        # Workbench maps light_direction (a, b, c) to the light's travel direction (-a, c, -b) in world
+        # space (matches the shadows seen in renders), so this casts them away from the sun.
+        scene.display.light_direction = (sun_dir.x, sun_dir.z, -sun_dir.y)
         scene.display.render_aa = str(samples) if str(samples) in ("5", "8", "11", "16", "32") else "8"
     else:
         sun = bpy.data.lights.new("sun", type="SUN")
