@@ -1,0 +1,74 @@
+// lc2wf-dataset and lc2wf-colmap-poses as a user runs them: help, argument errors, exit codes.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+namespace fs = std::filesystem;
+
+struct CliResult {
+  int code = -1;
+  std::string out;
+};
+
+CliResult run(const std::string& cmd) {
+  CliResult r;
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+const std::string kDataset = LC2WF_DATASET_EXE;
+const std::string kColmap = LC2WF_COLMAP_POSES_EXE;
+
+TEST(DatasetCli, HelpAndArgumentErrors) {
+  CliResult r = run(kDataset + " --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("--renderer raster|blender"), std::string::npos);
+  r = run(kDataset + " --meshes m --out o --views many");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--views expects an integer"), std::string::npos) << r.out;
+  r = run(kDataset + " --meshes m --out o --shard 3/2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("shard"), std::string::npos) << r.out;
+  r = run(kDataset + " --out o");
+  EXPECT_EQ(r.code, 2);
+  r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.out.find("/nonexistent/meshes"), std::string::npos) << r.out;
+}
+
+TEST(DatasetCli, FailedBuildingGivesExitCodeOneAndASummary) {
+  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_cli_fail";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  std::ofstream(dir / "meshes" / "bad.polyshape") << "# Number of verts: 2\n0,0,0\n";
+  const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " --no-progress");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_NE(r.out.find("\"failed\""), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir / "out" / "status" / "bad.json"));
+}
+
+TEST(ColmapPosesCli, HelpAndMissingInputs) {
+  CliResult r = run(kColmap + " --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("--intrinsics"), std::string::npos);
+  r = run(kColmap + " --views /nonexistent/views");
+  EXPECT_EQ(r.code, 2);
+  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_cli_colmap";
+  fs::create_directories(dir);
+  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.out.find("fewer than 3 images"), std::string::npos) << r.out;
+}
+
+}  // namespace
