@@ -134,28 +134,33 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   const auto straight_losses = step_losses(straight / "log.jsonl");
   ASSERT_EQ(straight_losses.size(), 24u + 6u);
 
-  // Kill -9 part-way (each step writes a checkpoint), resume until the end, compare every step loss.
+  // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
+  // compare every step loss with the uninterrupted run.
   const fs::path resumed = dir_ / "resumed";
-  const pid_t pid = fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    execl(LC2WF_TRAIN_BIN, LC2WF_TRAIN_BIN, (dir_ / "tiny.json").c_str(), "--quiet", "--out", resumed.c_str(),
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  bool killed = false;
-  for (int i = 0; i < 20000; ++i) {
-    if (fs::exists(resumed / "log.jsonl") && log_lines(resumed / "log.jsonl", "step").size() >= 9) {
-      kill(pid, SIGKILL);
-      killed = true;
-      break;
+  auto kill_when = [&](const std::string& stage, size_t steps, bool resume) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl(LC2WF_TRAIN_BIN, LC2WF_TRAIN_BIN, (dir_ / "tiny.json").c_str(), "--quiet", "--out", resumed.c_str(),
+            resume ? "--resume" : "--quiet", static_cast<char*>(nullptr));
+      _exit(127);
     }
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
-  if (killed) waitpid(pid, nullptr, 0);
-  EXPECT_TRUE(killed) << "training finished before it could be killed";
+    for (int i = 0; i < 30000 && pid > 0; ++i) {
+      size_t done = 0;
+      if (fs::exists(resumed / "log.jsonl"))
+        for (const auto& j : log_lines(resumed / "log.jsonl", "step")) done += j["stage"] == stage;
+      if (done >= steps) {
+        kill(pid, SIGKILL);
+        waitpid(pid, nullptr, 0);
+        return true;
+      }
+      int status = 0;
+      if (waitpid(pid, &status, WNOHANG) == pid) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return false;
+  };
+  EXPECT_TRUE(kill_when("junction", 9, false)) << "training finished before it could be killed";
+  EXPECT_TRUE(kill_when("edge", 3, true)) << "training finished before it could be killed";
   ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0) << command_output();
   EXPECT_EQ(step_losses(resumed / "log.jsonl"), straight_losses);
   // A completed run resumed again does nothing and keeps its log.
