@@ -190,15 +190,18 @@ def build_scene(b, job):
         kind = surface_kind(labels[poly.index], n)
         poly.material_index = order.index(kind)
         tw, th = mats[kind][1]
+        # Same per-face pattern shift as the rasteriser (golden-ratio sequence, metres).
+        ou = math.fmod(poly.index * 0.6180339887, 1.0) * 7.3
+        ov = math.fmod(poly.index * 0.7548776662, 1.0) * 5.9
         for li in poly.loop_indices:
             p = verts[me.loops[li].vertex_index]
             d = p - pts[0]
             if kind == "wall":  # boards and bricks follow world height, like the rasteriser
-                uv.data[li].uv = (d.dot(u) / tw, p.z / th)
+                uv.data[li].uv = ((d.dot(u) + ou) / tw, p.z / th)
             elif kind == "flat":
                 uv.data[li].uv = (p.x / tw, p.y / th)
             else:
-                uv.data[li].uv = (d.dot(u) / tw, d.dot(v) / th)
+                uv.data[li].uv = ((d.dot(u) + ou) / tw, (d.dot(v) + ov) / th)
     # Ground: a large grass square at the lowest vertex, UVs in metres / tile size.
     zmin = min(v.z for v in verts)
     cx = sum(v.x for v in verts) / len(verts)

@@ -120,6 +120,8 @@ FacedMesh build_faced_mesh(const PolyMesh& mesh) {
     }
     const FaceLabel label = mesh.labels.empty() ? FaceLabel::Wall : mesh.labels[fi];
     FaceFrame frame = make_frame(pts, label);
+    // Golden-ratio sequence: distinct, deterministic offsets per face index.
+    frame.texture_offset = Vec2(std::fmod(fi * 0.6180339887, 1.0) * 7.3, std::fmod(fi * 0.7548776662, 1.0) * 5.9);
     // Project onto two axes orthogonal to the normal, keeping orientation consistent with it.
     const Vec3 a = frame.normal.unitOrthogonal();
     const Vec3 b = frame.normal.cross(a);

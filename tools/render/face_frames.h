@@ -20,6 +20,9 @@ struct FaceFrame {
   Vec3 axis_u = Vec3::UnitX();  // in-plane, horizontal where possible
   Vec3 axis_v = Vec3::UnitY();  // in-plane, down the slope for sloped roofs, down (-z) for walls
   SurfaceKind kind = SurfaceKind::Wall;
+  // Per-face shift of the texture pattern (metres): symmetric faces must not look identical, or SfM
+  // (COLMAP) matches opposite sides of the building.
+  Vec2 texture_offset = Vec2::Zero();
 };
 
 struct MeshTriangle {

@@ -79,13 +79,14 @@ Rgb brick(double u, double z, uint64_t seed) {
 
 Rgb surface_colour(const FaceFrame& frame, const Vec3& X, const TextureStyle& style) {
   const Vec3 d = X - frame.origin;
-  const double u = d.dot(frame.axis_u), v = d.dot(frame.axis_v);
+  const double u = d.dot(frame.axis_u) + frame.texture_offset.x(), v = d.dot(frame.axis_v) + frame.texture_offset.y();
   switch (frame.kind) {
     case SurfaceKind::SlopedRoof:
       return roof_tiles(u, v, style.seed);
     case SurfaceKind::FlatRoof:
       return flat_roof(X.x(), X.y(), style.seed);
     case SurfaceKind::Wall:
+      // Boards and brick rows follow world height so they line up around corners.
       return style.wall == WallStyle::Siding ? siding(u, X.z(), style.seed) : brick(u, X.z(), style.seed);
     case SurfaceKind::Base:
       break;
