@@ -21,7 +21,7 @@ using namespace lc2wf;
 const char* kUsage = R"(Usage: lc2wf-synthetic-data --out DIR [--count N] [--val K] [--test K] [--seed S]
 
 Writes N seeded random buildings (rectangles and L shapes, hip or gable ends, Roof-Image sizes) as
-synthetic line clouds DIR/clouds/synth_<i>.lc2wf (noisy pieces of the GT edges, roof/wall texture lines
+synthetic line clouds DIR/clouds/synth_<i>.lcloud (noisy pieces of the GT edges, roof/wall texture lines
 and clutter, labelled by construction) and the split files DIR/{train,val,test}.txt (the last K + K
 buildings are validation and test). Deterministic for a seed.
 
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
       const Building building = make_random_building(building_seed, name);
       LineCloud cloud = make_synthetic_line_cloud(building, building_seed ^ 0x9e3779b97f4a7c15ull);
       cloud.name = name;
-      write_line_cloud(out / "clouds" / (std::string(name) + ".lc2wf"), cloud);
+      write_line_cloud(out / "clouds" / (std::string(name) + ".lcloud"), cloud);
       names.push_back(name);
       if (bar) bar->step();
     }

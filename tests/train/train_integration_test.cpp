@@ -73,8 +73,8 @@ class TrainIntegration : public ::testing::Test {
     const Building a = make_rect_building("rect", rect), b = make_l_building("ell", l);
     SyntheticCloudOptions options;
     options.texture_per_roof_m2 = 0.3;
-    write_line_cloud(dir_ / "clouds" / "rect.lc2wf", make_synthetic_line_cloud(a, 7, options));
-    write_line_cloud(dir_ / "clouds" / "ell.lc2wf", make_synthetic_line_cloud(b, 8, options));
+    write_line_cloud(dir_ / "clouds" / "rect.lcloud", make_synthetic_line_cloud(a, 7, options));
+    write_line_cloud(dir_ / "clouds" / "ell.lcloud", make_synthetic_line_cloud(b, 8, options));
     std::ofstream(dir_ / "train.txt") << "rect\nell\n";
     std::ofstream(dir_ / "val.txt") << "ell\n";
 
@@ -170,7 +170,7 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   // Inference on the held-out building, with a preview.
   const fs::path pred = dir_ / "pred";
   ASSERT_EQ(run(std::string(LC2WF_INFER_BIN) + " --quiet --weights " + quote(straight) + " " +
-                quote(dir_ / "clouds" / "ell.lc2wf") + " -o " + quote(pred) + " --preview " + quote(dir_ / "ell.png")),
+                quote(dir_ / "clouds" / "ell.lcloud") + " -o " + quote(pred) + " --preview " + quote(dir_ / "ell.png")),
             0);
   const ScoredWireframe w = read_prediction(pred / "ell.obj");
   EXPECT_NO_THROW(w.check("ell"));
