@@ -38,7 +38,7 @@ void Augmentation::apply(std::vector<Segment3>& segments) const {
   }
 }
 
-Augmentation draw_augmentation(Rng& rng, const AugmentOptions& o, const NetworkFrame& frame) {
+Augmentation draw_augmentation(DataRng& rng, const AugmentOptions& o, const NetworkFrame& frame) {
   o.Check();
   Augmentation a;
   a.centre_m = frame.centre_m;

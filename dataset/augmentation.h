@@ -11,7 +11,7 @@
 
 namespace lc2wf {
 
-class Rng;
+class DataRng;
 
 struct AugmentOptions {
   double scale_min = 0.8;
@@ -35,6 +35,6 @@ struct Augmentation {
 };
 
 // Draw order: scale, shift x, y, z, then the angle (only when rotate_z).
-Augmentation draw_augmentation(Rng& rng, const AugmentOptions& options, const NetworkFrame& frame);
+Augmentation draw_augmentation(DataRng& rng, const AugmentOptions& options, const NetworkFrame& frame);
 
 }  // namespace lc2wf

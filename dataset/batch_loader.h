@@ -56,7 +56,7 @@ class BatchLoader {
     std::vector<size_t> order(num_items_);
     for (size_t i = 0; i < num_items_; ++i) order[i] = i;
     if (options_.shuffle) {
-      Rng rng(mix_seed(options_.seed, static_cast<uint64_t>(epoch)));
+      DataRng rng(mix_seed(options_.seed, static_cast<uint64_t>(epoch)));
       rng.shuffle(order);
     }
     return order;

@@ -18,10 +18,10 @@ inline uint64_t mix_seed(uint64_t x) {
 }
 inline uint64_t mix_seed(uint64_t a, uint64_t b) { return mix_seed(mix_seed(a) ^ (b + 0x632BE59BD9B4E019ull)); }
 
-// xoshiro256** seeded through splitmix64.
-class Rng {
+// xoshiro256** seeded through splitmix64 (the engine has its own counter-based lc2wf::Rng in core/rng.h).
+class DataRng {
  public:
-  explicit Rng(uint64_t seed) {
+  explicit DataRng(uint64_t seed) {
     for (auto& s : s_) s = seed = mix_seed(seed);
   }
   uint64_t next() {

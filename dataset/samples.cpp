@@ -30,7 +30,7 @@ void PairSampleOptions::Check() const {
 JunctionPatches make_junction_sample(const LineCloud& cloud, const JunctionSampleOptions& o, uint64_t seed) {
   o.Check();
   require_segments(cloud);
-  Rng rng(seed);
+  DataRng rng(seed);
   const Augmentation aug = o.augment_enabled ? draw_augmentation(rng, o.augment, o.patch.frame) : Augmentation{};
   const std::vector<Vec3> endpoints = segment_endpoints(cloud.segments);
   const std::vector<int> samples = sample_endpoints(endpoints, o.sampling, &cloud.wireframe.junctions, &rng);
@@ -46,7 +46,7 @@ PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJun
   o.Check();
   require_segments(cloud);
   if (cloud.wireframe.junctions.size() < 2) throw DataError(cloud.name, "fewer than 2 GT junctions: no training pairs");
-  Rng rng(seed);
+  DataRng rng(seed);
   const Augmentation aug = o.augment_enabled ? draw_augmentation(rng, o.augment, o.patch.frame) : Augmentation{};
   std::vector<JunctionPair> pairs = sample_training_pairs(cloud.wireframe, predicted, o.pairs);
   for (auto& p : pairs) {

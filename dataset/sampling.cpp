@@ -100,7 +100,7 @@ std::vector<int> farthest_point_sampling(const std::vector<Vec3>& p, int count, 
 }
 
 std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const SamplingOptions& o,
-                                  const std::vector<Vec3>* gt, Rng* rng) {
+                                  const std::vector<Vec3>* gt, DataRng* rng) {
   o.Check();
   std::vector<int> seeds;
   if (o.near_gt_samples > 0) {

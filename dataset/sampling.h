@@ -10,7 +10,7 @@
 
 namespace lc2wf {
 
-class Rng;
+class DataRng;
 
 struct SamplingOptions {
   int num_samples = 256;                 // G
@@ -35,7 +35,7 @@ std::vector<int> farthest_point_sampling(const std::vector<Vec3>& points, int co
 // The full rule: [near-GT picks] + density seeds, then FPS to num_samples. `gt_junctions` and `rng` are
 // only used when near_gt_samples > 0.
 std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const SamplingOptions& options,
-                                  const std::vector<Vec3>* gt_junctions = nullptr, Rng* rng = nullptr);
+                                  const std::vector<Vec3>* gt_junctions = nullptr, DataRng* rng = nullptr);
 
 // Endpoints of segments in the release order: segment k -> 2k (a), 2k+1 (b).
 std::vector<Vec3> segment_endpoints(const std::vector<Segment3>& segments);

@@ -95,7 +95,7 @@ Building make_l_building(const std::string& name, const LBuildingSpec& spec) {
 }
 
 Building make_random_building(uint64_t seed, const std::string& name) {
-  Rng rng(seed);
+  DataRng rng(seed);
   auto uni = [&](double lo, double hi) { return rng.uniform(lo, hi); };
   auto end = [&] { return rng.uniform() < 0.7 ? RoofEnd::Hip : RoofEnd::Gable; };  // Roof-Image is mostly hip
   const double slope = uni(30.0, 46.0);

@@ -10,7 +10,7 @@
 namespace lc2wf {
 namespace {
 
-Vec3 noise3(Rng& rng, double sigma) { return sigma * Vec3(rng.normal(), rng.normal(), rng.normal()); }
+Vec3 noise3(DataRng& rng, double sigma) { return sigma * Vec3(rng.normal(), rng.normal(), rng.normal()); }
 
 // Point-in-polygon on a planar face, using the two axes the face normal is least aligned with.
 bool inside_face(const PolyMesh& m, const std::vector<int>& f, const Vec3& n, const Vec3& p) {
@@ -89,7 +89,7 @@ std::vector<Camera> make_camera_ring(const Building& b, const CameraRingOptions&
 
 LineCloud make_synthetic_line_cloud(const Building& b, uint64_t seed, const SyntheticCloudOptions& o) {
   o.Check();
-  Rng rng(seed);
+  DataRng rng(seed);
   LineCloud c;
   c.name = b.name;
   c.units = b.units;

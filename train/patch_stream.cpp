@@ -49,7 +49,7 @@ void PatchStream<Patches>::start(int64_t epoch, int64_t first_batch) {
   s.order.resize(s.num_buildings);
   for (size_t i = 0; i < s.num_buildings; ++i) s.order[i] = i;
   if (s.options.shuffle) {
-    Rng rng(mix_seed(s.options.seed, static_cast<uint64_t>(epoch)));
+    DataRng rng(mix_seed(s.options.seed, static_cast<uint64_t>(epoch)));
     rng.shuffle(s.order);
   }
   const int64_t remaining = std::max<int64_t>(0, batches_per_epoch() - first_batch);

@@ -48,7 +48,7 @@ TEST(Constants, ReleaseValuesInMetres) {
 }
 
 TEST(SpatialGrid, MatchesBruteForceIncludingSparseExtents) {
-  Rng rng(2);
+  DataRng rng(2);
   std::vector<Vec3> p;
   for (int i = 0; i < 400; ++i) p.push_back(Vec3(rng.uniform(-3, 3), rng.uniform(-3, 3), rng.uniform(0, 2)));
   p.push_back(Vec3(500, 0, 0));  // a far outlier forces the enlarged-cell path
@@ -87,7 +87,7 @@ TEST(PointNms, SuppressorRuleOnAChainKeepsOnlyTheTop) {
 
 TEST(Sampling, DensitySeedsOnePerCluster) {
   std::vector<Vec3> p;
-  Rng rng(5);
+  DataRng rng(5);
   for (int c = 0; c < 2; ++c) {
     for (int k = 0; k < 15; ++k) p.push_back(Vec3(c * 1.0, 0, 0) + 0.015 * Vec3(rng.normal(), rng.normal(), rng.normal()).cwiseMin(2).cwiseMax(-2));
   }
@@ -115,7 +115,7 @@ TEST(Sampling, NearGtPositivesComeFirstAndAreSeeded) {
   SamplingOptions o;
   o.num_samples = 20;
   o.near_gt_samples = 3;
-  Rng r1(9), r2(9);
+  DataRng r1(9), r2(9);
   const auto a = sample_endpoints(p, o, &gt, &r1);
   const auto b = sample_endpoints(p, o, &gt, &r2);
   EXPECT_EQ(a, b);
@@ -279,7 +279,7 @@ TEST(Pairs, TestPairsKeepConfidentJunctions) {
 
 TEST(Augmentation, IsScaleAndShiftInNetworkUnits) {
   const NetworkFrame f;
-  Rng rng(3);
+  DataRng rng(3);
   const Augmentation a = draw_augmentation(rng, AugmentOptions{}, f);
   EXPECT_GE(a.scale, 0.8);
   EXPECT_LE(a.scale, 1.25);
@@ -287,11 +287,11 @@ TEST(Augmentation, IsScaleAndShiftInNetworkUnits) {
   const Vec3 p(3, -2, 5);
   const Vec3 expected = a.scale * f.to_network(p) + a.shift_m / f.scale_m;
   EXPECT_NEAR((f.to_network(a.apply(p)) - expected).norm(), 0, 1e-12);
-  Rng r2(3);
+  DataRng r2(3);
   EXPECT_EQ(draw_augmentation(r2, AugmentOptions{}, f).scale, a.scale);
   AugmentOptions rot;
   rot.rotate_z = true;
-  Rng r3(4);
+  DataRng r3(4);
   const Augmentation b = draw_augmentation(r3, rot, f);
   EXPECT_NE(b.angle_rad, 0.0);
   // A rotation about the vertical through the centre keeps horizontal distances and heights (times scale).
