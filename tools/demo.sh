@@ -3,7 +3,7 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build_dir=${LC2WF_BUILD_DIR:-$root/build}
-LC2WF_BUILD_TESTS=OFF "$root/tools/build.sh"
+LC2WF_BUILD_TESTS=OFF LC2WF_BUILD_BENCH=OFF "$root/tools/build.sh"
 # The demo: the project's own synthetic buildings as line clouds (no external data needed), a small model
 # trained with configs/demo.json on 2 threads, then inference + Table-2 metrics on held-out buildings.
 # Deterministic: same files and numbers on every run. Outputs under runs/ (git-ignored).
