@@ -1,4 +1,4 @@
-// lc2wf_make_splits: writes train.txt / val.txt / test.txt from the Roof-Image building names.
+// lc2wf-make-splits: writes train.txt / val.txt / test.txt from the Roof-Image building names.
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -11,7 +11,7 @@ namespace {
 
 void usage(std::FILE* out) {
   std::fprintf(out,
-               "Usage: lc2wf_make_splits --data DIR --out DIR [--seed N] [--test N] [--val N]\n"
+               "Usage: lc2wf-make-splits --data DIR --out DIR [--seed N] [--test N] [--val N]\n"
                "Writes DIR/train.txt, val.txt, test.txt (one building name per line) from the .polyshape\n"
                "files in --data (e.g. ../shared/data/roof-image/res_building).\n"
                "Rule: sort names by mix(FNV-1a-64(name), seed); first --test are test (default 757), next --val\n"
