@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include <Eigen/LU>  // determinant()
+
 #include "dataset/errors.h"
 
 namespace lc2wf {

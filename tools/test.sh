@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The test command: installs missing dependencies, builds, and runs the default CTest suite.
+# The test command: installs missing dependencies (Blender too, for the end-to-end render test), builds,
+# and runs the default CTest suite.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-"$root/tools/build.sh" "$@"
+LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} "$root/tools/build.sh" "$@"
 cd "${LC2WF_BUILD_DIR:-$root/build}"
 # Long runs carry the "slow" label and are opt-in: ctest -L slow
 ctest --output-on-failure -j "$(nproc)" -LE slow

@@ -1,6 +1,7 @@
 #include "tools/colmap/colmap_poses.h"
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
