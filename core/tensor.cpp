@@ -8,14 +8,14 @@
 
 #include "core/autograd.h"
 #include "core/kernels.h"
+#include "core/storage_cache.h"
 #include "core/tensor_impl.h"
 
 namespace lc2wf {
 
 namespace {
-// Activations of tens of MB are allocated and freed every step. Served by fresh mmaps they would be
-// page-faulted and zeroed by the kernel each time (a large share of a step); keeping them in the
-// heap lets freed blocks be reused directly.
+// Blocks of 1 MB and more are mapped and recycled by core/storage_cache. The many smaller temporaries
+// stay in a never-trimmed heap instead of fresh mmaps, so their pages are reused without new faults.
 const bool g_malloc_tuned = [] {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
@@ -25,12 +25,12 @@ const bool g_malloc_tuned = [] {
 
 Storage::Storage(size_t n) : bytes(n) {
   (void)g_malloc_tuned;
-  size_t rounded = (n + 63) / 64 * 64;
-  data = std::aligned_alloc(64, rounded == 0 ? 64 : rounded);
-  if (data == nullptr) throw std::bad_alloc();
+  StorageBlock block = storage_allocate(n);
+  data = block.data;
+  capacity = block.capacity;
 }
 
-Storage::~Storage() { std::free(data); }
+Storage::~Storage() { storage_release(StorageBlock{data, capacity}); }
 
 const char* dtype_name(DType dtype) {
   switch (dtype) {

@@ -10,7 +10,8 @@ namespace lc2wf {
 
 struct Node;
 
-// 64-byte aligned heap buffer so kernels get full-width vector loads on every row start.
+// 64-byte aligned buffer so kernels get full-width vector loads on every row start. Blocks of 1 MB and
+// more come from core/storage_cache (recycled, so contents start uninitialised like any fresh buffer).
 struct Storage {
   explicit Storage(size_t bytes);
   ~Storage();
@@ -18,6 +19,7 @@ struct Storage {
   Storage& operator=(const Storage&) = delete;
   void* data = nullptr;
   size_t bytes = 0;
+  size_t capacity = 0;  // bytes actually reserved, handed back to core/storage_cache
 };
 
 struct TensorImpl {

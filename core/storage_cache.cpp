@@ -1,0 +1,187 @@
+#include "core/storage_cache.h"
+
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdlib>
+#include <list>
+#include <map>
+#include <mutex>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lc2wf {
+
+namespace {
+
+constexpr size_t kAlignment = 64;
+
+size_t default_budget() {
+  if (const char* env = std::getenv("LC2WF_STORAGE_CACHE_MB")) {
+    std::string text(env);
+    size_t used = 0;
+    unsigned long long mb = 0;
+    try {
+      mb = std::stoull(text, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (text.empty() || used != text.size() || text[0] == '-')
+      throw std::invalid_argument("LC2WF_STORAGE_CACHE_MB: '" + text + "' is not a non-negative whole number of MiB");
+    return static_cast<size_t>(mb) << 20;
+  }
+  long pages = sysconf(_SC_PHYS_PAGES);
+  long page_size = sysconf(_SC_PAGESIZE);
+  size_t physical = pages > 0 && page_size > 0 ? static_cast<size_t>(pages) * static_cast<size_t>(page_size) : 0;
+  return std::min(physical / 4, size_t{4} << 30);
+}
+
+void* heap_allocate(size_t size) {
+  void* data = std::aligned_alloc(kAlignment, size);
+  if (data == nullptr) throw std::bad_alloc();
+  return data;
+}
+
+// Large blocks are mapped directly (page aligned), so a block given back is really gone from the process
+// instead of leaving a hole in the malloc heap.
+void* map_block(size_t size) {
+  void* data = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (data == MAP_FAILED) throw std::bad_alloc();
+  return data;
+}
+
+void unmap_block(void* data, size_t size) { munmap(data, size); }
+
+class StorageCache {
+ public:
+  StorageCache() : budget_(default_budget()) {}
+
+  StorageBlock acquire(size_t size) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      // Best fit among cached blocks up to twice the request: a resident block costs no page faults,
+      // and its unused tail adds nothing to the footprint already counted.
+      auto it = by_size_.lower_bound(size);
+      if (it != by_size_.end() && it->first <= 2 * size) {
+        size_t capacity = it->first;
+        // The most recently freed block of the class is the likeliest to still be in cache.
+        auto block = it->second.back();
+        it->second.pop_back();
+        if (it->second.empty()) by_size_.erase(it);
+        void* data = block->data;
+        cached_bytes_ -= capacity;
+        live_bytes_ += capacity;
+        lru_.erase(block);
+        ++hits_;
+        return {data, capacity};
+      }
+      ++misses_;
+      live_bytes_ += size;
+      high_water_ = std::max(high_water_, live_bytes_);
+      // Cached plus live bytes stay within the live high-water mark, so shifting sizes never stack up.
+      evict_until(high_water_ - live_bytes_);
+    }
+    return {map_block(size), size};
+  }
+
+  void release(void* data, size_t size) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    live_bytes_ -= size;
+    if (size > budget_) {
+      unmap_block(data, size);
+      return;
+    }
+    lru_.push_front(Block{data, size});
+    by_size_[size].push_back(lru_.begin());
+    cached_bytes_ += size;
+    evict_until(budget_);
+  }
+
+  void set_budget(size_t bytes) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    budget_ = bytes;
+    evict_until(budget_);
+  }
+
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    evict_until(0);
+    high_water_ = live_bytes_;
+  }
+
+  StorageCacheStats stats() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return StorageCacheStats{budget_, cached_bytes_, lru_.size(), live_bytes_, high_water_, hits_, misses_};
+  }
+
+ private:
+  struct Block {
+    void* data;
+    size_t size;
+  };
+  using BlockList = std::list<Block>;
+
+  // Frees least recently released blocks until at most `limit` bytes stay cached. Caller holds mutex_.
+  void evict_until(size_t limit) {
+    while (cached_bytes_ > limit) {
+      auto oldest = std::prev(lru_.end());
+      auto same_size = by_size_.find(oldest->size);
+      same_size->second.erase(std::find(same_size->second.begin(), same_size->second.end(), oldest));
+      if (same_size->second.empty()) by_size_.erase(same_size);
+      cached_bytes_ -= oldest->size;
+      unmap_block(oldest->data, oldest->size);
+      lru_.erase(oldest);
+    }
+  }
+
+  std::mutex mutex_;
+  size_t budget_;
+  size_t cached_bytes_ = 0;
+  size_t live_bytes_ = 0;
+  size_t high_water_ = 0;
+  int64_t hits_ = 0;
+  int64_t misses_ = 0;
+  BlockList lru_;  // front = most recently released
+  std::map<size_t, std::vector<BlockList::iterator>> by_size_;  // capacity -> blocks, oldest first
+};
+
+// Never destroyed: tensors held by other static objects are released during static destruction.
+StorageCache& cache() {
+  static StorageCache* instance = new StorageCache();
+  return *instance;
+}
+
+}  // namespace
+
+size_t storage_size_class(size_t bytes) {
+  if (bytes < kStorageCacheMinBytes) return bytes == 0 ? kAlignment : (bytes + kAlignment - 1) / kAlignment * kAlignment;
+  size_t step = std::bit_floor(bytes) / 8;
+  return (bytes + step - 1) / step * step;
+}
+
+StorageBlock storage_allocate(size_t bytes) {
+  size_t size = storage_size_class(bytes);
+  if (size < kStorageCacheMinBytes) return {heap_allocate(size), size};
+  return cache().acquire(size);
+}
+
+void storage_release(const StorageBlock& block) {
+  if (block.data == nullptr) return;
+  if (block.capacity < kStorageCacheMinBytes) {
+    std::free(block.data);
+    return;
+  }
+  cache().release(block.data, block.capacity);
+}
+
+void set_storage_cache_budget(size_t bytes) { cache().set_budget(bytes); }
+
+void storage_cache_clear() { cache().clear(); }
+
+StorageCacheStats storage_cache_stats() { return cache().stats(); }
+
+}  // namespace lc2wf

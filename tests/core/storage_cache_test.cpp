@@ -1,0 +1,175 @@
+// Large tensor buffers are recycled by size class, within the byte budget and the live high-water mark.
+#include "core/storage_cache.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <fstream>
+#include <random>
+#include <vector>
+
+#include "core/tensor.h"
+
+namespace lc2wf {
+namespace {
+
+constexpr size_t kMiB = size_t{1} << 20;
+
+int64_t rss_bytes() {
+  std::ifstream statm("/proc/self/statm");
+  int64_t size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * sysconf(_SC_PAGESIZE);
+}
+
+Tensor floats(size_t bytes) { return Tensor::empty({static_cast<int64_t>(bytes / 4)}); }
+
+// Every test starts from an empty cache with the given budget and restores the default budget after.
+class StorageCacheTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    default_budget_ = storage_cache_stats().budget_bytes;
+    storage_cache_clear();
+  }
+  void TearDown() override {
+    storage_cache_clear();
+    set_storage_cache_budget(default_budget_);
+  }
+  size_t default_budget_ = 0;
+};
+
+TEST(StorageSizeClass, RoundsUpByAtMostAnEighthAndKeeps64ByteMultiples) {
+  EXPECT_EQ(storage_size_class(0), 64u);
+  EXPECT_EQ(storage_size_class(100), 128u);
+  EXPECT_EQ(storage_size_class(kMiB), kMiB);
+  EXPECT_EQ(storage_size_class(kMiB + 1), kMiB + kMiB / 8);
+  EXPECT_EQ(storage_size_class(128 * kMiB + 1), 144 * kMiB);
+  std::mt19937_64 rng(7);
+  for (int i = 0; i < 10000; ++i) {
+    size_t bytes = kMiB + rng() % (size_t{1} << 32);
+    size_t size = storage_size_class(bytes);
+    ASSERT_GE(size, bytes);
+    ASSERT_LE(size - bytes, bytes / 8) << bytes;
+    ASSERT_EQ(size % 64, 0u) << bytes;
+  }
+}
+
+TEST_F(StorageCacheTest, FreedBlockIsReusedBySameClassAndStaysAligned) {
+  set_storage_cache_budget(64 * kMiB);
+  const float* first = nullptr;
+  {
+    Tensor t = floats(4 * kMiB + 4096);
+    first = t.data<float>();
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(first) % 64, 0u);
+  }
+  EXPECT_EQ(storage_cache_stats().cached_blocks, 1u);
+  int64_t hits = storage_cache_stats().hits;
+  Tensor again = floats(4 * kMiB + 256 * 1024);  // same class (4 MiB .. 4.5 MiB)
+  EXPECT_EQ(again.data<float>(), first);
+  EXPECT_EQ(storage_cache_stats().hits, hits + 1);
+  EXPECT_EQ(storage_cache_stats().cached_blocks, 0u);
+}
+
+TEST_F(StorageCacheTest, LargerBlockServesARequestUpToHalfItsSize) {
+  set_storage_cache_budget(64 * kMiB);
+  const float* big = nullptr;
+  {
+    Tensor t = floats(16 * kMiB);
+    big = t.data<float>();
+  }
+  {
+    Tensor fits = floats(9 * kMiB);
+    EXPECT_EQ(fits.data<float>(), big);
+    EXPECT_EQ(storage_cache_stats().live_bytes, 16 * kMiB);  // the whole block is accounted while in use
+  }
+  int64_t misses = storage_cache_stats().misses;
+  Tensor too_small = floats(6 * kMiB);  // 16 MiB is more than twice 6 MiB: not used
+  EXPECT_EQ(storage_cache_stats().misses, misses + 1);
+}
+
+TEST_F(StorageCacheTest, ZerosAndOnesFillAReusedBlock) {
+  set_storage_cache_budget(64 * kMiB);
+  const int64_t n = 2 * kMiB / 4;
+  const float* block = nullptr;
+  {
+    Tensor dirty = Tensor::full({n}, 7.0);
+    block = dirty.data<float>();
+  }
+  Tensor zeros = Tensor::zeros({n});
+  ASSERT_EQ(zeros.data<float>(), block);  // really the recycled block
+  for (int64_t i = 0; i < n; ++i) ASSERT_EQ(zeros.data<float>()[i], 0.0f) << i;
+  zeros = Tensor();
+  Tensor ones = Tensor::ones({n});
+  ASSERT_EQ(ones.data<float>(), block);
+  for (int64_t i = 0; i < n; ++i) ASSERT_EQ(ones.data<float>()[i], 1.0f) << i;
+}
+
+TEST_F(StorageCacheTest, SmallBuffersBypassTheCache) {
+  set_storage_cache_budget(64 * kMiB);
+  int64_t misses = storage_cache_stats().misses;
+  { Tensor t = floats(kMiB / 2); }
+  EXPECT_EQ(storage_cache_stats().cached_blocks, 0u);
+  EXPECT_EQ(storage_cache_stats().misses, misses);
+}
+
+TEST_F(StorageCacheTest, BudgetEvictsLeastRecentlyFreedBlocks) {
+  set_storage_cache_budget(8 * kMiB);
+  const float* kept = nullptr;
+  {
+    Tensor a = floats(4 * kMiB), b = floats(4 * kMiB), c = floats(4 * kMiB);
+    kept = c.data<float>();
+    a = Tensor();
+    b = Tensor();
+    c = Tensor();  // freed last: survives while a, the oldest, is evicted
+  }
+  StorageCacheStats stats = storage_cache_stats();
+  EXPECT_EQ(stats.cached_bytes, 8 * kMiB);
+  EXPECT_EQ(stats.cached_blocks, 2u);
+  Tensor reused = floats(4 * kMiB);
+  EXPECT_EQ(reused.data<float>(), kept);  // most recently freed block of the class comes first
+
+  set_storage_cache_budget(0);  // shrinking frees the excess at once, and 0 disables caching
+  EXPECT_EQ(storage_cache_stats().cached_bytes, 0u);
+  reused = Tensor();
+  EXPECT_EQ(storage_cache_stats().cached_bytes, 0u);
+}
+
+TEST_F(StorageCacheTest, MissGivesBackCachedBlocksBeyondTheLiveHighWater) {
+  set_storage_cache_budget(256 * kMiB);
+  { Tensor t = floats(4 * kMiB); }
+  ASSERT_EQ(storage_cache_stats().cached_bytes, 4 * kMiB);
+  // Another class cannot use the cached block; holding on to it would raise the footprint above any
+  // earlier live high-water mark.
+  Tensor other = floats(8 * kMiB);
+  StorageCacheStats stats = storage_cache_stats();
+  EXPECT_EQ(stats.cached_bytes, 0u);
+  EXPECT_LE(stats.cached_bytes + stats.live_bytes, stats.high_water);
+}
+
+TEST_F(StorageCacheTest, ThousandStepsOfShiftingSizesStayBounded) {
+  const size_t budget = 48 * kMiB;
+  set_storage_cache_budget(budget);
+  int64_t rss_warm = 0;
+  for (int step = 0; step < 1000; ++step) {
+    // A "step": six activations whose sizes drift every 100 steps, all released at the end.
+    std::vector<Tensor> live;
+    int shift = (step / 100) % 3;
+    for (int k = 0; k < 6; ++k) {
+      size_t mib = 1 + static_cast<size_t>((step + k) % 6 + shift * 2);
+      live.push_back(Tensor::zeros({static_cast<int64_t>(mib * kMiB / 4)}));
+    }
+    live.clear();
+    StorageCacheStats stats = storage_cache_stats();
+    ASSERT_LE(stats.cached_bytes, budget) << "step " << step;
+    ASSERT_LE(stats.cached_bytes + stats.live_bytes, stats.high_water) << "step " << step;
+    if (step == 299) rss_warm = rss_bytes();
+  }
+  EXPECT_GT(storage_cache_stats().hits, 0);
+  // Once every size mix has been seen, the process does not grow.
+  int64_t growth = rss_bytes() - rss_warm;
+  EXPECT_LT(growth, 8 << 20) << "RSS grew by " << growth << " bytes over 700 steps";
+}
+
+}  // namespace
+}  // namespace lc2wf
