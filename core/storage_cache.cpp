@@ -82,8 +82,10 @@ class StorageCache {
       ++misses_;
       live_bytes_ += size;
       high_water_ = std::max(high_water_, live_bytes_);
-      // Cached plus live bytes stay within the live high-water mark, so shifting sizes never stack up.
-      evict_until(high_water_ - live_bytes_);
+      // A repeating step needs a pool somewhat larger than its peak (sizes peak at different moments);
+      // capping cached + live at twice the live high-water mark serves that while a shifting mix of
+      // sizes can never pile up.
+      evict_until(2 * high_water_ - live_bytes_);
     }
     return {map_block(size), size};
   }
