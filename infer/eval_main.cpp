@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/util/cli.h"
 #include "core/util/progress.h"
 #include "infer/eval_inputs.h"
 #include "infer/eval_report_io.h"
@@ -20,9 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace lc2wf;
-
-constexpr int kExitData = 1;
-constexpr int kExitUsage = 2;
 
 const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) --out DIR [options]
        lc2wf-eval --weights DIR --data DIR --split FILE --out DIR [options]
@@ -61,10 +59,6 @@ struct Args {
   bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kGroupTies;
   std::string method;
-};
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 
 Args parse_args(int argc, char** argv) {
@@ -138,7 +132,7 @@ int run(const Args& a) {
   if (names.empty()) {
     std::fprintf(stderr, "lc2wf-eval: error: no buildings to evaluate (%s is empty)\n",
                  (a.split.empty() ? source.dir : a.split).string().c_str());
-    return kExitData;
+    return kExitFailure;
   }
 
 #if LC2WF_EVAL_WITH_WEIGHTS
@@ -153,7 +147,7 @@ int run(const Args& a) {
     const BatchInferenceSummary s = infer_clouds(WireframePredictor(a.weights), clouds, a.pred, inference);
     if (s.failed > 0) {
       std::fprintf(stderr, "lc2wf-eval: error: %d line cloud(s) could not be read\n", s.failed);
-      return kExitData;
+      return kExitFailure;
     }
     std::fprintf(stderr, "lc2wf-eval: inference %.3f s per building on average (max %.3f s), %d empty wireframe(s)\n",
                  s.buildings ? s.total_seconds / s.buildings : 0.0, s.max_seconds, s.empty);
@@ -173,7 +167,7 @@ int run(const Args& a) {
       if (progress) progress->finish();
       std::fprintf(stderr, "lc2wf-eval: error: no ground truth for building '%s' in %s\n", name.c_str(),
                    source.dir.string().c_str());
-      return kExitData;
+      return kExitFailure;
     }
     const GroundTruth gt = load_ground_truth(source, *gt_path);
     const fs::path pred_path = a.pred / (name + ".obj");
@@ -201,24 +195,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string f = argv[i];
-    if (f == "-h" || f == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-  }
-  Args args;
-  try {
-    args = parse_args(argc, argv);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "lc2wf-eval: %s\nRun 'lc2wf-eval --help' for usage.\n", e.what());
-    return kExitUsage;
-  }
-  try {
-    return run(args);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "\nlc2wf-eval: error: %s\n", e.what());
-    return kExitData;
-  }
+  return lc2wf::cli_main("lc2wf-eval", kUsage, argc, argv, parse_args, run);
 }

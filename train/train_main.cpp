@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/parallel.h"
+#include "core/util/cli.h"
 #include "core/util/atomic_file.h"
 #include "train/building_set.h"
 #include "train/run_log.h"
@@ -15,9 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace lc2wf;
-
-constexpr int kExitError = 1;
-constexpr int kExitUsage = 2;
 
 const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [--stage junction|edge|all] [--resume] [--out DIR] [--quiet]
 
@@ -45,10 +43,6 @@ struct Args {
   std::string stage = "all";
   bool resume = false, quiet = false;
   std::string out;
-};
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
 };
 
 Args parse_args(int argc, char** argv) {
@@ -112,24 +106,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string f = argv[i];
-    if (f == "-h" || f == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-  }
-  Args args;
-  try {
-    args = parse_args(argc, argv);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "lc2wf-train: %s\nRun 'lc2wf-train --help' for usage.\n", e.what());
-    return kExitUsage;
-  }
-  try {
-    return run(args);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "\nlc2wf-train: error: %s\n", e.what());
-    return kExitError;
-  }
+  return lc2wf::cli_main("lc2wf-train", kUsage, argc, argv, parse_args, run);
 }

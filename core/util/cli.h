@@ -1,0 +1,43 @@
+// The shared shape of lc2wf's command-line programs: --help anywhere prints the usage and exits 0, a
+// UsageError exits 2 with a pointer to --help, any other exception exits 1 naming the program.
+#pragma once
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+namespace lc2wf {
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+// parse(argc, argv) -> Args (throws UsageError on a bad command line); run(const Args&) -> exit code.
+template <class Parse, class Run>
+int cli_main(const char* program, const char* usage, int argc, char** argv, Parse parse, Run run) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "-h" || flag == "--help") {
+      std::fputs(usage, stdout);
+      return 0;
+    }
+  }
+  decltype(parse(argc, argv)) args;
+  try {
+    args = parse(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "%s: %s\nRun '%s --help' for usage.\n", program, e.what(), program);
+    return kExitUsage;
+  }
+  try {
+    return run(args);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "\n%s: error: %s\n", program, e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace lc2wf
