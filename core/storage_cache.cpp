@@ -160,7 +160,9 @@ StorageCache& cache() {
 }  // namespace
 
 size_t storage_size_class(size_t bytes) {
-  if (bytes < kStorageCacheMinBytes) return bytes == 0 ? kAlignment : (bytes + kAlignment - 1) / kAlignment * kAlignment;
+  if (bytes < kStorageCacheMinBytes) {
+    return bytes == 0 ? kAlignment : (bytes + kAlignment - 1) / kAlignment * kAlignment;
+  }
   size_t step = std::bit_floor(bytes) / 8;
   return (bytes + step - 1) / step * step;
 }

@@ -36,7 +36,8 @@ void storage_release(const StorageBlock& block);
 
 // Most bytes of free blocks kept; beyond it the least recently freed blocks are returned to the system.
 // A miss also returns cached blocks when needed so that cached + live bytes never exceed twice the
-// high-water mark of live bytes. Default: LC2WF_STORAGE_CACHE_MB if set, else a quarter of physical memory, at most 4 GiB.
+// high-water mark of live bytes. Default: LC2WF_STORAGE_CACHE_MB if set (a bad value throws
+// std::invalid_argument on the first large allocation), else a quarter of physical memory, at most 4 GiB.
 // 0 disables caching.
 void set_storage_cache_budget(size_t bytes);
 // Returns every cached block to the system and restarts the high-water mark from the live bytes.
