@@ -99,16 +99,7 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
     return v;
   };
 
-  StageLoopOptions lo;
-  lo.stage = "edge";
-  lo.schedule = c.schedule;
-  lo.optim = c.optim;
-  lo.model_config = {{"stage", "edge"}, {"net", c.net.to_json()}, {"loss", c.loss.to_json()},
-                     {"optim", c.optim.to_json()}, {"seed", config.seed}};
-  lo.out = run.out;
-  lo.resume = run.resume;
-  lo.quiet = run.quiet;
-  run_stage(lo, net, net.dropout_rng(), log, cb);
+  run_stage(stage_loop_options("edge", c, config.seed, run), net, net.dropout_rng(), log, cb);
 }
 
 }  // namespace lc2wf

@@ -118,16 +118,7 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
     return v;
   };
 
-  StageLoopOptions lo;
-  lo.stage = "junction";
-  lo.schedule = c.schedule;
-  lo.optim = c.optim;
-  lo.model_config = {{"stage", "junction"}, {"net", c.net.to_json()}, {"loss", c.loss.to_json()},
-                     {"optim", c.optim.to_json()}, {"seed", config.seed}};
-  lo.out = run.out;
-  lo.resume = run.resume;
-  lo.quiet = run.quiet;
-  run_stage(lo, net, net.dropout_rng(), log, cb);
+  run_stage(stage_loop_options("junction", c, config.seed, run), net, net.dropout_rng(), log, cb);
 }
 
 }  // namespace lc2wf

@@ -4,9 +4,11 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 
 #include "train/building_set.h"
 #include "train/run_log.h"
+#include "train/stage_loop.h"
 #include "train/train_config.h"
 
 namespace lc2wf {
@@ -16,6 +18,22 @@ struct StageRun {
   bool resume = false;
   bool quiet = false;
 };
+
+// What both stages hand to run_stage: their schedule and optimiser, the config stored in every
+// checkpoint, and the run paths.
+template <class StageConfig>
+StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig& c, uint64_t seed, const StageRun& run) {
+  StageLoopOptions lo;
+  lo.stage = stage;
+  lo.schedule = c.schedule;
+  lo.optim = c.optim;
+  lo.model_config = {{"stage", stage}, {"net", c.net.to_json()}, {"loss", c.loss.to_json()},
+                     {"optim", c.optim.to_json()}, {"seed", seed}};
+  lo.out = run.out;
+  lo.resume = run.resume;
+  lo.quiet = run.quiet;
+  return lo;
+}
 
 // Best weights `<out>/junction.safetensors`; selection by mean vAP (eta 0.15/0.25/0.35 m) of the
 // point-NMS'd candidates of the validation buildings.
