@@ -40,6 +40,18 @@ inline void prefetch_rows(const T* base, int64_t rows, int64_t row_stride, int64
     for (int64_t c = 0; c < cols; c += 64 / static_cast<int64_t>(sizeof(T))) __builtin_prefetch(base + r * row_stride + c);
 }
 
+// Prefetches q, k, v (and, in backward, the output gradient) of pair p + 1, if there is one.
+template <class T>
+inline void prefetch_next_pair(const AttnShape& s, int64_t p, const T* q, Layout lq, const T* k, Layout lk, const T* v,
+                               Layout lv, const T* go = nullptr, Layout lo = {}) {
+  if (p + 1 >= s.B * s.H) return;
+  const int64_t nb = (p + 1) / s.H, nh = (p + 1) % s.H;
+  prefetch_rows(q + lq.at(nb, nh), s.Lq, lq.row, s.D);
+  prefetch_rows(k + lk.at(nb, nh), s.Lk, lk.row, s.D);
+  prefetch_rows(v + lv.at(nb, nh), s.Lk, lv.row, s.D);
+  if (go) prefetch_rows(go + lo.at(nb, nh), s.Lq, lo.row, s.D);
+}
+
 // Softmax of one score row in place (scaled, masked keys excluded; all masked -> zeros), then the
 // dropped-out copy into pd. Element j of row `row` has dropout index row * Lk + j.
 template <class T, int LKC = 0>
@@ -94,12 +106,7 @@ void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, La
     std::vector<T> scratch(probs ? 0 : static_cast<size_t>(Lq * Lk));
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
-      if (p + 1 < s.B * s.H) {
-        int64_t nb = (p + 1) / s.H, nh = (p + 1) % s.H;
-        prefetch_rows(q + lq.at(nb, nh), Lq, lq.row, D);
-        prefetch_rows(k + lk.at(nb, nh), Lk, lk.row, D);
-        prefetch_rows(v + lv.at(nb, nh), Lk, lv.row, D);
-      }
+      prefetch_next_pair(s, p, q, lq, k, lk, v, lv);
       const uint8_t* mrow = mask ? mask + b * Lk : nullptr;
       T* P = probs ? probs + p * Lq * Lk : scratch.data();
       transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt.data());
@@ -132,13 +139,7 @@ void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, L
     T sc = static_cast<T>(drop.scale);
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
-      if (p + 1 < s.B * s.H) {
-        int64_t nb = (p + 1) / s.H, nh = (p + 1) % s.H;
-        prefetch_rows(q + lq.at(nb, nh), Lq, lq.row, D);
-        prefetch_rows(k + lk.at(nb, nh), Lk, lk.row, D);
-        prefetch_rows(v + lv.at(nb, nh), Lk, lv.row, D);
-        prefetch_rows(go + lo.at(nb, nh), Lq, lo.row, D);
-      }
+      prefetch_next_pair(s, p, q, lq, k, lk, v, lv, go, lo);
       const T* Q = q + lq.at(b, h);
       const T* GO = go + lo.at(b, h);
       const T* P = probs + p * Lq * Lk;

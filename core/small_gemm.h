@@ -10,19 +10,23 @@
 
 namespace lc2wf {
 
+// A(i, k) sits at A[i * rs + k * cs]: (rs, cs) = (lda, 1) for A as stored, (1, lda) for A stored
+// transposed, so one kernel serves C = A B and C = A^T B; kTransA fixes the unit stride at compile time.
 // Four rows of C at a time so every row of B loaded from L1 feeds four FMAs; N is a compile-time
 // constant so the accumulators live in vector registers. Kept out of line: inlined into the large
 // attention loops the accumulators were spilled to the stack.
-template <class T, int N>
-__attribute__((noinline)) void small_gemm_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
-                             int64_t ldc) {
+template <class T, int N, bool kTransA>
+__attribute__((noinline)) void small_gemm_strided_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B,
+                                                        int64_t ldb, T* C, int64_t ldc) {
+  const int64_t rs = kTransA ? 1 : lda, cs = kTransA ? lda : 1;
   int64_t i = 0;
   for (; i + 4 <= M; i += 4) {
     T acc0[N] = {}, acc1[N] = {}, acc2[N] = {}, acc3[N] = {};
-    const T* a = A + i * lda;
+    const T* a = A + i * rs;
     for (int64_t k = 0; k < K; ++k) {
       const T* b = B + k * ldb;
-      T a0 = a[k], a1 = a[lda + k], a2 = a[2 * lda + k], a3 = a[3 * lda + k];
+      const T* ak = a + k * cs;
+      T a0 = ak[0], a1 = ak[rs], a2 = ak[2 * rs], a3 = ak[3 * rs];
       for (int n = 0; n < N; ++n) {
         acc0[n] += a0 * b[n];
         acc1[n] += a1 * b[n];
@@ -40,7 +44,7 @@ __attribute__((noinline)) void small_gemm_fixed(int64_t M, int64_t K, const T* A
   for (; i < M; ++i) {
     T acc[N] = {};
     for (int64_t k = 0; k < K; ++k) {
-      T av = A[i * lda + k];
+      T av = A[i * rs + k * cs];
       const T* b = B + k * ldb;
       for (int n = 0; n < N; ++n) acc[n] += av * b[n];
     }
@@ -48,85 +52,39 @@ __attribute__((noinline)) void small_gemm_fixed(int64_t M, int64_t K, const T* A
   }
 }
 
-// C = A^T B with A stored (K x M, row stride lda): saves the explicit transpose of A.
-template <class T, int N>
-__attribute__((noinline)) void small_gemm_tn_fixed(int64_t M, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
-                                int64_t ldc) {
-  int64_t i = 0;
-  for (; i + 4 <= M; i += 4) {
-    T acc0[N] = {}, acc1[N] = {}, acc2[N] = {}, acc3[N] = {};
-    for (int64_t k = 0; k < K; ++k) {
-      const T* b = B + k * ldb;
-      const T* a = A + k * lda + i;
-      T a0 = a[0], a1 = a[1], a2 = a[2], a3 = a[3];
-      for (int n = 0; n < N; ++n) {
-        acc0[n] += a0 * b[n];
-        acc1[n] += a1 * b[n];
-        acc2[n] += a2 * b[n];
-        acc3[n] += a3 * b[n];
-      }
-    }
-    for (int n = 0; n < N; ++n) {
-      C[i * ldc + n] = acc0[n];
-      C[(i + 1) * ldc + n] = acc1[n];
-      C[(i + 2) * ldc + n] = acc2[n];
-      C[(i + 3) * ldc + n] = acc3[n];
-    }
-  }
-  for (; i < M; ++i) {
-    T acc[N] = {};
-    for (int64_t k = 0; k < K; ++k) {
-      T av = A[k * lda + i];
-      const T* b = B + k * ldb;
-      for (int n = 0; n < N; ++n) acc[n] += av * b[n];
-    }
-    for (int n = 0; n < N; ++n) C[i * ldc + n] = acc[n];
-  }
-}
-
-template <class T>
-inline void small_gemm_any(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
-                           int64_t ldc) {
-  for (int64_t i = 0; i < M; ++i) {
-    T* c = C + i * ldc;
-    for (int64_t n = 0; n < N; ++n) c[n] = T(0);
-    for (int64_t k = 0; k < K; ++k) {
-      T av = A[i * lda + k];
-      const T* b = B + k * ldb;
-      for (int64_t n = 0; n < N; ++n) c[n] += av * b[n];
-    }
-  }
-}
-
-template <class T>
-inline void small_gemm(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
-                       int64_t ldc) {
+template <class T, bool kTransA>
+void small_gemm_strided(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                        int64_t ldc) {
+  const int64_t rs = kTransA ? 1 : lda, cs = kTransA ? lda : 1;
   switch (N) {
-    case 16: small_gemm_fixed<T, 16>(M, K, A, lda, B, ldb, C, ldc); return;
-    case 32: small_gemm_fixed<T, 32>(M, K, A, lda, B, ldb, C, ldc); return;
-    case 64: small_gemm_fixed<T, 64>(M, K, A, lda, B, ldb, C, ldc); return;
-    default: small_gemm_any<T>(M, N, K, A, lda, B, ldb, C, ldc);
-  }
-}
-
-template <class T>
-inline void small_gemm_tn(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
-                          int64_t ldc) {
-  switch (N) {
-    case 16: small_gemm_tn_fixed<T, 16>(M, K, A, lda, B, ldb, C, ldc); return;
-    case 32: small_gemm_tn_fixed<T, 32>(M, K, A, lda, B, ldb, C, ldc); return;
-    case 64: small_gemm_tn_fixed<T, 64>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 16: small_gemm_strided_fixed<T, 16, kTransA>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 32: small_gemm_strided_fixed<T, 32, kTransA>(M, K, A, lda, B, ldb, C, ldc); return;
+    case 64: small_gemm_strided_fixed<T, 64, kTransA>(M, K, A, lda, B, ldb, C, ldc); return;
     default:
       for (int64_t i = 0; i < M; ++i) {
         T* c = C + i * ldc;
         for (int64_t n = 0; n < N; ++n) c[n] = T(0);
         for (int64_t k = 0; k < K; ++k) {
-          T av = A[k * lda + i];
+          T av = A[i * rs + k * cs];
           const T* b = B + k * ldb;
           for (int64_t n = 0; n < N; ++n) c[n] += av * b[n];
         }
       }
   }
+}
+
+// C = A B with A (M x K, row stride lda).
+template <class T>
+inline void small_gemm(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                       int64_t ldc) {
+  small_gemm_strided<T, false>(M, N, K, A, lda, B, ldb, C, ldc);
+}
+
+// C = A^T B with A stored (K x M, row stride lda): saves the explicit transpose of A.
+template <class T>
+inline void small_gemm_tn(int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C,
+                          int64_t ldc) {
+  small_gemm_strided<T, true>(M, N, K, A, lda, B, ldb, C, ldc);
 }
 
 // dst (cols x rows, row stride rows) = src^T, src (rows x cols, row stride lds).
