@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "nn/json_fields.h"
 
@@ -36,31 +37,12 @@ void LptConfig::Check() const {
   require(pool == "mean_all" || pool == "mean_valid", "lpt.pool", "must be \"mean_all\" or \"mean_valid\"");
 }
 
-nlohmann::json LptConfig::to_json() const {
-  return {{"input_dim", input_dim},     {"lines_per_patch", lines_per_patch}, {"patches", patches},
-          {"mlp_dims", mlp_dims},       {"hidden_dim", hidden_dim},           {"num_heads", num_heads},
-          {"ffn_dim", ffn_dim},         {"dropout", dropout},                 {"attn_dropout", attn_dropout},
-          {"line_layers", line_layers}, {"patch_layers", patch_layers},       {"pool", pool}};
-}
+nlohmann::json LptConfig::to_json() const { return fields_to_json(*this); }
 
 LptConfig LptConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, LptConfig()); }
 
 LptConfig LptConfig::from_json(const nlohmann::json& j, const std::string& where, LptConfig c) {
-  JsonFields f(j, where);
-  f.read("input_dim", c.input_dim);
-  f.read("lines_per_patch", c.lines_per_patch);
-  f.read("patches", c.patches);
-  f.read("mlp_dims", c.mlp_dims);
-  f.read("hidden_dim", c.hidden_dim);
-  f.read("num_heads", c.num_heads);
-  f.read("ffn_dim", c.ffn_dim);
-  f.read("dropout", c.dropout);
-  f.read("attn_dropout", c.attn_dropout);
-  f.read("line_layers", c.line_layers);
-  f.read("patch_layers", c.patch_layers);
-  f.read("pool", c.pool);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 // ----------------------------------------------------------------------------------------- HeadConfig
@@ -69,16 +51,12 @@ void HeadConfig::Check() const {
   require(is_probability(dropout), "head.dropout", "must be in [0, 1)");
 }
 
-nlohmann::json HeadConfig::to_json() const { return {{"dims", dims}, {"dropout", dropout}}; }
+nlohmann::json HeadConfig::to_json() const { return fields_to_json(*this); }
 
 HeadConfig HeadConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, HeadConfig()); }
 
 HeadConfig HeadConfig::from_json(const nlohmann::json& j, const std::string& where, HeadConfig c) {
-  JsonFields f(j, where);
-  f.read("dims", c.dims);
-  f.read("dropout", c.dropout);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 // ---------------------------------------------------------------------------------- JunctionNetConfig
@@ -87,17 +65,12 @@ void JunctionNetConfig::Check() const {
   head.Check();
 }
 
-nlohmann::json JunctionNetConfig::to_json() const { return {{"lpt", lpt.to_json()}, {"head", head.to_json()}}; }
+nlohmann::json JunctionNetConfig::to_json() const { return fields_to_json(*this); }
 
 JunctionNetConfig JunctionNetConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, JunctionNetConfig()); }
 
-JunctionNetConfig JunctionNetConfig::from_json(const nlohmann::json& j, const std::string& where,
-                                               JunctionNetConfig c) {
-  JsonFields f(j, where);
-  f.read_struct("lpt", c.lpt);
-  f.read_struct("head", c.head);
-  f.finish();
-  return c;
+JunctionNetConfig JunctionNetConfig::from_json(const nlohmann::json& j, const std::string& where, JunctionNetConfig c) {
+  return fields_from_json(j, where, std::move(c));
 }
 
 // -------------------------------------------------------------------------------------- EdgeNetConfig
@@ -115,19 +88,12 @@ void EdgeNetConfig::Check() const {
   require(num_classes >= 2, "edge_net.num_classes", "must be >= 2");
 }
 
-nlohmann::json EdgeNetConfig::to_json() const {
-  return {{"lpt", lpt.to_json()}, {"head", head.to_json()}, {"num_classes", num_classes}};
-}
+nlohmann::json EdgeNetConfig::to_json() const { return fields_to_json(*this); }
 
 EdgeNetConfig EdgeNetConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, EdgeNetConfig()); }
 
 EdgeNetConfig EdgeNetConfig::from_json(const nlohmann::json& j, const std::string& where, EdgeNetConfig c) {
-  JsonFields f(j, where);
-  f.read_struct("lpt", c.lpt);
-  f.read_struct("head", c.head);
-  f.read("num_classes", c.num_classes);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 // --------------------------------------------------------------------------------- JunctionLossConfig
@@ -136,17 +102,12 @@ void JunctionLossConfig::Check() const {
   require(reg_weight >= 0.0, "junction_loss.reg_weight", "must be >= 0");
 }
 
-nlohmann::json JunctionLossConfig::to_json() const { return {{"kind", kind}, {"reg_weight", reg_weight}}; }
+nlohmann::json JunctionLossConfig::to_json() const { return fields_to_json(*this); }
 
 JunctionLossConfig JunctionLossConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, JunctionLossConfig()); }
 
-JunctionLossConfig JunctionLossConfig::from_json(const nlohmann::json& j, const std::string& where,
-                                                 JunctionLossConfig c) {
-  JsonFields f(j, where);
-  f.read("kind", c.kind);
-  f.read("reg_weight", c.reg_weight);
-  f.finish();
-  return c;
+JunctionLossConfig JunctionLossConfig::from_json(const nlohmann::json& j, const std::string& where, JunctionLossConfig c) {
+  return fields_from_json(j, where, std::move(c));
 }
 
 // ------------------------------------------------------------------------------------- EdgeLossConfig
@@ -155,15 +116,12 @@ void EdgeLossConfig::Check() const {
   for (double w : class_weights) require(w >= 0.0, "edge_loss.class_weights", "entries must be >= 0");
 }
 
-nlohmann::json EdgeLossConfig::to_json() const { return {{"class_weights", class_weights}}; }
+nlohmann::json EdgeLossConfig::to_json() const { return fields_to_json(*this); }
 
 EdgeLossConfig EdgeLossConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, EdgeLossConfig()); }
 
 EdgeLossConfig EdgeLossConfig::from_json(const nlohmann::json& j, const std::string& where, EdgeLossConfig c) {
-  JsonFields f(j, where);
-  f.read("class_weights", c.class_weights);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 // ---------------------------------------------------------------------------------------- OptimConfig
@@ -183,30 +141,12 @@ void OptimConfig::Check() const {
   require(clip_grad_norm >= 0.0, "optim.clip_grad_norm", "must be >= 0 (0 disables clipping)");
 }
 
-nlohmann::json OptimConfig::to_json() const {
-  return {{"optimizer", optimizer}, {"lr", lr},
-          {"beta1", beta1},         {"beta2", beta2},
-          {"eps", eps},             {"momentum", momentum},
-          {"weight_decay", weight_decay}, {"milestones", milestones},
-          {"gamma", gamma},         {"clip_grad_norm", clip_grad_norm}};
-}
+nlohmann::json OptimConfig::to_json() const { return fields_to_json(*this); }
 
 OptimConfig OptimConfig::from_json(const nlohmann::json& j, const std::string& where) { return from_json(j, where, OptimConfig()); }
 
 OptimConfig OptimConfig::from_json(const nlohmann::json& j, const std::string& where, OptimConfig c) {
-  JsonFields f(j, where);
-  f.read("optimizer", c.optimizer);
-  f.read("lr", c.lr);
-  f.read("beta1", c.beta1);
-  f.read("beta2", c.beta2);
-  f.read("eps", c.eps);
-  f.read("momentum", c.momentum);
-  f.read("weight_decay", c.weight_decay);
-  f.read("milestones", c.milestones);
-  f.read("gamma", c.gamma);
-  f.read("clip_grad_norm", c.clip_grad_norm);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 }  // namespace lc2wf

@@ -26,6 +26,22 @@ struct LptConfig {
   int64_t patch_layers = 1;       // encoder over the G patches of a building
   std::string pool = "mean_all";  // "mean_all" (release: padded slots included) or "mean_valid"
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("input_dim", s.input_dim);
+    v("lines_per_patch", s.lines_per_patch);
+    v("patches", s.patches);
+    v("mlp_dims", s.mlp_dims);
+    v("hidden_dim", s.hidden_dim);
+    v("num_heads", s.num_heads);
+    v("ffn_dim", s.ffn_dim);
+    v("dropout", s.dropout);
+    v("attn_dropout", s.attn_dropout);
+    v("line_layers", s.line_layers);
+    v("patch_layers", s.patch_layers);
+    v("pool", s.pool);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static LptConfig from_json(const nlohmann::json& j, const std::string& where = "lpt");
@@ -36,6 +52,12 @@ struct HeadConfig {
   std::vector<int64_t> dims{128, 64, 32};  // hidden widths, each Linear + BatchNorm + ReLU + Dropout
   double dropout = 0.1;
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("dims", s.dims);
+    v("dropout", s.dropout);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static HeadConfig from_json(const nlohmann::json& j, const std::string& where = "head");
@@ -46,6 +68,12 @@ struct JunctionNetConfig {
   LptConfig lpt;  // F 7, N 32, G 256
   HeadConfig head;
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("lpt", s.lpt);
+    v("head", s.head);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static JunctionNetConfig from_json(const nlohmann::json& j, const std::string& where = "junction_net");
@@ -57,6 +85,13 @@ struct EdgeNetConfig {
   HeadConfig head;
   int64_t num_classes = 5;
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("lpt", s.lpt);
+    v("head", s.head);
+    v("num_classes", s.num_classes);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static EdgeNetConfig from_json(const nlohmann::json& j, const std::string& where = "edge_net");
@@ -70,6 +105,12 @@ struct JunctionLossConfig {
   std::string kind = "paper";
   double reg_weight = 10.0;  // lambda_v
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("kind", s.kind);
+    v("reg_weight", s.reg_weight);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static JunctionLossConfig from_json(const nlohmann::json& j, const std::string& where = "junction_loss");
@@ -79,6 +120,11 @@ struct JunctionLossConfig {
 struct EdgeLossConfig {
   std::vector<double> class_weights{1, 3, 1, 1, 1};  // identical, connected, dist 2, dist > 2, false positive
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("class_weights", s.class_weights);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static EdgeLossConfig from_json(const nlohmann::json& j, const std::string& where = "edge_loss");
@@ -95,6 +141,20 @@ struct OptimConfig {
   double gamma = 0.1;
   double clip_grad_norm = 0.0;  // 0 = no clipping
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("optimizer", s.optimizer);
+    v("lr", s.lr);
+    v("beta1", s.beta1);
+    v("beta2", s.beta2);
+    v("eps", s.eps);
+    v("momentum", s.momentum);
+    v("weight_decay", s.weight_decay);
+    v("milestones", s.milestones);
+    v("gamma", s.gamma);
+    v("clip_grad_norm", s.clip_grad_norm);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static OptimConfig from_json(const nlohmann::json& j, const std::string& where = "optim");

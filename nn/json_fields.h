@@ -35,6 +35,15 @@ class JsonFields {
     if (it != object_.end()) out = T::from_json(*it, field(key), out);
   }
 
+  // Field-visitor form (see fields_from_json): nested config structs go through their own from_json.
+  template <class T>
+  void operator()(const char* key, T& out) {
+    if constexpr (requires(const nlohmann::json& j, const std::string& w, T base) { T::from_json(j, w, base); })
+      read_struct(key, out);
+    else
+      read(key, out);
+  }
+
   // Throws on the first key no read() asked for.
   void finish() const {
     for (auto it = object_.begin(); it != object_.end(); ++it)
@@ -71,5 +80,38 @@ class JsonFields {
   std::string where_;
   std::set<std::string> seen_;
 };
+
+// Writes a struct's fields as a JSON object; nested config structs go through their own to_json.
+class JsonWriter {
+ public:
+  template <class T>
+  void operator()(const char* key, const T& value) {
+    if constexpr (requires { value.to_json(); })
+      json_[key] = value.to_json();
+    else
+      json_[key] = value;
+  }
+  nlohmann::json take() { return std::move(json_); }
+
+ private:
+  nlohmann::json json_ = nlohmann::json::object();
+};
+
+// Config structs list their keys once, in `template <class S, class V> static void fields(S& self, V& v)`
+// calling v("key", self.member) per field; these two turn that one list into to_json and from_json.
+template <class T>
+nlohmann::json fields_to_json(const T& config) {
+  JsonWriter writer;
+  T::fields(config, writer);
+  return writer.take();
+}
+
+template <class T>
+T fields_from_json(const nlohmann::json& j, const std::string& where, T config) {
+  JsonFields reader(j, where);
+  T::fields(config, reader);
+  reader.finish();
+  return config;
+}
 
 }  // namespace lc2wf

@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "nn/json_fields.h"
 
@@ -34,20 +35,10 @@ void DataConfig::Check() const {
   require(raw_per_metre > 0, "data.raw_per_metre", "must be > 0");
 }
 
-nlohmann::json DataConfig::to_json() const {
-  return {{"format", format}, {"dir", dir}, {"train_split", train_split}, {"val_split", val_split},
-          {"raw_per_metre", raw_per_metre}};
-}
+nlohmann::json DataConfig::to_json() const { return fields_to_json(*this); }
 
 DataConfig DataConfig::from_json(const nlohmann::json& j, const std::string& where, DataConfig c) {
-  JsonFields f(j, where);
-  f.read("format", c.format);
-  f.read("dir", c.dir);
-  f.read("train_split", c.train_split);
-  f.read("val_split", c.val_split);
-  f.read("raw_per_metre", c.raw_per_metre);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 // -------------------------------------------------------------------------------------- StageSchedule
@@ -57,22 +48,6 @@ void StageSchedule::Check(const std::string& w) const {
   require(max_steps_per_epoch >= 0, w + ".max_steps_per_epoch", "must be >= 0 (0 = whole split)");
   require(val_every >= 1, w + ".val_every", "must be >= 1");
   require(checkpoint_every_steps >= 0, w + ".checkpoint_every_steps", "must be >= 0 (0 = per epoch)");
-}
-
-void StageSchedule::read(JsonFields& f) {
-  f.read("epochs", epochs);
-  f.read("batch_size", batch_size);
-  f.read("max_steps_per_epoch", max_steps_per_epoch);
-  f.read("val_every", val_every);
-  f.read("checkpoint_every_steps", checkpoint_every_steps);
-  f.read("augment", augment);
-  f.read("drop_last", drop_last);
-}
-
-nlohmann::json StageSchedule::to_json() const {
-  return {{"epochs", epochs},     {"batch_size", batch_size}, {"max_steps_per_epoch", max_steps_per_epoch},
-          {"val_every", val_every}, {"checkpoint_every_steps", checkpoint_every_steps},
-          {"augment", augment},   {"drop_last", drop_last}};
 }
 
 // -------------------------------------------------------------------------------- JunctionStageConfig
@@ -86,27 +61,10 @@ void JunctionStageConfig::Check() const {
           "must be in [0, net.lpt.patches]");
 }
 
-nlohmann::json JunctionStageConfig::to_json() const {
-  nlohmann::json j = schedule.to_json();
-  j["net"] = net.to_json();
-  j["loss"] = loss.to_json();
-  j["optim"] = optim.to_json();
-  j["near_gt_samples"] = near_gt_samples;
-  j["endpoint_label_max_distance_m"] = endpoint_label_max_distance_m;
-  return j;
-}
+nlohmann::json JunctionStageConfig::to_json() const { return fields_to_json(*this); }
 
-JunctionStageConfig JunctionStageConfig::from_json(const nlohmann::json& j, const std::string& where,
-                                                   JunctionStageConfig c) {
-  JsonFields f(j, where);
-  f.read_struct("net", c.net);
-  f.read_struct("loss", c.loss);
-  f.read_struct("optim", c.optim);
-  c.schedule.read(f);
-  f.read("near_gt_samples", c.near_gt_samples);
-  f.read("endpoint_label_max_distance_m", c.endpoint_label_max_distance_m);
-  f.finish();
-  return c;
+JunctionStageConfig JunctionStageConfig::from_json(const nlohmann::json& j, const std::string& where, JunctionStageConfig c) {
+  return fields_from_json(j, where, std::move(c));
 }
 
 // ------------------------------------------------------------------------------------ EdgeStageConfig
@@ -137,26 +95,10 @@ void EdgeStageConfig::Check() const {
   require(top_k >= 2, "edge.top_k", "must be >= 2");
 }
 
-nlohmann::json EdgeStageConfig::to_json() const {
-  nlohmann::json j = schedule.to_json();
-  j["net"] = net.to_json();
-  j["loss"] = loss.to_json();
-  j["optim"] = optim.to_json();
-  j["max_static_pairs"] = max_static_pairs;
-  j["top_k"] = top_k;
-  return j;
-}
+nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }
 
 EdgeStageConfig EdgeStageConfig::from_json(const nlohmann::json& j, const std::string& where, EdgeStageConfig c) {
-  JsonFields f(j, where);
-  f.read_struct("net", c.net);
-  f.read_struct("loss", c.loss);
-  f.read_struct("optim", c.optim);
-  c.schedule.read(f);
-  f.read("max_static_pairs", c.max_static_pairs);
-  f.read("top_k", c.top_k);
-  f.finish();
-  return c;
+  return fields_from_json(j, where, std::move(c));
 }
 
 // ---------------------------------------------------------------------------------------- TrainConfig
@@ -169,23 +111,10 @@ void TrainConfig::Check() const {
   edge.Check();
 }
 
-nlohmann::json TrainConfig::to_json() const {
-  return {{"seed", seed},       {"threads", threads},           {"loader_workers", loader_workers},
-          {"out", out},         {"data", data.to_json()},       {"junction", junction.to_json()},
-          {"edge", edge.to_json()}};
-}
+nlohmann::json TrainConfig::to_json() const { return fields_to_json(*this); }
 
 TrainConfig TrainConfig::from_json(const nlohmann::json& j) {
-  TrainConfig c;
-  JsonFields f(j, "config");
-  f.read("seed", c.seed);
-  f.read("threads", c.threads);
-  f.read("loader_workers", c.loader_workers);
-  f.read("out", c.out);
-  f.read_struct("data", c.data);
-  f.read_struct("junction", c.junction);
-  f.read_struct("edge", c.edge);
-  f.finish();
+  TrainConfig c = fields_from_json(j, "config", TrainConfig());
   c.Check();
   return c;
 }

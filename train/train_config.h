@@ -13,8 +13,6 @@
 
 namespace lc2wf {
 
-class JsonFields;
-
 struct DataConfig {
   std::string format = "lc2wf";  // "lc2wf" (lc2wf-dataset line clouds) or "release" (LineCloud JSON)
   std::string dir;               // one file per building, file stem = building name
@@ -22,6 +20,15 @@ struct DataConfig {
   std::string val_split;         // validation names (never the test split)
   double raw_per_metre = 20.0;   // release JSON only: raw units per metre
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("format", s.format);
+    v("dir", s.dir);
+    v("train_split", s.train_split);
+    v("val_split", s.val_split);
+    v("raw_per_metre", s.raw_per_metre);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static DataConfig from_json(const nlohmann::json& j, const std::string& where, DataConfig base);
@@ -38,8 +45,17 @@ struct StageSchedule {
   bool drop_last = true;
 
   void Check(const std::string& where) const;
-  void read(JsonFields& f);  // the schedule keys live directly in the stage object
-  nlohmann::json to_json() const;
+  // The schedule keys live directly in the stage object, so the stages list them through this.
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("epochs", s.epochs);
+    v("batch_size", s.batch_size);
+    v("max_steps_per_epoch", s.max_steps_per_epoch);
+    v("val_every", s.val_every);
+    v("checkpoint_every_steps", s.checkpoint_every_steps);
+    v("augment", s.augment);
+    v("drop_last", s.drop_last);
+  }
 };
 
 struct JunctionStageConfig {
@@ -50,6 +66,16 @@ struct JunctionStageConfig {
   int64_t near_gt_samples = 0;                // the paper's near-GT training samples (the release has none)
   double endpoint_label_max_distance_m = -1;  // <= 0: the plain (f, i1, i2) endpoint labels
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("net", s.net);
+    v("loss", s.loss);
+    v("optim", s.optim);
+    StageSchedule::fields(s.schedule, v);
+    v("near_gt_samples", s.near_gt_samples);
+    v("endpoint_label_max_distance_m", s.endpoint_label_max_distance_m);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static JunctionStageConfig from_json(const nlohmann::json& j, const std::string& where, JunctionStageConfig base);
@@ -63,6 +89,16 @@ struct EdgeStageConfig {
   int64_t max_static_pairs = 256;
   int64_t top_k = 100;
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("net", s.net);
+    v("loss", s.loss);
+    v("optim", s.optim);
+    StageSchedule::fields(s.schedule, v);
+    v("max_static_pairs", s.max_static_pairs);
+    v("top_k", s.top_k);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static EdgeStageConfig from_json(const nlohmann::json& j, const std::string& where, EdgeStageConfig base);
@@ -79,6 +115,17 @@ struct TrainConfig {
   JunctionStageConfig junction;
   EdgeStageConfig edge;
 
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("seed", s.seed);
+    v("threads", s.threads);
+    v("loader_workers", s.loader_workers);
+    v("out", s.out);
+    v("data", s.data);
+    v("junction", s.junction);
+    v("edge", s.edge);
+  }
   void Check() const;
   nlohmann::json to_json() const;
   static TrainConfig from_json(const nlohmann::json& j);
