@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dataset/atomic_file.h"
+#include "dataset/camera_json.h"
 #include "dataset/errors.h"
 
 namespace lc2wf {
@@ -93,31 +94,6 @@ class BlockReader {
   const std::string& src_;
 };
 
-Json camera_json(const Camera& c) {
-  Json j;
-  Eigen::Matrix<double, 3, 3, Eigen::RowMajor> K = c.K, R = c.R;
-  j["K"] = std::vector<double>(K.data(), K.data() + 9);
-  j["R"] = std::vector<double>(R.data(), R.data() + 9);
-  j["t"] = {c.t.x(), c.t.y(), c.t.z()};
-  j["width"] = c.width;
-  j["height"] = c.height;
-  return j;
-}
-
-Camera camera_from_json(const Json& j) {
-  Camera c;
-  const auto K = j.at("K").get<std::vector<double>>();
-  const auto R = j.at("R").get<std::vector<double>>();
-  const auto t = j.at("t").get<std::vector<double>>();
-  if (K.size() != 9 || R.size() != 9 || t.size() != 3) throw std::invalid_argument("camera K/R need 9 values, t 3");
-  c.K = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(K.data());
-  c.R = Eigen::Map<const Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(R.data());
-  c.t = Vec3(t[0], t[1], t[2]);
-  c.width = j.at("width").get<int>();
-  c.height = j.at("height").get<int>();
-  return c;
-}
-
 }  // namespace
 
 std::string line_cloud_to_bytes(const LineCloud& c, const LineCloudWriteOptions& options) {
@@ -130,7 +106,7 @@ std::string line_cloud_to_bytes(const LineCloud& c, const LineCloudWriteOptions&
   h["units"] = {{"raw_per_metre", c.units.raw_per_metre},
                 {"origin_raw", {c.units.origin_raw.x(), c.units.origin_raw.y(), c.units.origin_raw.z()}}};
   h["cameras"] = Json::array();
-  for (const auto& cam : c.cameras) h["cameras"].push_back(camera_json(cam));
+  for (const auto& cam : c.cameras) h["cameras"].push_back(camera_to_json(cam));
   Json junctions = Json::array();
   for (const auto& j : c.wireframe.junctions) junctions.push_back({j.x(), j.y(), j.z()});
   h["wireframe"] = {{"junctions", junctions}, {"edges", c.wireframe.edges}};
@@ -224,7 +200,7 @@ LineCloud line_cloud_from_bytes(const std::string& bytes, const std::string& src
     if (o.size() != 3) throw DataError(src, "units.origin_raw needs 3 values");
     c.units.origin_raw = Vec3(o[0], o[1], o[2]);
     if (!(c.units.raw_per_metre > 0)) throw DataError(src, "units.raw_per_metre must be > 0");
-    for (const auto& cj : h.at("cameras")) c.cameras.push_back(camera_from_json(cj));
+    for (const auto& cj : h.at("cameras")) c.cameras.push_back(camera_from_json(cj, src));
     for (const auto& j : h.at("wireframe").at("junctions")) {
       const auto v = j.get<std::vector<double>>();
       if (v.size() != 3) throw DataError(src, "wireframe junction needs 3 values");

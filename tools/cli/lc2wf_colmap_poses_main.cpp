@@ -9,6 +9,7 @@
 #include <string>
 
 #include "dataset/atomic_file.h"
+#include "dataset/camera_json.h"
 #include "tools/colmap/colmap_poses.h"
 
 namespace fs = std::filesystem;
@@ -35,29 +36,6 @@ exit codes: 0 ok, 2 bad arguments, 3 COLMAP or I/O failure
 [[noreturn]] void usage_error(const std::string& msg) {
   std::fprintf(stderr, "lc2wf-colmap-poses: %s\n(run with --help for usage)\n", msg.c_str());
   std::exit(2);
-}
-
-Json camera_json(const lc2wf::Camera& c) {
-  Json j;
-  j["K"] = {c.K(0, 0), c.K(0, 1), c.K(0, 2), c.K(1, 0), c.K(1, 1), c.K(1, 2), c.K(2, 0), c.K(2, 1), c.K(2, 2)};
-  j["R"] = {c.R(0, 0), c.R(0, 1), c.R(0, 2), c.R(1, 0), c.R(1, 1), c.R(1, 2), c.R(2, 0), c.R(2, 1), c.R(2, 2)};
-  j["t"] = {c.t.x(), c.t.y(), c.t.z()};
-  j["width"] = c.width;
-  j["height"] = c.height;
-  return j;
-}
-
-lc2wf::Camera camera_from_json(const Json& j) {
-  lc2wf::Camera c;
-  const auto K = j.at("K").get<std::vector<double>>(), R = j.at("R").get<std::vector<double>>();
-  const auto t = j.at("t").get<std::vector<double>>();
-  if (K.size() != 9 || R.size() != 9 || t.size() != 3) throw std::runtime_error("camera needs K[9], R[9], t[3]");
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) c.K(r, k) = K[3 * r + k], c.R(r, k) = R[3 * r + k];
-  c.t = lc2wf::Vec3(t[0], t[1], t[2]);
-  c.width = j.at("width").get<int>();
-  c.height = j.at("height").get<int>();
-  return c;
 }
 
 }  // namespace
@@ -100,7 +78,9 @@ int main(int argc, char** argv) {
     if (images.size() < 3) throw std::runtime_error(views.string() + ": fewer than 3 images");
     std::vector<lc2wf::Camera> reference;
     if (fs::exists(views / "cameras.json")) {
-      for (const Json& j : Json::parse(lc2wf::read_file(views / "cameras.json"))) reference.push_back(camera_from_json(j));
+      const fs::path cameras = views / "cameras.json";
+      for (const Json& j : Json::parse(lc2wf::read_file(cameras)))
+        reference.push_back(lc2wf::camera_from_json(j, cameras.string()));
       if (reference.size() != images.size())
         throw std::runtime_error(views.string() + ": cameras.json has " + std::to_string(reference.size()) + " cameras for " +
                                  std::to_string(images.size()) + " images");
@@ -129,7 +109,7 @@ int main(int argc, char** argv) {
       report["rotation_error_deg"] = {{"median", pc.median_rotation_deg}, {"max", pc.max_rotation_deg}};
     }
     Json out = Json::array();
-    for (const auto& p : poses) out.push_back(p ? camera_json(*p) : Json(nullptr));
+    for (const auto& p : poses) out.push_back(p ? lc2wf::camera_to_json(*p) : Json(nullptr));
     lc2wf::write_file_atomic(views / "cameras_colmap.json", out.dump());
     std::cout << report.dump(2) << std::endl;
     return 0;

@@ -13,6 +13,7 @@
 
 #include "core/util/progress.h"
 #include "dataset/atomic_file.h"
+#include "dataset/camera_json.h"
 #include "dataset/errors.h"
 #include "dataset/labelling.h"
 #include "dataset/line_cloud_io.h"
@@ -43,16 +44,6 @@ bool is_done(const fs::path& out, const std::string& name) {
   }
 }
 
-Json camera_json(const Camera& c) {
-  Json j;
-  j["K"] = {c.K(0, 0), c.K(0, 1), c.K(0, 2), c.K(1, 0), c.K(1, 1), c.K(1, 2), c.K(2, 0), c.K(2, 1), c.K(2, 2)};
-  j["R"] = {c.R(0, 0), c.R(0, 1), c.R(0, 2), c.R(1, 0), c.R(1, 1), c.R(1, 2), c.R(2, 0), c.R(2, 1), c.R(2, 2)};
-  j["t"] = {c.t.x(), c.t.y(), c.t.z()};
-  j["width"] = c.width;
-  j["height"] = c.height;
-  return j;
-}
-
 // Renders, cameras and per-view projected GT (junctions; edges as [i, j, visible, visible_fraction]),
 // the same files the Blender script writes.
 void write_views(const fs::path& dir, const Building& b, const std::vector<RenderedView>& views) {
@@ -66,7 +57,7 @@ void write_views(const fs::path& dir, const Building& b, const std::vector<Rende
     cv::imencode(".png", views[v].image, png);
     write_file_atomic(dir / name, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
     const Camera& cam = views[v].camera;
-    cams.push_back(camera_json(cam));
+    cams.push_back(camera_to_json(cam));
     Json junc = Json::array(), edges = Json::array();
     for (const Vec3& j : b.wireframe.junctions) {
       const Vec2 p = cam.project(j);

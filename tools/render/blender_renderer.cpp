@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "dataset/atomic_file.h"
+#include "dataset/camera_json.h"
 #include "dataset/errors.h"
 
 namespace lc2wf {
@@ -17,38 +18,6 @@ namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
 namespace {
-
-Json camera_json(const Camera& c) {
-  Json j;
-  std::vector<double> K, R;
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) {
-      K.push_back(c.K(r, k));
-      R.push_back(c.R(r, k));
-    }
-  j["K"] = K;
-  j["R"] = R;
-  j["t"] = {c.t.x(), c.t.y(), c.t.z()};
-  j["width"] = c.width;
-  j["height"] = c.height;
-  return j;
-}
-
-Camera camera_from_json(const Json& j, const std::string& source) {
-  Camera c;
-  const auto K = j.at("K").get<std::vector<double>>(), R = j.at("R").get<std::vector<double>>();
-  const auto t = j.at("t").get<std::vector<double>>();
-  if (K.size() != 9 || R.size() != 9 || t.size() != 3) throw DataError(source, "camera needs K[9], R[9], t[3]");
-  for (int r = 0; r < 3; ++r)
-    for (int k = 0; k < 3; ++k) {
-      c.K(r, k) = K[3 * r + k];
-      c.R(r, k) = R[3 * r + k];
-    }
-  c.t = Vec3(t[0], t[1], t[2]);
-  c.width = j.at("width").get<int>();
-  c.height = j.at("height").get<int>();
-  return c;
-}
 
 // Last non-empty line of a text file (the exception line of a Python traceback).
 std::string last_line(const fs::path& p) {
@@ -131,7 +100,7 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
     for (size_t f = 0; f < b.building->mesh.faces.size(); ++f)
       labels.push_back(b.building->mesh.labels.empty() ? 3 : static_cast<int>(b.building->mesh.labels[f]));
     for (const auto& e : b.building->wireframe.edges) edges.push_back({e[0], e[1]});
-    for (const Camera& c : b.cameras) cams.push_back(camera_json(c));
+    for (const Camera& c : b.cameras) cams.push_back(camera_to_json(c));
     j["vertices"] = verts;
     j["faces"] = faces;
     j["labels"] = labels;
