@@ -15,6 +15,7 @@ function(lc2wf_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
+  target_include_directories(${name} PRIVATE "${PROJECT_SOURCE_DIR}")  # tests/common/ helpers
   target_compile_definitions(${name} PRIVATE
     LC2WF_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     LC2WF_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data")

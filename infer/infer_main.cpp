@@ -1,11 +1,11 @@
 // lc2wf-infer: line clouds -> predicted wireframes with a model trained by lc2wf-train.
 #include <cstdio>
-#include <exception>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/util/cli.h"
 #include "infer/batch_inference.h"
 
 namespace {
@@ -37,69 +37,74 @@ wireframe and a note, never a failure.
 Exit codes: 0 success, 1 some input could not be read / weights missing, 2 bad command line.
 )";
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   fs::path weights, out;
   std::string preview;
   std::vector<fs::path> clouds;
   BatchInferenceOptions options;
   int threads = 0;
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string f = argv[i];
-      if (f == "-h" || f == "--help") {
-        std::fputs(kUsage, stdout);
-        return 0;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw UsageError(f + " needs a value");
+      return argv[++i];
+    };
+    if (f == "--weights") a.weights = value();
+    else if (f == "-o" || f == "--out") a.out = value();
+    else if (f == "--preview") a.preview = value();
+    else if (f == "--release-quirks") a.options.post = PostProcessOptions::release_quirks();
+    else if (f == "--quiet") a.options.quiet = true;
+    else if (f == "--format") {
+      try {
+        a.options.format = parse_cloud_format(value(), "--format");
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
       }
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw std::invalid_argument(f + " needs a value");
-        return argv[++i];
-      };
-      if (f == "--weights") weights = value();
-      else if (f == "-o" || f == "--out") out = value();
-      else if (f == "--preview") preview = value();
-      else if (f == "--release-quirks") options.post = PostProcessOptions::release_quirks();
-      else if (f == "--quiet") options.quiet = true;
-      else if (f == "--format") options.format = parse_cloud_format(value(), "--format");
-      else if (f == "--threads") threads = std::stoi(value());
-      else if (f == "--units") {
-        const std::string u = value();
-        if (u == "raw") options.raw_units = true;
-        else if (u != "metres" && u != "meters") throw std::invalid_argument("--units must be 'metres' or 'raw', got '" + u + "'");
-      } else if (!f.empty() && f[0] == '-') {
-        throw std::invalid_argument("unknown option '" + f + "'");
-      } else {
-        clouds.push_back(f);
-      }
+    } else if (f == "--threads") {
+      const long long n = parse_count_flag(f, value());
+      if (n > 4096) throw UsageError("--threads is too large");
+      a.threads = static_cast<int>(n);
+    } else if (f == "--units") {
+      const std::string u = value();
+      if (u == "raw") a.options.raw_units = true;
+      else if (u != "metres" && u != "meters") throw UsageError("--units must be 'metres' or 'raw', got '" + u + "'");
+    } else if (!f.empty() && f[0] == '-') {
+      throw UsageError("unknown option '" + f + "'");
+    } else {
+      a.clouds.push_back(f);
     }
-    if (weights.empty()) throw std::invalid_argument("--weights DIR is required");
-    if (out.empty()) throw std::invalid_argument("-o OUT is required");
-    if (clouds.empty()) throw std::invalid_argument("no line cloud given");
-    if (threads < 0) throw std::invalid_argument("--threads must be >= 0");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lc2wf-infer: %s\nRun 'lc2wf-infer --help' for usage.\n", e.what());
-    return 2;
   }
-  if (!preview.empty()) {
-    const fs::path p = preview;
-    if (clouds.size() == 1) options.preview_path = [p](const std::string&) { return p; };
-    else options.preview_path = [p](const std::string& name) { return p / (name + ".png"); };
+  if (a.weights.empty()) throw UsageError("--weights DIR is required");
+  if (a.out.empty()) throw UsageError("-o OUT is required");
+  if (a.clouds.empty()) throw UsageError("no line cloud given");
+  if (!a.preview.empty()) {
+    const fs::path p = a.preview;
+    if (a.clouds.size() == 1) a.options.preview_path = [p](const std::string&) { return p; };
+    else a.options.preview_path = [p](const std::string& name) { return p / (name + ".png"); };
   }
-  try {
-    set_num_threads(threads);
-    const WireframePredictor predictor(weights);
-    const BatchInferenceSummary s = infer_clouds(predictor, clouds, out, options);
-    if (!options.quiet && s.buildings > 0)
-      std::fprintf(stderr,
-                   "lc2wf-infer: %d building(s) -> %s (%d empty); %.3f s per building on average (junction %.3f, "
-                   "edge %.3f, post-processing %.3f), max %.3f s\n",
-                   s.buildings, out.string().c_str(), s.empty, s.total_seconds / s.buildings,
-                   s.junction_seconds / s.buildings, s.edge_seconds / s.buildings, s.post_seconds / s.buildings,
-                   s.max_seconds);
-    return s.failed > 0 ? 1 : 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lc2wf-infer: error: %s\n", e.what());
-    return 1;
-  }
+  return a;
+}
+
+int run(const Args& a) {
+  set_num_threads(a.threads);
+  const WireframePredictor predictor(a.weights);
+  const BatchInferenceSummary s = infer_clouds(predictor, a.clouds, a.out, a.options);
+  if (!a.options.quiet && s.buildings > 0)
+    std::fprintf(stderr,
+                 "lc2wf-infer: %d building(s) -> %s (%d empty); %.3f s per building on average (junction %.3f, "
+                 "edge %.3f, post-processing %.3f), max %.3f s\n",
+                 s.buildings, a.out.string().c_str(), s.empty, s.total_seconds / s.buildings,
+                 s.junction_seconds / s.buildings, s.edge_seconds / s.buildings, s.post_seconds / s.buildings,
+                 s.max_seconds);
+  return s.failed > 0 ? kExitFailure : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return lc2wf::cli_main("lc2wf-infer", kUsage, argc, argv, parse_args, run);
 }

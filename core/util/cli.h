@@ -15,6 +15,20 @@ struct UsageError : std::runtime_error {
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
+// Whole-string non-negative integer for FLAG ("12x", "-1" and "" are usage errors, not silently 12/0).
+inline long long parse_count_flag(const std::string& flag, const std::string& value) {
+  size_t used = 0;
+  long long x = -1;
+  try {
+    x = std::stoll(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (value.empty() || used != value.size() || x < 0)
+    throw UsageError(flag + " needs a non-negative integer, got '" + value + "'");
+  return x;
+}
+
 // parse(argc, argv) -> Args (throws UsageError on a bad command line); run(const Args&) -> exit code.
 template <class Parse, class Run>
 int cli_main(const char* program, const char* usage, int argc, char** argv, Parse parse, Run run) {

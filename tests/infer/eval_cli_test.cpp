@@ -1,6 +1,5 @@
 // Runs the lc2wf-eval binary on small generated cases.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -10,26 +9,17 @@
 #include "dataset/line_cloud_io.h"
 #include "infer/prediction_io.h"
 #include "test_files.h"
+#include "tests/common/run_cli.h"
 
 namespace lc2wf {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliResult {
-  int code = -1;
-  std::string out, err;
-};
+using testing::CliResult;
 
-CliResult run_eval(const fs::path& scratch, const std::string& args) {
-  const fs::path out = scratch / "stdout.txt", err = scratch / "stderr.txt";
-  const std::string cmd = std::string(LC2WF_EVAL_BIN) + " " + args + " >" + out.string() + " 2>" + err.string();
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = testing::read_text(out);
-  r.err = testing::read_text(err);
-  return r;
+CliResult run_eval(const fs::path&, const std::string& args) {
+  return testing::run_cli(std::string(LC2WF_EVAL_BIN) + " " + args);
 }
 
 // The box of testing::box_polyshape(x0) as a raw-unit prediction with all 12 edges.

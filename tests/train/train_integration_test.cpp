@@ -21,6 +21,7 @@
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "infer/prediction_io.h"
+#include "tests/common/run_cli.h"
 
 namespace lc2wf {
 namespace {
@@ -196,14 +197,10 @@ TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {
   nlohmann::json bad = config_;
   bad["junction"]["optim"]["lr"] = 0;
   std::ofstream(dir_ / "bad.json") << bad.dump();
-  const std::string cmd = std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "bad.json") + " --out " + quote(dir_ / "bad") + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string output;
-  char buf[256];
-  while (fgets(buf, sizeof buf, p)) output += buf;
-  const int status = pclose(p);
-  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const testing::CliResult r =
+      testing::run_cli(std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "bad.json") + " --out " + quote(dir_ / "bad"));
+  const std::string output = r.out + r.err;
+  EXPECT_EQ(r.code, 1);
   EXPECT_NE(output.find("junction.optim.lr"), std::string::npos) << output;
 }
 

@@ -1,0 +1,94 @@
+// Command-line contracts of lc2wf-synthetic-data and lc2wf-infer: --help, usage errors (exit 2, naming the
+// flag), data errors (exit 1, naming the file), and a deterministic synthetic dataset.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "tests/common/run_cli.h"
+
+namespace lc2wf {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::run_cli;
+
+const std::string kSynthetic = LC2WF_SYNTHETIC_DATA_BIN;
+const std::string kInfer = LC2WF_INFER_BIN;
+
+std::string file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class CliContract : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lc2wf_train_cli_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(CliContract, SyntheticDataUsage) {
+  auto r = run_cli(kSynthetic + " --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("Usage: lc2wf-synthetic-data"), std::string::npos);
+  r = run_cli(kSynthetic);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--out DIR is required"), std::string::npos) << r.err;
+  r = run_cli(kSynthetic + " --out x --count 5x");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--count needs a non-negative integer, got '5x'"), std::string::npos) << r.err;
+  r = run_cli(kSynthetic + " --out x --count 4 --val 2 --test 2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--count must exceed"), std::string::npos) << r.err;
+  r = run_cli(kSynthetic + " --out x --colour red");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("unknown option '--colour'"), std::string::npos) << r.err;
+}
+
+TEST_F(CliContract, SyntheticDataIsDeterministicAndSplitsAsAsked) {
+  for (const char* run : {"a", "b"}) {
+    const auto r = run_cli(kSynthetic + " --quiet --count 5 --val 1 --test 1 --seed 7 --out " + (dir_ / run).string());
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  EXPECT_EQ(file_bytes(dir_ / "a/train.txt"), "synth_0000\nsynth_0001\nsynth_0002\n");
+  EXPECT_EQ(file_bytes(dir_ / "a/val.txt"), "synth_0003\n");
+  EXPECT_EQ(file_bytes(dir_ / "a/test.txt"), "synth_0004\n");
+  for (int i = 0; i < 5; ++i) {
+    const std::string name = "clouds/synth_000" + std::to_string(i) + ".lcloud";
+    const std::string a = file_bytes(dir_ / "a" / name);
+    EXPECT_FALSE(a.empty()) << name;
+    EXPECT_EQ(a, file_bytes(dir_ / "b" / name)) << name;
+  }
+}
+
+TEST_F(CliContract, InferUsageAndDataErrors) {
+  auto r = run_cli(kInfer + " --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("Usage: lc2wf-infer"), std::string::npos);
+  r = run_cli(kInfer + " --weights w -o out");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("no line cloud given"), std::string::npos) << r.err;
+  r = run_cli(kInfer + " --weights w -o out --threads two c.lcloud");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--threads needs a non-negative integer"), std::string::npos) << r.err;
+  r = run_cli(kInfer + " --weights w -o out --format ply c.lcloud");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--format"), std::string::npos) << r.err;
+  const fs::path weights = dir_ / "no_weights";
+  fs::create_directories(weights);
+  r = run_cli(kInfer + " --quiet --weights " + weights.string() + " -o " + (dir_ / "out").string() + " c.lcloud");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find((weights / "junction.safetensors").string()), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace lc2wf
