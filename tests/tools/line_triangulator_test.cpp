@@ -86,6 +86,16 @@ TEST(LineTriangulator, PerfectSegmentsLieOnTheirEdgesAndRecoverEveryWellSeenEdge
   TriangulationStats stats;
   const auto lines = triangulate_lines(views, TriangulatorOptions{}, std::nullopt, &stats);
   ASSERT_GT(lines.size(), 100u);
+  // Drop-out counts shrink stage by stage and end at the lines returned.
+  long long total = 0;
+  for (const auto& v : views) total += static_cast<long long>(v.segments.size());
+  EXPECT_EQ(stats.segments, total);
+  EXPECT_GE(stats.segments, stats.segments_with_hypothesis);
+  EXPECT_GE(stats.segments_with_hypothesis, stats.segments_with_two_views);
+  EXPECT_GE(stats.segments_with_two_views, stats.segments_scored);
+  EXPECT_GE(stats.segments_scored, stats.segments_kept);
+  EXPECT_GT(stats.segments_with_two_views, stats.segments_kept / 2);
+  EXPECT_EQ(stats.segments_kept, static_cast<long long>(lines.size()));
   const double diag = bbox_diagonal(s.building);
   const Wireframe& wf = s.building.wireframe;
   int on_edge = 0;

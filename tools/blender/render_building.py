@@ -3,7 +3,7 @@
 Run:  blender -b --factory-startup --python-exit-code 1 --python render_building.py -- JOB.json
 
 JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z up):
-  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 8, "shadows": true,
+  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 8, "shadows": true, "gt_views": true,
    "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
    "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
                   "labels": [1|2|3 ...], "edges": [[i,j]...],
@@ -11,7 +11,8 @@ JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z 
 
 Per building, in out_dir: view_000.png ..., cameras.json (K, R, t read back from Blender's cameras in the
 OpenCV convention: x_cam = R X + t, pixel (0,0) at the centre of the top-left pixel), views.json (per view
-the projected GT junctions and every GT edge as [i, j, visible, visible_fraction]) and, last, done.json.
+the projected GT junctions and every GT edge as [i, j, visible, visible_fraction]; skipped with
+"gt_views": false) and, last, done.json (with the seconds spent on scene set-up, renders and GT views).
 A building that fails gets error.txt instead and the batch goes on; the exit code is non-zero only when
 the job itself is unusable.
 """
@@ -324,17 +325,24 @@ def project(K, R, t, X):
 
 def edge_visibility(bvh, K, R, t, w, h, a, b, samples=16, tol=0.02):
     """Fraction of samples on edge (a, b) in front of the camera, inside the image and not hidden."""
-    C = -(Matrix(R).transposed() @ Vector(t))
+    R = np.asarray(R, dtype=np.float64)
+    t = np.asarray(t, dtype=np.float64)
+    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    # Projection of all samples at once; only the in-frame ones need a (Python-level) ray cast.
+    X = a + np.outer((np.arange(samples) + 0.5) / samples, b - a)
+    xc = X @ R.T + t
+    z = xc[:, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = K[0][0] * xc[:, 0] / z + K[0][2]
+        v = K[1][1] * xc[:, 1] / z + K[1][2]
+    inside = (z > 0) & (u >= -0.5) & (u <= w - 0.5) & (v >= -0.5) & (v <= h - 0.5)
+    C = -(R.T @ t)
+    Cv = Vector(C)
     seen = 0
-    for k in range(samples):
-        X = a + (b - a) * ((k + 0.5) / samples)
-        px, z = project(K, R, t, X)
-        if z <= 0 or not (-0.5 <= px[0] <= w - 0.5 and -0.5 <= px[1] <= h - 0.5):
-            continue
-        d = X - C
-        dist = d.length
-        hit = bvh.ray_cast(C, d.normalized(), dist - tol)
-        if hit[0] is None:
+    for X_k in X[inside]:
+        d = X_k - C
+        dist = float(np.linalg.norm(d))
+        if bvh.ray_cast(Cv, Vector(d / dist), dist - tol)[0] is None:
             seen += 1
     return seen / samples
 
@@ -352,7 +360,10 @@ def render_building(b, job):
     cam_obj = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(cam_obj)
     scene.camera = cam_obj
-    bvh = BVHTree.FromPolygons([tuple(v) for v in verts], [list(f) for f in b["faces"]])
+    with_gt = bool(job.get("gt_views", True))  # views.json is only wanted when the renders are kept
+    bvh = BVHTree.FromPolygons([tuple(v) for v in verts], [list(f) for f in b["faces"]]) if with_gt else None
+    t_scene = time.time()
+    t_render = t_gt = 0.0
     exported, views = [], []
     for i, c in enumerate(cams):
         if int(c["width"]) != width or int(c["height"]) != height:
@@ -361,22 +372,30 @@ def render_building(b, job):
         R = [c["R"][0:3], c["R"][3:6], c["R"][6:9]]
         place_camera(scene, cam_obj, K, R, c["t"], width, height)
         scene.render.filepath = os.path.join(out, f"view_{i:03d}.png")
+        t1 = time.time()
         bpy.ops.render.render(write_still=True)
+        t_render += time.time() - t1
         K2, R2, t2 = camera_to_opencv(scene, cam_obj)
         exported.append({"K": [x for row in K2 for x in row], "R": [x for row in R2 for x in row], "t": t2,
                          "width": width, "height": height})
+        if not with_gt:
+            continue
+        t1 = time.time()
         junc2d = [project(K2, R2, t2, v)[0] for v in verts]
         edges = []
         for a, bb in b.get("edges", []):
             frac = edge_visibility(bvh, K2, R2, t2, width, height, verts[a], verts[bb])
             edges.append([a, bb, 1 if frac >= 0.5 else 0, round(frac, 4)])
         views.append({"junc2D": junc2d, "edges": edges})
+        t_gt += time.time() - t1
     with open(os.path.join(out, "cameras.json"), "w") as f:
         json.dump(exported, f)
-    with open(os.path.join(out, "views.json"), "w") as f:
-        json.dump(views, f)
+    if with_gt:
+        with open(os.path.join(out, "views.json"), "w") as f:
+            json.dump(views, f)
     with open(os.path.join(out, "done.json"), "w") as f:
-        json.dump({"views": len(cams), "seconds": time.time() - t0}, f)
+        json.dump({"views": len(cams), "seconds": time.time() - t0, "seconds_scene": t_scene - t0,
+                   "seconds_render": t_render, "seconds_gt_views": t_gt}, f)
 
 
 def main():

@@ -21,6 +21,7 @@ struct BlenderOptions {
   double sun_azimuth_deg = 140.0;
   double sun_elevation_deg = 55.0;
   int threads = 0;                              // Blender's -t (0 = all cores)
+  bool gt_views = true;                         // write views.json (projected GT with visibility ray casts)
   void Check() const;
 };
 

@@ -34,7 +34,7 @@ struct Scorer {
 }  // namespace
 
 std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const std::vector<LineHypothesis>& hypotheses,
-                                         const ViewGeometry& view, const TriangulatorOptions& options) {
+                                         const ViewGeometry& view, const TriangulatorOptions& options, ScoreCounts* counts) {
   Scorer scorer{1.0 / (2.0 * options.sigma_a_deg * options.sigma_a_deg), options.min_similarity,
                 view.sigma_factor * view.sigma_factor};
   // Group by source segment; inside a group keep (target view, input order) so ties break the same way.
@@ -49,9 +49,11 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
   double view_max = 0.0;
   for (int s = 0; s < num_segments; ++s) {
     const auto& group = by_segment[s];
+    if (counts && !group.empty()) ++counts->with_hypothesis;
     if (group.size() < 2) continue;
     auto& idx = by_segment[s];
     std::stable_sort(idx.begin(), idx.end(), [&](int x, int y) { return hypotheses[x].target_view < hypotheses[y].target_view; });
+    if (counts && hypotheses[idx.front()].target_view != hypotheses[idx.back()].target_view) ++counts->with_two_views;
     for (int hi : group) {
       const LineHypothesis& h = hypotheses[hi];
       double score = 0.0, run_best = 0.0;
@@ -69,6 +71,7 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
       score += run_best;
       if (score > best[s].score) best[s] = {hi, score};
     }
+    if (counts && best[s].score > 0) ++counts->scored;
     view_max = std::max(view_max, best[s].score);
   }
 
@@ -107,6 +110,7 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
     flush();
     lines.push_back(std::move(line));
   }
+  if (counts) counts->kept = static_cast<long long>(lines.size());
   return lines;
 }
 

@@ -58,6 +58,13 @@ struct TriangulationStats {
   int directed_pairs = 0;
   long long candidate_tests = 0;  // (source, target) pairs that reached the exact overlap test
   long long hypotheses = 0;       // matches kept after kNN and the orientation filter
+  // Where 2D segments drop out, summed over views: all, with >= 1 hypothesis, with hypotheses from >= 2
+  // target views (needed for any score), with a best score > 0, and kept (above both thresholds).
+  long long segments = 0;
+  long long segments_with_hypothesis = 0;
+  long long segments_with_two_views = 0;
+  long long segments_scored = 0;
+  long long segments_kept = 0;
   double seconds_matching = 0.0;
   double seconds_scoring = 0.0;
 };
