@@ -87,10 +87,15 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
     line.support.push_back({{view_index, s}, 1.0});
     line.support.push_back({{h.target_view, h.target_segment}, 1.0});
     // One supporting target segment per other view: the best agreeing hypothesis of that view.
-    int run_view = -1, run_seg = -1;
+    int run_view = -1, run_seg = -1, run_hyp = -1;
     double run_best = 0.0;
+    double weight = 1.0, depth1 = h.depth1, depth2 = h.depth2;
     auto flush = [&]() {
-      if (run_view >= 0 && run_best > 0.0) line.support.push_back({{run_view, run_seg}, run_best});
+      if (run_view < 0 || run_best <= 0.0) return;
+      line.support.push_back({{run_view, run_seg}, run_best});
+      weight += run_best;
+      depth1 += run_best * hypotheses[run_hyp].depth1;
+      depth2 += run_best * hypotheses[run_hyp].depth2;
     };
     for (int oi : by_segment[s]) {
       const LineHypothesis& o = hypotheses[oi];
@@ -100,14 +105,17 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
         run_view = o.target_view;
         run_best = 0.0;
         run_seg = -1;
+        run_hyp = -1;
       }
       const double sim = scorer.similarity(h, o);
       if (sim > run_best) {
         run_best = sim;
         run_seg = o.target_segment;
+        run_hyp = oi;
       }
     }
     flush();
+    if (options.average_depths) line.line = {view.centre + depth1 / weight * view.ray_a[s], view.centre + depth2 / weight * view.ray_b[s]};
     lines.push_back(std::move(line));
   }
   if (counts) counts->kept = static_cast<long long>(lines.size());

@@ -22,10 +22,14 @@ struct TriangulatorOptions {
   double sigma_p_px = 2.5;              // positional regulariser, pixels (depth adaptive)
   double sigma_a_deg = 10.0;            // angular regulariser
   double min_similarity = 0.5;          // pairwise hypothesis similarity counts only above this
-  // Line3D++ uses 0.75 (one confirming view); on textured renders that let parallel-line mismatches from
-  // nearby views through (p90 error of f=1 lines 2.4 m vs 0.07 m at 1.0, LIMAP's fullscore_th).
-  double min_best_score = 1.0;          // a 2D segment gets a 3D line only above this score
+  // Line3D++'s 0.75 (one confirming view suffices): about twice the lines of 1.0 (LIMAP's fullscore_th,
+  // two confirming views) and +9 points GT-edge coverage, at about twice the p90 distance of f=1 lines
+  // to their GT edge (tools/README.md, 50 Roof-Image buildings).
+  double min_best_score = 0.75;         // a 2D segment gets a 3D line only above this score
   double min_score_fraction = 0.1;      // ... and above this fraction of its view's best score
+  // Endpoint depths of a kept line: similarity-weighted mean over the best hypothesis and the agreeing
+  // hypotheses of the other views (Line3D++ keeps the best pair's depths, which carry one pair's noise).
+  bool average_depths = true;
   void Check() const;
 };
 
