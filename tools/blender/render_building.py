@@ -3,7 +3,7 @@
 Run:  blender -b --factory-startup --python-exit-code 1 --python render_building.py -- JOB.json
 
 JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z up):
-  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 8, "shadows": true, "gt_views": true,
+  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 1, "shadows": true, "gt_views": true,
    "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
    "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
                   "labels": [1|2|3 ...], "edges": [[i,j]...],
@@ -237,7 +237,7 @@ def sun_direction(job):
 
 def setup_render(scene, job, width, height):
     engine = job.get("engine", "BLENDER_WORKBENCH")
-    samples = int(job.get("samples", 5))
+    samples = int(job.get("samples", 1))
     shadows = bool(job.get("shadows", True))
     sun_dir = sun_direction(job)
     r = scene.render

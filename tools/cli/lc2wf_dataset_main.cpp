@@ -30,7 +30,7 @@ options:
   --blur SIGMA                rasteriser optical blur in pixels (default 1.0; 0 = none)
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
-  --samples N                 Blender anti-aliasing / render samples (default 5; 1 = none, ~3x faster Workbench)
+  --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased, ~3x slower)
   --blender PATH              Blender executable (default: blender on PATH)
   --blender-batch N           buildings per Blender process (default 16)
   --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.005)
