@@ -22,9 +22,9 @@ struct TriangulatorOptions {
   double sigma_p_px = 2.5;              // positional regulariser, pixels (depth adaptive)
   double sigma_a_deg = 10.0;            // angular regulariser
   double min_similarity = 0.5;          // pairwise hypothesis similarity counts only above this
-  // Line3D++'s 0.75 (one confirming view suffices): about twice the lines of 1.0 (LIMAP's fullscore_th,
-  // two confirming views) and +9 points GT-edge coverage, at about twice the p90 distance of f=1 lines
-  // to their GT edge (tools/README.md, 50 Roof-Image buildings).
+  // Line3D++'s 0.75 (one confirming view suffices): 1.7-2x the lines of 1.0 (LIMAP's fullscore_th, two
+  // confirming views) and +4/+6 points GT-edge coverage (raster/Blender, tools/README.md); the labels
+  // then need 3 voting views to keep f=1 lines as accurate (CloudBuilderOptions).
   double min_best_score = 0.75;         // a 2D segment gets a 3D line only above this score
   double min_score_fraction = 0.1;      // ... and above this fraction of its view's best score
   // Endpoint depths of a kept line: similarity-weighted mean over the best hypothesis and the agreeing
