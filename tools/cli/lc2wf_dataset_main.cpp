@@ -39,7 +39,7 @@ options:
   --lsd-refine std|adv        LSD refinement (default std; adv drops many segments on clean renders)
   --min-score S               min cross-view score of a 3D line (default 0.75; 1.0 = two confirming views)
   --neighbours N              visual neighbours matched per view (default 10)
-  --label-min-views N         f=1 needs votes for the same GT edge from N distinct support views
+  --label-min-views N         f=1 needs votes for the same GT edge from N distinct support views (default 3)
   --min-ray-plane-angle DEG   a source ray this close to the target segment's plane gives no hypothesis (default 1)
   --neighbour-max-angle DEG   widest triangulation angle of a neighbour at the scene centre (default 60)
   --sigma-p PX                positional regulariser of the scoring, pixels (default 2.5)
