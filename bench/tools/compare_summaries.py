@@ -31,6 +31,13 @@ def main(argv):
                    [f"{100 * s['shorter_than_mean_gt_edge_share']['pooled']:.1f}%" for s in sums]))
     out.append(row("GT edges covered by an f=1 segment (mean)",
                    [f"{100 * s['gt_edge_coverage_by_positives']['mean']:.1f}%" for s in sums]))
+    if all("positive_edge_distance_m" in s for s in sums):
+        out.append(row("f=1 distance to their GT edge, m (median / p90)",
+                       [f"{s['positive_edge_distance_m']['median']:.3f} / {s['positive_edge_distance_m']['p90']:.3f}" for s in sums]))
+    if all("triangulation_per_building" in s for s in sums):
+        for key, label in [("with_hypothesis", "with a hypothesis"), ("with_two_target_views", "with hypotheses from >= 2 views"),
+                           ("scored", "with a score > 0"), ("kept", "kept (score above thresholds)")]:
+            out.append(row(f"2D segments {label} (mean)", [f"{s['triangulation_per_building'][key]:.0f}" for s in sums]))
     for i, b in enumerate(sums[0]["length_histogram"]):
         lo = "0" if i == 0 else sums[0]["length_histogram"][i - 1]["below_x_mean_gt_edge"]
         out.append(row(f"length in [{lo}, {b['below_x_mean_gt_edge']}) x mean GT edge",

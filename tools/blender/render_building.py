@@ -3,7 +3,7 @@
 Run:  blender -b --factory-startup --python-exit-code 1 --python render_building.py -- JOB.json
 
 JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z up):
-  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 8, "shadows": true,
+  {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 1, "shadows": true, "gt_views": true,
    "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
    "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
                   "labels": [1|2|3 ...], "edges": [[i,j]...],
@@ -11,7 +11,8 @@ JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z 
 
 Per building, in out_dir: view_000.png ..., cameras.json (K, R, t read back from Blender's cameras in the
 OpenCV convention: x_cam = R X + t, pixel (0,0) at the centre of the top-left pixel), views.json (per view
-the projected GT junctions and every GT edge as [i, j, visible, visible_fraction]) and, last, done.json.
+the projected GT junctions and every GT edge as [i, j, visible, visible_fraction]; skipped with
+"gt_views": false) and, last, done.json (with the seconds spent on scene set-up, renders and GT views).
 A building that fails gets error.txt instead and the batch goes on; the exit code is non-zero only when
 the job itself is unusable.
 """
@@ -41,9 +42,9 @@ def _hash01(i, j, seed):
     return (h >> np.uint64(40)).astype(np.float64) / float(1 << 24)
 
 
-def _grid(width_m, height_m):
-    w, h = int(round(width_m * TEX_PX_PER_M)), int(round(height_m * TEX_PX_PER_M))
-    u, v = np.meshgrid((np.arange(w) + 0.5) / TEX_PX_PER_M, (np.arange(h) + 0.5) / TEX_PX_PER_M)
+def _grid(width_m, height_m, px_per_m=TEX_PX_PER_M):
+    w, h = int(round(width_m * px_per_m)), int(round(height_m * px_per_m))
+    u, v = np.meshgrid((np.arange(w) + 0.5) / px_per_m, (np.arange(h) + 0.5) / px_per_m)
     return u, v
 
 
@@ -81,24 +82,32 @@ def brick(seed):
 
 
 def _value_noise(u, v, period, seed):
-    x, y = u / period, v / period
+    """Smooth value noise on a _grid meshgrid (u, v); the lattice wraps with the tile so it repeats seamlessly."""
+    n = int(round((u[0, 0] + u[0, -1]) / period))  # first + last texel centre = tile width in metres
+    lattice = _hash01(np.arange(n)[None, :], np.arange(n)[:, None], seed)  # [row j, column i], hashed once
+    x, y = u[0] / period, v[:, 0] / period  # separable grid: one coordinate per column / row
     ix, iy = np.floor(x).astype(np.int64), np.floor(y).astype(np.int64)
     tx, ty = x - ix, y - iy
     tx, ty = tx * tx * (3 - 2 * tx), ty * ty * (3 - 2 * ty)
-    n = int(round(u.shape[1] / TEX_PX_PER_M / period))  # lattice wraps so the tile repeats seamlessly
-    a, b = _hash01(ix % n, iy % n, seed), _hash01((ix + 1) % n, iy % n, seed)
-    c, d = _hash01(ix % n, (iy + 1) % n, seed), _hash01((ix + 1) % n, (iy + 1) % n, seed)
-    return (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty
+    i0, i1, j0, j1 = ix % n, (ix + 1) % n, iy % n, (iy + 1) % n
+    row0 = lattice[j0][:, i0] * (1 - tx) + lattice[j0][:, i1] * tx
+    row1 = lattice[j1][:, i0] * (1 - tx) + lattice[j1][:, i1] * tx
+    return row0 * (1 - ty)[:, None] + row1 * ty[:, None]
+
+
+# Smooth surfaces need no fine texels: their noise varies over >= 0.4 m, and 3 cm is about a pixel on the
+# building at our viewing distances (96 px/m grass alone took ~2.7 s per building).
+SMOOTH_PX_PER_M = 32
 
 
 def flat_roof(seed):
-    u, v = _grid(8.0, 8.0)
+    u, v = _grid(8.0, 8.0, SMOOTH_PX_PER_M)
     n = 0.85 + 0.15 * _value_noise(u, v, 0.8, seed + 7)
     return np.stack([0.30 * n, 0.29 * n, 0.28 * n], -1)
 
 
 def grass(seed):
-    u, v = _grid(16.0, 16.0)
+    u, v = _grid(16.0, 16.0, SMOOTH_PX_PER_M)
     n = 0.6 * _value_noise(u, v, 1.6, seed + 11) + 0.4 * _value_noise(u, v, 0.4, seed + 13)
     s = 0.8 + 0.4 * n
     return np.stack([0.11 * s, 0.20 * s, 0.06 * s], -1)
@@ -229,7 +238,7 @@ def sun_direction(job):
 
 def setup_render(scene, job, width, height):
     engine = job.get("engine", "BLENDER_WORKBENCH")
-    samples = int(job.get("samples", 5))
+    samples = int(job.get("samples", 1))
     shadows = bool(job.get("shadows", True))
     sun_dir = sun_direction(job)
     r = scene.render
@@ -255,7 +264,8 @@ def setup_render(scene, job, width, height):
         # Workbench maps light_direction (a, b, c) to the light's travel direction (-a, c, -b) in world
         # space (matches the shadows seen in renders), so this casts them away from the sun.
         scene.display.light_direction = (sun_dir.x, sun_dir.z, -sun_dir.y)
-        scene.display.render_aa = str(samples) if str(samples) in ("5", "8", "11", "16", "32") else "8"
+        # Each anti-aliasing sample is a full llvmpipe pass (~0.07 s at 640x480); 1 = "OFF".
+        scene.display.render_aa = "OFF" if samples == 1 else str(samples) if str(samples) in ("5", "8", "11", "16", "32") else "8"
     else:
         sun = bpy.data.lights.new("sun", type="SUN")
         sun.energy = 4.0
@@ -324,17 +334,24 @@ def project(K, R, t, X):
 
 def edge_visibility(bvh, K, R, t, w, h, a, b, samples=16, tol=0.02):
     """Fraction of samples on edge (a, b) in front of the camera, inside the image and not hidden."""
-    C = -(Matrix(R).transposed() @ Vector(t))
+    R = np.asarray(R, dtype=np.float64)
+    t = np.asarray(t, dtype=np.float64)
+    a, b = np.asarray(a, dtype=np.float64), np.asarray(b, dtype=np.float64)
+    # Projection of all samples at once; only the in-frame ones need a (Python-level) ray cast.
+    X = a + np.outer((np.arange(samples) + 0.5) / samples, b - a)
+    xc = X @ R.T + t
+    z = xc[:, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = K[0][0] * xc[:, 0] / z + K[0][2]
+        v = K[1][1] * xc[:, 1] / z + K[1][2]
+    inside = (z > 0) & (u >= -0.5) & (u <= w - 0.5) & (v >= -0.5) & (v <= h - 0.5)
+    C = -(R.T @ t)
+    Cv = Vector(C)
     seen = 0
-    for k in range(samples):
-        X = a + (b - a) * ((k + 0.5) / samples)
-        px, z = project(K, R, t, X)
-        if z <= 0 or not (-0.5 <= px[0] <= w - 0.5 and -0.5 <= px[1] <= h - 0.5):
-            continue
-        d = X - C
-        dist = d.length
-        hit = bvh.ray_cast(C, d.normalized(), dist - tol)
-        if hit[0] is None:
+    for X_k in X[inside]:
+        d = X_k - C
+        dist = float(np.linalg.norm(d))
+        if bvh.ray_cast(Cv, Vector(d / dist), dist - tol)[0] is None:
             seen += 1
     return seen / samples
 
@@ -352,7 +369,10 @@ def render_building(b, job):
     cam_obj = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(cam_obj)
     scene.camera = cam_obj
-    bvh = BVHTree.FromPolygons([tuple(v) for v in verts], [list(f) for f in b["faces"]])
+    with_gt = bool(job.get("gt_views", True))  # views.json is only wanted when the renders are kept
+    bvh = BVHTree.FromPolygons([tuple(v) for v in verts], [list(f) for f in b["faces"]]) if with_gt else None
+    t_scene = time.time()
+    t_render = t_gt = 0.0
     exported, views = [], []
     for i, c in enumerate(cams):
         if int(c["width"]) != width or int(c["height"]) != height:
@@ -361,22 +381,30 @@ def render_building(b, job):
         R = [c["R"][0:3], c["R"][3:6], c["R"][6:9]]
         place_camera(scene, cam_obj, K, R, c["t"], width, height)
         scene.render.filepath = os.path.join(out, f"view_{i:03d}.png")
+        t1 = time.time()
         bpy.ops.render.render(write_still=True)
+        t_render += time.time() - t1
         K2, R2, t2 = camera_to_opencv(scene, cam_obj)
         exported.append({"K": [x for row in K2 for x in row], "R": [x for row in R2 for x in row], "t": t2,
                          "width": width, "height": height})
+        if not with_gt:
+            continue
+        t1 = time.time()
         junc2d = [project(K2, R2, t2, v)[0] for v in verts]
         edges = []
         for a, bb in b.get("edges", []):
             frac = edge_visibility(bvh, K2, R2, t2, width, height, verts[a], verts[bb])
             edges.append([a, bb, 1 if frac >= 0.5 else 0, round(frac, 4)])
         views.append({"junc2D": junc2d, "edges": edges})
+        t_gt += time.time() - t1
     with open(os.path.join(out, "cameras.json"), "w") as f:
         json.dump(exported, f)
-    with open(os.path.join(out, "views.json"), "w") as f:
-        json.dump(views, f)
+    if with_gt:
+        with open(os.path.join(out, "views.json"), "w") as f:
+            json.dump(views, f)
     with open(os.path.join(out, "done.json"), "w") as f:
-        json.dump({"views": len(cams), "seconds": time.time() - t0}, f)
+        json.dump({"views": len(cams), "seconds": time.time() - t0, "seconds_scene": t_scene - t0,
+                   "seconds_render": t_render, "seconds_gt_views": t_gt}, f)
 
 
 def main():

@@ -30,13 +30,19 @@ options:
   --blur SIGMA                rasteriser optical blur in pixels (default 1.0; 0 = none)
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
-  --samples N                 Blender anti-aliasing / render samples (default 5)
+  --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased, ~3x slower)
   --blender PATH              Blender executable (default: blender on PATH)
-  --blender-batch N           buildings per Blender process (default 8)
-  --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.01)
+  --blender-batch N           buildings per Blender process (default 16)
+  --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.005)
+  --lsd-scale S               LSD's Gaussian pre-scaling of the image (default 0.8)
   --max-segments N            longest 2D segments kept per view (default 1000)
   --lsd-refine std|adv        LSD refinement (default std; adv drops many segments on clean renders)
-  --min-score S               min cross-view score of a 3D line (default 1.0)
+  --min-score S               min cross-view score of a 3D line (default 0.75; 1.0 = two confirming views)
+  --neighbours N              visual neighbours matched per view (default 10)
+  --label-min-views N         f=1 needs votes for the same GT edge from N distinct support views (default 3)
+  --min-ray-plane-angle DEG   a source ray this close to the target segment's plane gives no hypothesis (default 1)
+  --neighbour-max-angle DEG   widest triangulation angle of a neighbour at the scene centre (default 60)
+  --sigma-p PX                positional regulariser of the scoring, pixels (default 2.5)
   --no-progress               no progress bar
   -h, --help                  this text
 
@@ -133,10 +139,22 @@ int main(int argc, char** argv) {
       const std::string r = value();
       if (r != "std" && r != "adv") usage_error("--lsd-refine must be std or adv, got '" + r + "'");
       o.cloud.lsd.refine_advanced = r == "adv";
+    } else if (a == "--lsd-scale") {
+      o.cloud.lsd.scale = to_double(a, value());
     } else if (a == "--max-segments") {
       o.cloud.lsd.max_segments = to_int(a, value());
     } else if (a == "--min-score") {
       o.cloud.triangulator.min_best_score = to_double(a, value());
+    } else if (a == "--neighbours") {
+      o.cloud.triangulator.neighbours.count = to_int(a, value());
+    } else if (a == "--label-min-views") {
+      o.cloud.labels.min_views = to_int(a, value());
+    } else if (a == "--min-ray-plane-angle") {
+      o.cloud.triangulator.min_ray_plane_angle_deg = to_double(a, value());
+    } else if (a == "--neighbour-max-angle") {
+      o.cloud.triangulator.neighbours.max_angle_deg = to_double(a, value());
+    } else if (a == "--sigma-p") {
+      o.cloud.triangulator.sigma_p_px = to_double(a, value());
     } else if (a == "--no-progress") {
       o.progress = false;
     } else {

@@ -11,6 +11,7 @@ void LsdOptions::Check() const {
   if (min_length_frac < 0 || min_length_frac >= 1) throw std::invalid_argument("LsdOptions.min_length_frac must be in [0, 1)");
   if (max_segments < 1) throw std::invalid_argument("LsdOptions.max_segments must be >= 1");
   if (max_side < 0) throw std::invalid_argument("LsdOptions.max_side must be >= 0");
+  if (!(scale > 0 && scale <= 1)) throw std::invalid_argument("LsdOptions.scale must be in (0, 1]");
 }
 
 std::vector<Segment2> detect_segments(const cv::Mat& image, const LsdOptions& options) {
@@ -30,7 +31,7 @@ std::vector<Segment2> detect_segments(const cv::Mat& image, const LsdOptions& op
     cv::resize(gray, gray, cv::Size(), scale, scale, cv::INTER_AREA);
   }
   cv::Ptr<cv::LineSegmentDetector> lsd =
-      cv::createLineSegmentDetector(options.refine_advanced ? cv::LSD_REFINE_ADV : cv::LSD_REFINE_STD);
+      cv::createLineSegmentDetector(options.refine_advanced ? cv::LSD_REFINE_ADV : cv::LSD_REFINE_STD, options.scale);
   std::vector<cv::Vec4f> raw;
   lsd->detect(gray, raw);
   const double min_len = options.min_length_frac * std::hypot(image.cols, image.rows);

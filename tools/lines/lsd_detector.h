@@ -15,9 +15,10 @@ namespace lc2wf {
 
 struct LsdOptions {
   bool refine_advanced = false;     // LSD_REFINE_ADV, else LSD_REFINE_STD
-  double min_length_frac = 0.01;    // of the full-resolution image diagonal
+  double min_length_frac = 0.005;   // of the full-resolution image diagonal (Line3D++)
   int max_segments = 1000;          // keep the longest
   int max_side = 0;                 // downscale so the larger side is at most this before LSD (0 = never)
+  double scale = 0.8;               // LSD's own Gaussian pre-scaling (OpenCV's default 0.8)
   void Check() const;
 };
 

@@ -75,6 +75,20 @@ void write_views(const fs::path& dir, const Building& b, const std::vector<Rende
   write_file_atomic(dir / "views.json", per_view.dump());
 }
 
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (p - (a + t * ab)).norm();
+}
+
+// Value at quantile q (0..1) of unsorted values; 0 for none.
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::floor(q * (v.size() - 1) + 0.5)));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
 // Counts and shape statistics of a finished cloud, for the status record.
 void describe_cloud(const LineCloud& cloud, Json& st) {
   const Wireframe& wf = cloud.wireframe;
@@ -84,6 +98,8 @@ void describe_cloud(const LineCloud& cloud, Json& st) {
   int positives = 0, shorter = 0;
   std::vector<int> hist(kLengthBins.size() + 1, 0);
   std::vector<char> covered(wf.edges.size(), 0);
+  // Accuracy of the positives: farther endpoint's distance to the labelled GT edge (segment), metres.
+  Json positive_distance = Json::array();
   for (size_t i = 0; i < cloud.segments.size(); ++i) {
     const double r = cloud.segments[i].length() / std::max(mean_edge, 1e-12);
     shorter += r < 1.0;
@@ -91,6 +107,10 @@ void describe_cloud(const LineCloud& cloud, Json& st) {
     const SegmentLabel& l = cloud.labels[i];
     if (!l.f) continue;
     ++positives;
+    const Vec3 &a = wf.junctions[l.i1], &b = wf.junctions[l.i2];
+    const Segment3& seg = cloud.segments[i];
+    const double d = std::max(point_segment_distance(seg.a, a, b), point_segment_distance(seg.b, a, b));
+    positive_distance.push_back(std::round(d * 1e4) / 1e4);
     for (size_t e = 0; e < wf.edges.size(); ++e)
       if ((wf.edges[e][0] == l.i1 && wf.edges[e][1] == l.i2) || (wf.edges[e][0] == l.i2 && wf.edges[e][1] == l.i1)) covered[e] = 1;
   }
@@ -101,6 +121,17 @@ void describe_cloud(const LineCloud& cloud, Json& st) {
   st["gt_edges"] = wf.edges.size();
   st["gt_edges_covered"] = std::count(covered.begin(), covered.end(), 1);
   st["length_histogram"] = hist;
+  st["positive_edge_distance_m"] = positive_distance;
+}
+
+// Where the 2D segments drop out on their way to 3D lines.
+Json describe_triangulation(const TriangulationStats& t) {
+  return {{"segments", t.segments},
+          {"with_hypothesis", t.segments_with_hypothesis},
+          {"with_two_target_views", t.segments_with_two_views},
+          {"scored", t.segments_scored},
+          {"kept", t.segments_kept},
+          {"hypotheses", t.hypotheses}};
 }
 
 struct Job {
@@ -161,6 +192,7 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
       job.status["views"] = job.views.size();
       job.status["segments_2d"] = segs2d;
       describe_cloud(cloud, job.status);
+      job.status["triangulation"] = describe_triangulation(cs.triangulation);
       job.status["ok"] = true;
     } catch (const std::exception& e) {
       fail(job, e.what());
@@ -216,6 +248,9 @@ Json summarise(const std::vector<Json>& statuses) {
   std::vector<long long> hist(kLengthBins.size() + 1, 0);
   long long total_segments = 0, total_pos = 0, total_shorter = 0;
   std::map<std::string, double> seconds;
+  std::map<std::string, double> dropout;
+  std::vector<double> positive_distance;
+  int with_dropout = 0;
   for (const Json& st : statuses) {
     if (!st.value("ok", false)) {
       failed.push_back({{"name", st.value("name", "")}, {"error", st.value("error", "unknown")}});
@@ -234,6 +269,12 @@ Json summarise(const std::vector<Json>& statuses) {
     const auto h = st["length_histogram"].get<std::vector<long long>>();
     for (size_t i = 0; i < hist.size() && i < h.size(); ++i) hist[i] += h[i];
     for (auto& [k, v] : st["seconds"].items()) seconds[k] += v.get<double>();
+    if (st.contains("triangulation")) {
+      ++with_dropout;
+      for (auto& [k, v] : st["triangulation"].items()) dropout[k] += v.get<double>();
+    }
+    if (st.contains("positive_edge_distance_m"))
+      for (const auto& d : st["positive_edge_distance_m"]) positive_distance.push_back(d.get<double>());
   }
   auto mean = [](const std::vector<double>& v) {
     double m = 0;
@@ -258,6 +299,10 @@ Json summarise(const std::vector<Json>& statuses) {
   Json sec;
   for (const auto& [k, v] : seconds) sec[k] = done ? v / done : 0.0;
   s["seconds_per_building"] = sec;
+  Json drop;
+  for (const auto& [k, v] : dropout) drop[k] = v / std::max(1, with_dropout);
+  s["triangulation_per_building"] = drop;
+  s["positive_edge_distance_m"] = {{"median", quantile(positive_distance, 0.5)}, {"p90", quantile(positive_distance, 0.9)}};
   return s;
 }
 
@@ -316,6 +361,7 @@ Json run_dataset(const DatasetRunOptions& o) {
         const auto t = Clock::now();
         BlenderOptions bo = o.blender;
         if (bo.threads == 0 && o.threads > 0) bo.threads = o.threads;
+        bo.gt_views = o.keep_views;  // the GT projection is only read by people looking at kept views
         const auto results = render_with_blender(batch, bo, o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
         const double per_building = since(t) / std::max<size_t>(1, batch.size());
         for (size_t k = 0; k < index.size(); ++k) {

@@ -25,7 +25,7 @@ struct DatasetRunOptions {
   CameraRingOptions cameras;
   RasterOptions raster;
   BlenderOptions blender;
-  int blender_batch = 8;         // buildings per Blender process
+  int blender_batch = 16;        // buildings per Blender process (its start-up is shared)
   CloudBuilderOptions cloud;
   BuildingOptions building;
   int threads = 0;               // 0 = all cores

@@ -85,6 +85,7 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
   job["engine"] = options.engine;
   job["samples"] = options.samples;
   job["shadows"] = options.shadows;
+  job["gt_views"] = options.gt_views;
   job["sun_azimuth_deg"] = options.sun_azimuth_deg;
   job["sun_elevation_deg"] = options.sun_elevation_deg;
   job["buildings"] = Json::array();

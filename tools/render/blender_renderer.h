@@ -16,11 +16,14 @@ struct BlenderOptions {
   std::string executable = "blender";
   std::filesystem::path script;                 // empty: the render_building.py of this source tree
   std::string engine = "BLENDER_WORKBENCH";     // or BLENDER_EEVEE, CYCLES
-  int samples = 5;
+  // Workbench: 1 = no anti-aliasing. Each AA sample is a full llvmpipe pass: 5 samples cost ~3x the
+  // whole Blender path for +3 points GT-edge coverage (tools/README.md).
+  int samples = 1;
   bool shadows = true;
   double sun_azimuth_deg = 140.0;
   double sun_elevation_deg = 55.0;
   int threads = 0;                              // Blender's -t (0 = all cores)
+  bool gt_views = true;                         // write views.json (projected GT with visibility ray casts)
   void Check() const;
 };
 

@@ -34,7 +34,7 @@ struct Scorer {
 }  // namespace
 
 std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const std::vector<LineHypothesis>& hypotheses,
-                                         const ViewGeometry& view, const TriangulatorOptions& options) {
+                                         const ViewGeometry& view, const TriangulatorOptions& options, ScoreCounts* counts) {
   Scorer scorer{1.0 / (2.0 * options.sigma_a_deg * options.sigma_a_deg), options.min_similarity,
                 view.sigma_factor * view.sigma_factor};
   // Group by source segment; inside a group keep (target view, input order) so ties break the same way.
@@ -49,9 +49,11 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
   double view_max = 0.0;
   for (int s = 0; s < num_segments; ++s) {
     const auto& group = by_segment[s];
+    if (counts && !group.empty()) ++counts->with_hypothesis;
     if (group.size() < 2) continue;
     auto& idx = by_segment[s];
     std::stable_sort(idx.begin(), idx.end(), [&](int x, int y) { return hypotheses[x].target_view < hypotheses[y].target_view; });
+    if (counts && hypotheses[idx.front()].target_view != hypotheses[idx.back()].target_view) ++counts->with_two_views;
     for (int hi : group) {
       const LineHypothesis& h = hypotheses[hi];
       double score = 0.0, run_best = 0.0;
@@ -69,6 +71,7 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
       score += run_best;
       if (score > best[s].score) best[s] = {hi, score};
     }
+    if (counts && best[s].score > 0) ++counts->scored;
     view_max = std::max(view_max, best[s].score);
   }
 
@@ -84,10 +87,15 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
     line.support.push_back({{view_index, s}, 1.0});
     line.support.push_back({{h.target_view, h.target_segment}, 1.0});
     // One supporting target segment per other view: the best agreeing hypothesis of that view.
-    int run_view = -1, run_seg = -1;
+    int run_view = -1, run_seg = -1, run_hyp = -1;
     double run_best = 0.0;
+    double weight = 1.0, depth1 = h.depth1, depth2 = h.depth2;
     auto flush = [&]() {
-      if (run_view >= 0 && run_best > 0.0) line.support.push_back({{run_view, run_seg}, run_best});
+      if (run_view < 0 || run_best <= 0.0) return;
+      line.support.push_back({{run_view, run_seg}, run_best});
+      weight += run_best;
+      depth1 += run_best * hypotheses[run_hyp].depth1;
+      depth2 += run_best * hypotheses[run_hyp].depth2;
     };
     for (int oi : by_segment[s]) {
       const LineHypothesis& o = hypotheses[oi];
@@ -97,16 +105,20 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
         run_view = o.target_view;
         run_best = 0.0;
         run_seg = -1;
+        run_hyp = -1;
       }
       const double sim = scorer.similarity(h, o);
       if (sim > run_best) {
         run_best = sim;
         run_seg = o.target_segment;
+        run_hyp = oi;
       }
     }
     flush();
+    if (options.average_depths) line.line = {view.centre + depth1 / weight * view.ray_a[s], view.centre + depth2 / weight * view.ray_b[s]};
     lines.push_back(std::move(line));
   }
+  if (counts) counts->kept = static_cast<long long>(lines.size());
   return lines;
 }
 

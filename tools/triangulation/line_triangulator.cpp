@@ -59,9 +59,10 @@ std::vector<TriangulatedLine> triangulate_lines(const std::vector<TriangulationV
   }
   const auto t1 = std::chrono::steady_clock::now();
   std::vector<std::vector<TriangulatedLine>> per_view(n);
+  std::vector<ScoreCounts> counts(n);
 #pragma omp parallel for schedule(dynamic, 1)
   for (int a = 0; a < n; ++a)
-    per_view[a] = score_view(a, static_cast<int>(views[a].segments.size()), hyps[a], geo[a], options);
+    per_view[a] = score_view(a, static_cast<int>(views[a].segments.size()), hyps[a], geo[a], options, &counts[a]);
   const auto t2 = std::chrono::steady_clock::now();
 
   std::vector<TriangulatedLine> out;
@@ -72,7 +73,14 @@ std::vector<TriangulatedLine> triangulate_lines(const std::vector<TriangulationV
     stats->directed_pairs = 0;
     stats->candidate_tests = 0;
     stats->hypotheses = 0;
+    stats->segments = stats->segments_with_hypothesis = stats->segments_with_two_views = 0;
+    stats->segments_scored = stats->segments_kept = 0;
     for (int a = 0; a < n; ++a) {
+      stats->segments += static_cast<long long>(views[a].segments.size());
+      stats->segments_with_hypothesis += counts[a].with_hypothesis;
+      stats->segments_with_two_views += counts[a].with_two_views;
+      stats->segments_scored += counts[a].scored;
+      stats->segments_kept += counts[a].kept;
       stats->directed_pairs += static_cast<int>(partners[a].size());
       stats->candidate_tests += tests[a];
       stats->hypotheses += static_cast<long long>(hyps[a].size());

@@ -22,10 +22,14 @@ struct TriangulatorOptions {
   double sigma_p_px = 2.5;              // positional regulariser, pixels (depth adaptive)
   double sigma_a_deg = 10.0;            // angular regulariser
   double min_similarity = 0.5;          // pairwise hypothesis similarity counts only above this
-  // Line3D++ uses 0.75 (one confirming view); on textured renders that let parallel-line mismatches from
-  // nearby views through (p90 error of f=1 lines 2.4 m vs 0.07 m at 1.0, LIMAP's fullscore_th).
-  double min_best_score = 1.0;          // a 2D segment gets a 3D line only above this score
+  // Line3D++'s 0.75 (one confirming view suffices): 1.7-2x the lines of 1.0 (LIMAP's fullscore_th, two
+  // confirming views) and +4/+6 points GT-edge coverage (raster/Blender, tools/README.md); the labels
+  // then need 3 voting views to keep f=1 lines as accurate (CloudBuilderOptions).
+  double min_best_score = 0.75;         // a 2D segment gets a 3D line only above this score
   double min_score_fraction = 0.1;      // ... and above this fraction of its view's best score
+  // Endpoint depths of a kept line: similarity-weighted mean over the best hypothesis and the agreeing
+  // hypotheses of the other views (Line3D++ keeps the best pair's depths, which carry one pair's noise).
+  bool average_depths = true;
   void Check() const;
 };
 
@@ -58,6 +62,13 @@ struct TriangulationStats {
   int directed_pairs = 0;
   long long candidate_tests = 0;  // (source, target) pairs that reached the exact overlap test
   long long hypotheses = 0;       // matches kept after kNN and the orientation filter
+  // Where 2D segments drop out, summed over views: all, with >= 1 hypothesis, with hypotheses from >= 2
+  // target views (needed for any score), with a best score > 0, and kept (above both thresholds).
+  long long segments = 0;
+  long long segments_with_hypothesis = 0;
+  long long segments_with_two_views = 0;
+  long long segments_scored = 0;
+  long long segments_kept = 0;
   double seconds_matching = 0.0;
   double seconds_scoring = 0.0;
 };

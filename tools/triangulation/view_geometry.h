@@ -35,9 +35,15 @@ struct LineHypothesis {
 std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeometry& b, int b_index,
                                             const TriangulatorOptions& options, long long* candidate_tests);
 
+// Per-view drop-out counts (see TriangulationStats).
+struct ScoreCounts {
+  long long with_hypothesis = 0, with_two_views = 0, scored = 0, kept = 0;
+};
+
 // Scores the hypotheses of one source view (all target views, grouped by source segment) and returns
 // the confirmed best hypothesis per segment, with supports.
 std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const std::vector<LineHypothesis>& hypotheses,
-                                         const ViewGeometry& view, const TriangulatorOptions& options);
+                                         const ViewGeometry& view, const TriangulatorOptions& options,
+                                         ScoreCounts* counts = nullptr);
 
 }  // namespace lc2wf
