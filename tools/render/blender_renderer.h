@@ -18,6 +18,7 @@ struct BlenderOptions {
   std::string engine = "BLENDER_WORKBENCH";     // or BLENDER_EEVEE, CYCLES
   int samples = 5;
   bool shadows = true;
+  std::string textures = "paper";               // or "sfm": non-repeating noise that COLMAP can match
   double sun_azimuth_deg = 140.0;
   double sun_elevation_deg = 55.0;
   int threads = 0;                              // Blender's -t (0 = all cores)
