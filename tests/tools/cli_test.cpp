@@ -42,6 +42,11 @@ TEST(DatasetCli, HelpAndArgumentErrors) {
   EXPECT_NE(r.out.find("shard"), std::string::npos) << r.out;
   r = run(kDataset + " --out o");
   EXPECT_EQ(r.code, 2);
+  r = run(kDataset + " --meshes m --out o --textures sfm");  // the rasteriser has only the paper look
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--textures sfm needs --renderer blender"), std::string::npos) << r.out;
+  r = run(kDataset + " --meshes m --out o --renderer blender --textures photo");
+  EXPECT_EQ(r.code, 2);
   r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out");
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.out.find("/nonexistent/meshes"), std::string::npos) << r.out;
@@ -66,6 +71,12 @@ TEST(ColmapPosesCli, HelpAndMissingInputs) {
   EXPECT_EQ(r.code, 2);
   const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_cli_colmap";
   fs::create_directories(dir);
+  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5 --matcher vocab");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("exhaustive or sequential"), std::string::npos) << r.out;
+  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5 --outlier-factor x");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--outlier-factor expects a number"), std::string::npos) << r.out;
   r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5");
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.out.find("fewer than 3 images"), std::string::npos) << r.out;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "core/util/cli.h"
+#include "tools/cli/flag_values.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "tools/colmap/colmap_poses.h"
@@ -54,26 +55,6 @@ struct Args {
   lc2wf::AlignOptions align;
 };
 
-int to_int(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const int x = std::stoi(v, &used);
-    if (used == v.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects an integer, got '" + v + "'");
-}
-
-double to_double(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const double x = std::stod(v, &used);
-    if (used == v.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects a number, got '" + v + "'");
-}
-
 Args parse_args(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
@@ -87,12 +68,12 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--intrinsics") a.intrinsics = value();
     else if (f == "--colmap") a.colmap.executable = value();
     else if (f == "--matcher") a.colmap.matcher = value();
-    else if (f == "--overlap") a.colmap.sequential_overlap = to_int(f, value());
-    else if (f == "--max-features") a.colmap.max_features = to_int(f, value());
-    else if (f == "--init-min-inliers") a.colmap.init_min_inliers = to_int(f, value());
-    else if (f == "--abs-pose-min-inliers") a.colmap.abs_pose_min_inliers = to_int(f, value());
-    else if (f == "--outlier-factor") a.align.outlier_factor = to_double(f, value());
-    else if (f == "--threads") a.colmap.threads = to_int(f, value());
+    else if (f == "--overlap") a.colmap.sequential_overlap = lc2wf::int_flag(f, value());
+    else if (f == "--max-features") a.colmap.max_features = lc2wf::int_flag(f, value());
+    else if (f == "--init-min-inliers") a.colmap.init_min_inliers = lc2wf::int_flag(f, value());
+    else if (f == "--abs-pose-min-inliers") a.colmap.abs_pose_min_inliers = lc2wf::int_flag(f, value());
+    else if (f == "--outlier-factor") a.align.outlier_factor = lc2wf::number_flag(f, value());
+    else if (f == "--threads") a.colmap.threads = lc2wf::int_flag(f, value());
     else throw UsageError("unknown argument '" + f + "'");
   }
   if (a.views.empty()) throw UsageError("--views DIR is required");

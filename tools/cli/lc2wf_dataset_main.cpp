@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/util/cli.h"
+#include "tools/cli/flag_values.h"
 #include "tools/pipeline/dataset_run.h"
 
 namespace {
@@ -46,30 +47,10 @@ exit codes: 0 every building done, 1 some buildings failed (see the summary), 2 
 
 using lc2wf::UsageError;
 
-int to_int(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const int x = std::stoi(v, &used);
-    if (used == v.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects an integer, got '" + v + "'");
-}
-
-double to_double(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const double x = std::stod(v, &used);
-    if (used == v.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects a number, got '" + v + "'");
-}
-
 std::pair<int, int> split_pair(const std::string& flag, const std::string& v, char sep) {
   const size_t p = v.find(sep);
   if (p == std::string::npos) throw UsageError(flag + " expects A" + sep + "B, got '" + v + "'");
-  return {to_int(flag, v.substr(0, p)), to_int(flag, v.substr(p + 1))};
+  return {lc2wf::int_flag(flag, v.substr(0, p)), lc2wf::int_flag(flag, v.substr(p + 1))};
 }
 
 lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
@@ -90,30 +71,30 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       else if (r == "blender") o.renderer = lc2wf::RendererKind::Blender;
       else throw UsageError("--renderer must be raster or blender, got '" + r + "'");
     } else if (a == "--views") {
-      o.cameras.views = to_int(a, value());
+      o.cameras.views = lc2wf::int_flag(a, value());
     } else if (a == "--size") {
       std::tie(o.cameras.width, o.cameras.height) = split_pair(a, value(), 'x');
     } else if (a == "-j" || a == "--threads") {
-      o.threads = to_int(a, value());
+      o.threads = lc2wf::int_flag(a, value());
     } else if (a == "--shard") {
       std::tie(o.shard_index, o.shard_count) = split_pair(a, value(), '/');
     } else if (a == "--limit") {
-      o.limit = to_int(a, value());
+      o.limit = lc2wf::int_flag(a, value());
     } else if (a == "--seed") {
-      o.seed = static_cast<uint64_t>(to_int(a, value()));
+      o.seed = static_cast<uint64_t>(lc2wf::int_flag(a, value()));
     } else if (a == "--keep-views") {
       o.keep_views = true;
     } else if (a == "--supersample") {
-      o.raster.supersample = to_int(a, value());
+      o.raster.supersample = lc2wf::int_flag(a, value());
     } else if (a == "--blur") {
-      o.raster.blur_sigma_px = to_double(a, value());
+      o.raster.blur_sigma_px = lc2wf::number_flag(a, value());
     } else if (a == "--no-shadows") {
       o.raster.shadows = false;
       o.blender.shadows = false;
     } else if (a == "--engine") {
       o.blender.engine = value();
     } else if (a == "--samples") {
-      o.blender.samples = to_int(a, value());
+      o.blender.samples = lc2wf::int_flag(a, value());
     } else if (a == "--textures") {
       o.blender.textures = value();
       if (o.blender.textures != "paper" && o.blender.textures != "sfm")
@@ -121,17 +102,17 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
     } else if (a == "--blender") {
       o.blender.executable = value();
     } else if (a == "--blender-batch") {
-      o.blender_batch = to_int(a, value());
+      o.blender_batch = lc2wf::int_flag(a, value());
     } else if (a == "--lsd-min-length") {
-      o.cloud.lsd.min_length_frac = to_double(a, value());
+      o.cloud.lsd.min_length_frac = lc2wf::number_flag(a, value());
     } else if (a == "--lsd-refine") {
       const std::string r = value();
       if (r != "std" && r != "adv") throw UsageError("--lsd-refine must be std or adv, got '" + r + "'");
       o.cloud.lsd.refine_advanced = r == "adv";
     } else if (a == "--max-segments") {
-      o.cloud.lsd.max_segments = to_int(a, value());
+      o.cloud.lsd.max_segments = lc2wf::int_flag(a, value());
     } else if (a == "--min-score") {
-      o.cloud.triangulator.min_best_score = to_double(a, value());
+      o.cloud.triangulator.min_best_score = lc2wf::number_flag(a, value());
     } else if (a == "--no-progress") {
       o.progress = false;
     } else {
