@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -266,13 +267,22 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
   if (o.matcher == "sequential") match_cmd += " --SequentialMatching.overlap " + std::to_string(o.sequential_overlap);
   run.step_seconds.emplace_back(matcher, run_step(match_cmd, log, matcher));
   fs::create_directories(workspace / "sparse");
-  run.step_seconds.emplace_back(
-      "mapper", run_step(exe + " mapper --database_path " + quote(db) + " --image_path " + quote(image_dir) + " --output_path " +
-                             quote(workspace / "sparse") + " --Mapper.num_threads " + threads +
-                             " --Mapper.init_min_num_inliers " + std::to_string(o.init_min_inliers) +
-                             " --Mapper.abs_pose_min_num_inliers " + std::to_string(o.abs_pose_min_inliers) +
-                             " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0",
-                         log, "mapper"));
+  const std::string mapper_cmd = exe + " mapper --database_path " + quote(db) + " --image_path " + quote(image_dir) +
+                                 " --output_path " + quote(workspace / "sparse") + " --Mapper.num_threads " + threads +
+                                 " --Mapper.init_min_num_inliers " + std::to_string(o.init_min_inliers) +
+                                 " --Mapper.abs_pose_min_num_inliers " + std::to_string(o.abs_pose_min_inliers) +
+                                 " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0";
+  try {
+    run.step_seconds.emplace_back("mapper", run_step(mapper_cmd, log, "mapper"));
+  } catch (const std::runtime_error&) {
+    // COLMAP 3.8 exits non-zero when it cannot start a model; say why, not only "failed".
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("No good initial image pair found") == std::string::npos) throw;
+    throw std::runtime_error("COLMAP mapper found no initial image pair: too few verified matches between views (repetitive "
+                             "textures or little overlap; a lower init_min_inliers, --init-min-inliers, may help); see " +
+                             log.string());
+  }
   // The mapper writes sparse/0, sparse/1, ... when it cannot join every view into one model.
   std::vector<ColmapImage> best;
   double convert_seconds = 0;
