@@ -2,6 +2,7 @@
 // from COLMAP's mapper, compared with the cameras Blender rendered from. Skipped when blender or colmap
 // is not installed. 10 views and 2,000 features keep it near 30 s of CPU (53 s wall at load 5 on 2 cores).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -21,7 +22,8 @@ bool on_path(const std::string& exe) { return std::system(("command -v " + exe +
 TEST(ColmapOnRenders, SfmTexturesGiveAccuratePoses) {
   if (!on_path("blender")) GTEST_SKIP() << "blender not found on PATH (apt-get install blender python3-numpy)";
   if (!on_path("colmap")) GTEST_SKIP() << "colmap not found on PATH (apt-get install colmap)";
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_colmap_render_test";
+  // Per process: several checkouts on one machine share the temporary folder.
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_colmap_render_test_" + std::to_string(getpid()));
   fs::remove_all(dir);
   const Building building = make_l_building("l", LBuildingSpec{});
   CameraRingOptions ring;
@@ -53,6 +55,7 @@ TEST(ColmapOnRenders, SfmTexturesGiveAccuratePoses) {
   std::printf("registered %d/%d, rotation median %.3f max %.3f deg, centre median %.4f max %.4f (camera distance %.2f)\n", pc.registered,
               pc.reference, pc.median_rotation_deg, pc.max_rotation_deg, pc.median_centre_error, pc.max_centre_error,
               pc.camera_distance);
+  if (!HasFailure()) fs::remove_all(dir);  // kept for inspection when something failed
 }
 
 }  // namespace

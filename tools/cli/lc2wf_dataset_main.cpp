@@ -31,8 +31,8 @@ options:
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
   --samples N                 Blender anti-aliasing / render samples (default 5)
-  --textures paper|sfm        Blender textures: paper-like (default) or non-repeating noise for
-                              structure from motion (lc2wf-colmap-poses on the kept views)
+  --textures paper|sfm        paper-like textures (default) or non-repeating noise for structure
+                              from motion (lc2wf-colmap-poses on the kept views)
   --blender PATH              Blender executable (default: blender on PATH)
   --blender-batch N           buildings per Blender process (default 8)
   --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.01)
@@ -96,7 +96,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
     } else if (a == "--samples") {
       o.blender.samples = lc2wf::int_flag(a, value());
     } else if (a == "--textures") {
-      o.blender.textures = value();
+      o.blender.textures = o.raster.textures = value();
       if (o.blender.textures != "paper" && o.blender.textures != "sfm")
         throw UsageError("--textures must be paper or sfm, got '" + o.blender.textures + "'");
     } else if (a == "--blender") {
@@ -121,9 +121,6 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
   }
   if (o.meshes.empty()) throw UsageError("--meshes DIR is required");
   if (o.out.empty()) throw UsageError("--out DIR is required");
-  // The raster renderer has only the paper-like textures.
-  if (o.blender.textures != "paper" && o.renderer != lc2wf::RendererKind::Blender)
-    throw UsageError("--textures " + o.blender.textures + " needs --renderer blender");
   try {
     o.Check();
   } catch (const std::invalid_argument& e) {
