@@ -4,8 +4,8 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "tools/render/face_frames.h"
 #include "tools/render/procedural_textures.h"
