@@ -29,6 +29,27 @@ inline long long parse_count_flag(const std::string& flag, const std::string& va
   return x;
 }
 
+// Whole-string integer / number for FLAG; anything else is a usage error naming the flag and the value.
+inline int int_flag(const std::string& flag, const std::string& v) {
+  try {
+    size_t used = 0;
+    const int x = std::stoi(v, &used);
+    if (used == v.size()) return x;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(flag + " expects an integer, got '" + v + "'");
+}
+
+inline double number_flag(const std::string& flag, const std::string& v) {
+  try {
+    size_t used = 0;
+    const double x = std::stod(v, &used);
+    if (used == v.size()) return x;
+  } catch (const std::exception&) {
+  }
+  throw UsageError(flag + " expects a number, got '" + v + "'");
+}
+
 // parse(argc, argv) -> Args (throws UsageError on a bad command line); run(const Args&) -> exit code.
 template <class Parse, class Run>
 int cli_main(const char* program, const char* usage, int argc, char** argv, Parse parse, Run run) {

@@ -1,6 +1,8 @@
 // Shared helpers for the dataset tests.
 #pragma once
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -15,7 +17,7 @@ inline std::filesystem::path shared_data_dir() {
 
 // A fresh, empty scratch folder per test.
 inline std::filesystem::path scratch_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("lc2wf_dataset_test_" + name);
+  const auto dir = std::filesystem::temp_directory_path() / ("lc2wf_dataset_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -1,6 +1,7 @@
 // Blender path end to end (render -> lines -> cloud -> labels) on two small synthetic buildings, and the
 // OpenCV <-> Blender camera round trip. Skipped when `blender` is not installed.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -18,7 +19,7 @@ bool have_blender() { return std::system("command -v blender > /dev/null 2>&1") 
 
 TEST(BlenderPipeline, RendersTwoBuildingsIntoLabelledClouds) {
   if (!have_blender()) GTEST_SKIP() << "blender not found on PATH (install the Debian package: apt-get install blender python3-numpy)";
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_blender_test";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_blender_test_" + std::to_string(getpid()));
   fs::remove_all(dir);
   RectBuildingSpec rect;
   rect.west = RoofEnd::Gable;
@@ -56,7 +57,7 @@ TEST(BlenderPipeline, RendersTwoBuildingsIntoLabelledClouds) {
 }
 
 TEST(BlenderPipeline, AFailingBlenderIsReportedPerBuilding) {
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_blender_fail";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_blender_fail_" + std::to_string(getpid()));
   fs::remove_all(dir);
   const Building b = make_rect_building("rect", RectBuildingSpec{});
   CameraRingOptions ring;

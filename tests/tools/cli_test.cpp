@@ -1,29 +1,22 @@
 // lc2wf-dataset and lc2wf-colmap-poses as a user runs them: help, argument errors, exit codes.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "tests/common/run_cli.h"
+
 namespace {
 namespace fs = std::filesystem;
 
-struct CliResult {
-  int code = -1;
-  std::string out;
-};
+using lc2wf::testing::CliResult;
 
+// Both streams in `out`: the tests look for a message wherever the program printed it.
 CliResult run(const std::string& cmd) {
-  CliResult r;
-  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  CliResult r = lc2wf::testing::run_cli(cmd);
+  r.out += r.err;
   return r;
 }
 
@@ -42,13 +35,16 @@ TEST(DatasetCli, HelpAndArgumentErrors) {
   EXPECT_NE(r.out.find("shard"), std::string::npos) << r.out;
   r = run(kDataset + " --out o");
   EXPECT_EQ(r.code, 2);
-  r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out");
+  r = run(kDataset + " --meshes m --out o --renderer blender --textures photo");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--textures must be paper or sfm"), std::string::npos) << r.out;
+  r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out_" + std::to_string(getpid()));
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.out.find("/nonexistent/meshes"), std::string::npos) << r.out;
 }
 
 TEST(DatasetCli, FailedBuildingGivesExitCodeOneAndASummary) {
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_cli_fail";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_fail_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "meshes");
   std::ofstream(dir / "meshes" / "bad.polyshape") << "# Number of verts: 2\n0,0,0\n";
@@ -64,8 +60,14 @@ TEST(ColmapPosesCli, HelpAndMissingInputs) {
   EXPECT_NE(r.out.find("--intrinsics"), std::string::npos);
   r = run(kColmap + " --views /nonexistent/views");
   EXPECT_EQ(r.code, 2);
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_cli_colmap";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_colmap_" + std::to_string(getpid()));
   fs::create_directories(dir);
+  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5 --matcher vocab");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("exhaustive or sequential"), std::string::npos) << r.out;
+  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5 --outlier-factor x");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.out.find("--outlier-factor expects a number"), std::string::npos) << r.out;
   r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5");
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.out.find("fewer than 3 images"), std::string::npos) << r.out;

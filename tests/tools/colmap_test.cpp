@@ -1,8 +1,10 @@
 // COLMAP text-model conversion (quaternions, +0.5 pixel origin) and pose alignment; COLMAP itself is
 // not run here.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -37,7 +39,7 @@ TEST(ColmapPoses, QuaternionRoundTripIsNotTheConjugate) {
 }
 
 TEST(ColmapPoses, ReadsTextModelsWithTheHalfPixelShift) {
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_colmap_model";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_colmap_model_" + std::to_string(getpid()));
   fs::create_directories(dir);
   const auto cams = ring(3);
   {
@@ -89,6 +91,45 @@ TEST(ColmapPoses, AlignmentUndoesASimilarityAndMeasuresErrors) {
   std::vector<std::optional<Camera>> too_few(ref.size());
   too_few[0] = ref[0];
   EXPECT_THROW(align_to_reference(ref, too_few), std::invalid_argument);
+}
+
+TEST(ColmapPoses, AimPointAndPerViewErrors) {
+  const auto ref = ring(6);
+  EXPECT_LT((common_aim_point(ref) - Vec3(0, 0, 2)).norm(), 1e-9);
+  std::vector<std::optional<Camera>> est(ref.begin(), ref.end());
+  est[1].reset();
+  const PoseComparison pc = align_to_reference(ref, est);
+  ASSERT_EQ(pc.centre_error.size(), 6u);
+  EXPECT_TRUE(std::isnan(pc.centre_error[1]) && std::isnan(pc.rotation_deg[1]));
+  EXPECT_LT(pc.centre_error[0], 1e-9);
+  // Ring radius 25 at heights 8, 12, 16 around an aim point at height 2.
+  EXPECT_NEAR(pc.camera_distance, std::hypot(25.0, 10.0), 1e-9);
+}
+
+TEST(ColmapPoses, OutlierRoundsLeaveAFlippedViewOutOfTheFit) {
+  const auto ref = ring(10);
+  // View 3 placed on the opposite side of the house and turned by 180 degrees, as symmetric scenes do.
+  const Eigen::Matrix3d half_turn = Eigen::AngleAxisd(M_PI, Vec3::UnitZ()).toRotationMatrix();
+  std::vector<std::optional<Camera>> plain(ref.begin(), ref.end());
+  Camera& flipped = *plain[3];
+  const Vec3 C = half_turn * ref[3].center();
+  flipped.R = ref[3].R * half_turn.transpose();
+  flipped.t = -flipped.R * C;
+  auto robust = plain;
+  const PoseComparison all = align_to_reference(ref, plain);
+  EXPECT_EQ(all.inliers, 10);
+  EXPECT_GT(all.median_centre_error, 0.5);  // the flipped view drags every other view off
+  AlignOptions options;
+  options.outlier_factor = 3;
+  const PoseComparison pc = align_to_reference(ref, robust, options);
+  EXPECT_EQ(pc.inliers, 9);
+  EXPECT_EQ(pc.registered, 10);
+  EXPECT_LT(pc.median_centre_error, 1e-9);
+  EXPECT_NEAR(pc.rotation_deg[3], 180.0, 1e-6);
+  EXPECT_NEAR(pc.max_rotation_deg, 180.0, 1e-6);
+  EXPECT_GT(pc.centre_error[3], 40.0);
+  options.outlier_factor = 0.5;
+  EXPECT_THROW(options.Check(), std::invalid_argument);
 }
 
 }  // namespace

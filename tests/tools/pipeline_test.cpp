@@ -1,6 +1,7 @@
 // Render -> LSD -> triangulation -> labels, end to end, and the lc2wf-dataset run engine (resume,
 // shards, failures).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -96,7 +97,7 @@ void write_polyshape(const fs::path& path, const PolyMesh& m) {
 }
 
 TEST(DatasetRun, ShardsResumesAndReportsFailures) {
-  const fs::path dir = fs::path(testing::TempDir()) / "lc2wf_dataset_run";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_run_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "meshes");
   write_polyshape(dir / "meshes" / "a_rect.polyshape", make_rect_mesh(RectBuildingSpec{}));

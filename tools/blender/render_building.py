@@ -4,6 +4,7 @@ Run:  blender -b --factory-startup --python-exit-code 1 --python render_building
 
 JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z up):
   {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 1, "shadows": true, "gt_views": true,
+   "textures": "paper" (default: the paper-like look) | "sfm" (non-repeating noise for structure from motion),
    "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
    "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
                   "labels": [1|2|3 ...], "edges": [[i,j]...],
@@ -138,6 +139,85 @@ def make_material(name, rgb, tile_m):
     nodes.active = tex  # Workbench shows the active image texture node
     m.diffuse_color = tuple(float(c) for c in rgb.reshape(-1, 3).mean(0)) + (1.0,)
     return m, tile_m
+
+
+# ----------------------------------------------------------------------------- SfM textures ("textures": "sfm")
+# Photo-like surfaces for structure from motion: high-contrast multi-scale noise that never repeats
+# across a face, a random UV offset per face so symmetric faces differ, and a non-repeating ground.
+SFM_PX_PER_M = 32          # 3 cm texels: about one pixel at 20 m with a 35 mm lens at 640 px
+SFM_TILE_M = 24.0          # 768 px = 3 * 2^8; wider than nearly every Roof-Image face, so a face rarely shows a patch twice
+SFM_GROUND_TILE_M = 96.0   # 1152 px = 3 * 2^7 * 3; the ground around a building seen from the camera ring fits in one tile
+SFM_GROUND_PX_PER_M = 12
+SFM_TINTS = {"roof": (0.75, 0.35, 0.25), "flat": (0.55, 0.55, 0.58), "wall": (0.90, 0.85, 0.75),
+             "base": (0.45, 0.45, 0.45), "ground": (0.40, 0.55, 0.30)}
+
+
+def sfm_noise(size_px, rng, finest_px=3):
+    """Sum of value-noise octaves (periods from finest_px doubling up to a quarter of the tile), equal
+    weights, stretched to full contrast: blobs at every scale for SIFT. size_px should be finest_px
+    times a power of two (times a small factor) so every period divides it and the tile is seamless."""
+    out = np.zeros((size_px, size_px))
+    period = finest_px
+    while period <= size_px // 4:
+        n = size_px // period
+        lattice = rng.random((n, n))
+        x = np.arange(size_px) / period
+        i = np.floor(x).astype(np.int64)
+        j = (i + 1) % n  # the lattice wraps, so the tile is seamless where UVs run past 1
+        f = x - i
+        f = f * f * (3 - 2 * f)
+        rows = lattice[i] * (1 - f)[:, None] + lattice[j] * f[:, None]   # interpolate along y
+        out += rows[:, i] * (1 - f)[None, :] + rows[:, j] * f[None, :]  # then along x
+        period *= 2
+    lo, hi = np.percentile(out[::4, ::4], [2, 98])  # a subsample is enough and 16x cheaper
+    return np.clip((out - lo) / max(hi - lo, 1e-9), 0.0, 1.0)
+
+
+def sfm_texture(kind, size_px, rng):
+    lum = 0.08 + 0.92 * sfm_noise(size_px, rng)
+    return np.asarray(SFM_TINTS[kind])[None, None, :] * lum[..., None]
+
+
+def sfm_material(name, rgb):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    tex = m.node_tree.nodes.new("ShaderNodeTexImage")
+    tex.image = make_image(name + "_img", rgb)
+    tex.interpolation = "Linear"  # no texel aliasing: features must look alike from every view
+    m.node_tree.links.new(tex.outputs["Color"], m.node_tree.nodes["Principled BSDF"].inputs["Base Color"])
+    m.node_tree.nodes.active = tex
+    m.diffuse_color = tuple(float(c) for c in rgb.reshape(-1, 3).mean(0)) + (1.0,)
+    return m
+
+
+def apply_sfm_textures(b, obj, ground, verts):
+    """Replaces the building's and the ground's materials and UVs with SfM textures."""
+    rng = np.random.default_rng(int(b.get("seed", 0)) + 1000003)
+    me = obj.data
+    me.materials.clear()
+    slots = {}  # only the surfaces this building has: each texture costs seconds of numpy
+    uv = me.uv_layers.active
+    labels = b["labels"]
+    for poly in me.polygons:
+        pts = [verts[i] for i in poly.vertices]
+        n, u, v = face_frame(pts)
+        kind = surface_kind(labels[poly.index], n)
+        if kind not in slots:
+            slots[kind] = len(slots)
+            me.materials.append(sfm_material("sfm_" + kind, sfm_texture(kind, int(SFM_TILE_M * SFM_PX_PER_M), rng)))
+        poly.material_index = slots[kind]
+        ou, ov = rng.random(2)
+        for li in poly.loop_indices:
+            d = verts[me.loops[li].vertex_index] - pts[0]
+            uv.data[li].uv = (d.dot(u) / SFM_TILE_M + ou, d.dot(v) / SFM_TILE_M + ov)
+    gme = ground.data
+    gme.materials.clear()
+    gme.materials.append(sfm_material("sfm_ground", sfm_texture("ground", int(SFM_GROUND_TILE_M * SFM_GROUND_PX_PER_M), rng)))
+    guv = gme.uv_layers.active
+    c = gme.vertices[0].co + (gme.vertices[2].co - gme.vertices[0].co) / 2  # the building's centre
+    for li in gme.polygons[0].loop_indices:
+        p = gme.vertices[gme.loops[li].vertex_index].co
+        guv.data[li].uv = ((p.x - c.x) / SFM_GROUND_TILE_M + 0.5, (p.y - c.y) / SFM_GROUND_TILE_M + 0.5)
 
 
 # ----------------------------------------------------------------------------- scene
@@ -366,6 +446,8 @@ def render_building(b, job):
     width, height = int(cams[0]["width"]), int(cams[0]["height"])
     scene, obj, verts = build_scene(b, job)
     setup_render(scene, job, width, height)
+    if job.get("textures", "paper") == "sfm":
+        apply_sfm_textures(b, obj, bpy.data.objects["ground"], verts)
     cam_obj = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(cam_obj)
     scene.camera = cam_obj

@@ -1,11 +1,10 @@
 // lc2wf-dataset: Roof-Image meshes -> labelled 3D line clouds (render, LSD, triangulation, labels).
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
 #include <stdexcept>
 #include <string>
 
-#include "dataset/errors.h"
+#include "core/util/cli.h"
 #include "tools/pipeline/dataset_run.h"
 
 namespace {
@@ -31,6 +30,8 @@ options:
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
   --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased, ~3x slower)
+  --textures paper|sfm        paper-like textures (default) or non-repeating noise for structure
+                              from motion (lc2wf-colmap-poses on the kept views)
   --blender PATH              Blender executable (default: blender on PATH)
   --blender-batch N           buildings per Blender process (default 16)
   --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.005)
@@ -49,53 +50,23 @@ options:
 exit codes: 0 every building done, 1 some buildings failed (see the summary), 2 bad arguments, 3 fatal error
 )";
 
-[[noreturn]] void usage_error(const std::string& msg) {
-  std::fprintf(stderr, "lc2wf-dataset: %s\n(run with --help for usage)\n", msg.c_str());
-  std::exit(2);
-}
-
-int to_int(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const int x = std::stoi(v, &used);
-    if (used != v.size()) throw std::invalid_argument(v);
-    return x;
-  } catch (const std::exception&) {
-    usage_error(flag + " expects an integer, got '" + v + "'");
-  }
-}
-
-double to_double(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const double x = std::stod(v, &used);
-    if (used != v.size()) throw std::invalid_argument(v);
-    return x;
-  } catch (const std::exception&) {
-    usage_error(flag + " expects a number, got '" + v + "'");
-  }
-}
+using lc2wf::UsageError;
 
 std::pair<int, int> split_pair(const std::string& flag, const std::string& v, char sep) {
   const size_t p = v.find(sep);
-  if (p == std::string::npos) usage_error(flag + " expects A" + sep + "B, got '" + v + "'");
-  return {to_int(flag, v.substr(0, p)), to_int(flag, v.substr(p + 1))};
+  if (p == std::string::npos) throw UsageError(flag + " expects A" + sep + "B, got '" + v + "'");
+  return {lc2wf::int_flag(flag, v.substr(0, p)), lc2wf::int_flag(flag, v.substr(p + 1))};
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
   lc2wf::DatasetRunOptions o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
-      if (i + 1 >= argc) usage_error(a + " needs a value");
+      if (i + 1 >= argc) throw UsageError(a + " needs a value");
       return argv[++i];
     };
-    if (a == "-h" || a == "--help") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    } else if (a == "--meshes") {
+    if (a == "--meshes") {
       o.meshes = value();
     } else if (a == "--out") {
       o.out = value();
@@ -103,77 +74,89 @@ int main(int argc, char** argv) {
       const std::string r = value();
       if (r == "raster") o.renderer = lc2wf::RendererKind::Raster;
       else if (r == "blender") o.renderer = lc2wf::RendererKind::Blender;
-      else usage_error("--renderer must be raster or blender, got '" + r + "'");
+      else throw UsageError("--renderer must be raster or blender, got '" + r + "'");
     } else if (a == "--views") {
-      o.cameras.views = to_int(a, value());
+      o.cameras.views = lc2wf::int_flag(a, value());
     } else if (a == "--size") {
       std::tie(o.cameras.width, o.cameras.height) = split_pair(a, value(), 'x');
     } else if (a == "-j" || a == "--threads") {
-      o.threads = to_int(a, value());
+      o.threads = lc2wf::int_flag(a, value());
     } else if (a == "--shard") {
       std::tie(o.shard_index, o.shard_count) = split_pair(a, value(), '/');
     } else if (a == "--limit") {
-      o.limit = to_int(a, value());
+      o.limit = lc2wf::int_flag(a, value());
     } else if (a == "--seed") {
-      o.seed = static_cast<uint64_t>(to_int(a, value()));
+      o.seed = static_cast<uint64_t>(lc2wf::int_flag(a, value()));
     } else if (a == "--keep-views") {
       o.keep_views = true;
     } else if (a == "--supersample") {
-      o.raster.supersample = to_int(a, value());
+      o.raster.supersample = lc2wf::int_flag(a, value());
     } else if (a == "--blur") {
-      o.raster.blur_sigma_px = to_double(a, value());
+      o.raster.blur_sigma_px = lc2wf::number_flag(a, value());
     } else if (a == "--no-shadows") {
       o.raster.shadows = false;
       o.blender.shadows = false;
     } else if (a == "--engine") {
       o.blender.engine = value();
     } else if (a == "--samples") {
-      o.blender.samples = to_int(a, value());
+      o.blender.samples = lc2wf::int_flag(a, value());
+    } else if (a == "--textures") {
+      o.blender.textures = o.raster.textures = value();
+      if (o.blender.textures != "paper" && o.blender.textures != "sfm")
+        throw UsageError("--textures must be paper or sfm, got '" + o.blender.textures + "'");
     } else if (a == "--blender") {
       o.blender.executable = value();
     } else if (a == "--blender-batch") {
-      o.blender_batch = to_int(a, value());
+      o.blender_batch = lc2wf::int_flag(a, value());
     } else if (a == "--lsd-min-length") {
-      o.cloud.lsd.min_length_frac = to_double(a, value());
+      o.cloud.lsd.min_length_frac = lc2wf::number_flag(a, value());
     } else if (a == "--lsd-refine") {
       const std::string r = value();
-      if (r != "std" && r != "adv") usage_error("--lsd-refine must be std or adv, got '" + r + "'");
+      if (r != "std" && r != "adv") throw UsageError("--lsd-refine must be std or adv, got '" + r + "'");
       o.cloud.lsd.refine_advanced = r == "adv";
     } else if (a == "--lsd-scale") {
-      o.cloud.lsd.scale = to_double(a, value());
+      o.cloud.lsd.scale = lc2wf::number_flag(a, value());
     } else if (a == "--max-segments") {
-      o.cloud.lsd.max_segments = to_int(a, value());
+      o.cloud.lsd.max_segments = lc2wf::int_flag(a, value());
     } else if (a == "--min-score") {
-      o.cloud.triangulator.min_best_score = to_double(a, value());
+      o.cloud.triangulator.min_best_score = lc2wf::number_flag(a, value());
     } else if (a == "--neighbours") {
-      o.cloud.triangulator.neighbours.count = to_int(a, value());
+      o.cloud.triangulator.neighbours.count = lc2wf::int_flag(a, value());
     } else if (a == "--label-min-views") {
-      o.cloud.labels.min_views = to_int(a, value());
+      o.cloud.labels.min_views = lc2wf::int_flag(a, value());
     } else if (a == "--min-ray-plane-angle") {
-      o.cloud.triangulator.min_ray_plane_angle_deg = to_double(a, value());
+      o.cloud.triangulator.min_ray_plane_angle_deg = lc2wf::number_flag(a, value());
     } else if (a == "--neighbour-max-angle") {
-      o.cloud.triangulator.neighbours.max_angle_deg = to_double(a, value());
+      o.cloud.triangulator.neighbours.max_angle_deg = lc2wf::number_flag(a, value());
     } else if (a == "--sigma-p") {
-      o.cloud.triangulator.sigma_p_px = to_double(a, value());
+      o.cloud.triangulator.sigma_p_px = lc2wf::number_flag(a, value());
     } else if (a == "--no-progress") {
       o.progress = false;
     } else {
-      usage_error("unknown argument '" + a + "'");
+      throw UsageError("unknown argument '" + a + "'");
     }
   }
-  if (o.meshes.empty()) usage_error("--meshes DIR is required");
-  if (o.out.empty()) usage_error("--out DIR is required");
+  if (o.meshes.empty()) throw UsageError("--meshes DIR is required");
+  if (o.out.empty()) throw UsageError("--out DIR is required");
   try {
     o.Check();
   } catch (const std::invalid_argument& e) {
-    usage_error(e.what());
+    throw UsageError(e.what());
   }
+  return o;
+}
+
+int run(const lc2wf::DatasetRunOptions& o) {
   try {
     const auto summary = lc2wf::run_dataset(o);
     std::cout << summary.dump(2) << std::endl;
     return summary["failed"].empty() ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lc2wf-dataset: %s\n", e.what());
-    return 3;
+    return 3;  // fatal, distinct from 1 = some buildings failed
   }
 }
+
+}  // namespace
+
+int main(int argc, char** argv) { return lc2wf::cli_main("lc2wf-dataset", kUsage, argc, argv, parse_args, run); }

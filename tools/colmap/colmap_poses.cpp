@@ -4,9 +4,11 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -109,36 +111,99 @@ std::vector<ColmapImage> read_colmap_text_model(const fs::path& dir) {
   return out;
 }
 
-PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vector<std::optional<Camera>>& estimated) {
-  if (reference.size() != estimated.size()) throw std::invalid_argument("align_to_reference: view counts differ");
-  std::vector<int> ids;
-  for (size_t i = 0; i < estimated.size(); ++i)
-    if (estimated[i]) ids.push_back(static_cast<int>(i));
-  if (ids.size() < 3) throw std::invalid_argument("align_to_reference: fewer than 3 registered views");
+Vec3 common_aim_point(const std::vector<Camera>& cameras) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Vec3 rhs = Vec3::Zero();
+  for (const Camera& c : cameras) {
+    const Vec3 d = c.R.transpose().col(2);  // optical axis in the world frame
+    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
+    A += P;
+    rhs += P * c.center();
+  }
+  return A.completeOrthogonalDecomposition().solve(rhs);  // minimum norm when the axes are parallel
+}
+
+void AlignOptions::Check() const {
+  if (!(outlier_factor == 0 || outlier_factor >= 1)) throw std::invalid_argument("AlignOptions.outlier_factor must be 0 or >= 1");
+  if (rounds < 1) throw std::invalid_argument("AlignOptions.rounds must be >= 1");
+}
+
+namespace {
+
+struct Similarity {
+  double s = 1;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Vec3 t = Vec3::Zero();
+};
+
+// dst ~ s R src + t over the listed views.
+Similarity fit_similarity(const std::vector<Camera>& reference, const std::vector<std::optional<Camera>>& estimated,
+                          const std::vector<int>& ids) {
   Eigen::Matrix3Xd src(3, ids.size()), dst(3, ids.size());
   for (size_t k = 0; k < ids.size(); ++k) {
     src.col(k) = estimated[ids[k]]->center();
     dst.col(k) = reference[ids[k]].center();
   }
-  const Eigen::Matrix4d T = Eigen::umeyama(src, dst, true);  // dst = s R src + t
+  const Eigen::Matrix4d T = Eigen::umeyama(src, dst, true);
   const Eigen::Matrix3d sR = T.topLeftCorner<3, 3>();
-  const double s = std::cbrt(sR.determinant());
-  const Eigen::Matrix3d Ra = sR / s;
-  const Vec3 ta = T.topRightCorner<3, 1>();
+  Similarity sim;
+  sim.s = std::cbrt(sR.determinant());
+  sim.R = sR / sim.s;
+  sim.t = T.topRightCorner<3, 1>();
+  return sim;
+}
+
+// Via the quaternion (atan2) rather than acos of the trace, which cannot resolve angles below ~0.001 deg.
+double rotation_angle_deg(const Eigen::Matrix3d& A, const Eigen::Matrix3d& B) {
+  return Eigen::AngleAxisd(Eigen::Quaterniond(A * B.transpose()).normalized()).angle() * 180.0 / M_PI;
+}
+
+}  // namespace
+
+PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vector<std::optional<Camera>>& estimated,
+                                  const AlignOptions& options) {
+  options.Check();
+  if (reference.size() != estimated.size()) throw std::invalid_argument("align_to_reference: view counts differ");
+  std::vector<int> ids;
+  for (size_t i = 0; i < estimated.size(); ++i)
+    if (estimated[i]) ids.push_back(static_cast<int>(i));
+  if (ids.size() < 3) throw std::invalid_argument("align_to_reference: fewer than 3 registered views");
+  const Vec3 aim = common_aim_point(reference);
+  std::vector<double> distances;
+  for (const Camera& c : reference) distances.push_back((c.center() - aim).norm());
+  const double camera_distance = median(distances);
+  std::vector<int> inliers = ids;
+  Similarity sim = fit_similarity(reference, estimated, inliers);
+  for (int round = 1; round < options.rounds && options.outlier_factor > 0; ++round) {
+    std::vector<double> inlier_errors;
+    for (int i : inliers) inlier_errors.push_back((sim.s * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm());
+    const double threshold = std::max(options.outlier_factor * median(inlier_errors), 0.01 * camera_distance);
+    std::vector<int> kept;
+    for (int i : ids)
+      if ((sim.s * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm() <= threshold) kept.push_back(i);
+    if (kept == inliers || kept.size() < 3) break;
+    inliers = kept;
+    sim = fit_similarity(reference, estimated, inliers);
+  }
   PoseComparison pc;
   pc.reference = static_cast<int>(reference.size());
   pc.registered = static_cast<int>(ids.size());
-  pc.scale = s;
+  pc.inliers = static_cast<int>(inliers.size());
+  pc.scale = sim.s;
+  pc.camera_distance = camera_distance;
+  pc.centre_error.assign(reference.size(), std::nan(""));
+  pc.rotation_deg.assign(reference.size(), std::nan(""));
   std::vector<double> ce, re;
   for (int i : ids) {
     Camera& c = *estimated[i];
-    // X_est = (Ra^T (X_ref - ta)) / s  =>  x_cam = R_est X_est + t_est = (R_est Ra^T / s) X_ref + ...
-    const Vec3 C = s * Ra * c.center() + ta;
-    c.R = c.R * Ra.transpose();
+    // X_ref = s Ra X_est + ta  =>  R_ref-frame = R_est Ra^T, centre mapped by the similarity.
+    const Vec3 C = sim.s * sim.R * c.center() + sim.t;
+    c.R = c.R * sim.R.transpose();
     c.t = -c.R * C;
-    ce.push_back((c.center() - reference[i].center()).norm());
-    const double cosang = std::clamp(((c.R * reference[i].R.transpose()).trace() - 1.0) / 2.0, -1.0, 1.0);
-    re.push_back(std::acos(cosang) * 180.0 / M_PI);
+    pc.centre_error[i] = (c.center() - reference[i].center()).norm();
+    pc.rotation_deg[i] = rotation_angle_deg(c.R, reference[i].R);
+    ce.push_back(pc.centre_error[i]);
+    re.push_back(pc.rotation_deg[i]);
   }
   pc.median_centre_error = median(ce);
   pc.max_centre_error = *std::max_element(ce.begin(), ce.end());
@@ -150,20 +215,30 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
 void ColmapOptions::Check() const {
   if (executable.empty()) throw std::invalid_argument("ColmapOptions.executable is empty");
   if (max_features < 100) throw std::invalid_argument("ColmapOptions.max_features must be >= 100");
+  if (matcher != "exhaustive" && matcher != "sequential")
+    throw std::invalid_argument("ColmapOptions.matcher must be exhaustive or sequential, not " + matcher);
+  if (sequential_overlap < 1) throw std::invalid_argument("ColmapOptions.sequential_overlap must be >= 1");
+  if (init_min_inliers < 8) throw std::invalid_argument("ColmapOptions.init_min_inliers must be >= 8");
+  if (abs_pose_min_inliers < 6) throw std::invalid_argument("ColmapOptions.abs_pose_min_inliers must be >= 6");
+  if (threads < 0) throw std::invalid_argument("ColmapOptions.threads must be >= 0");
 }
 
 namespace {
 
-void run_step(const std::string& cmd, const fs::path& log, const std::string& step) {
-  const int status = std::system((cmd + " >> '" + log.string() + "' 2>&1").c_str());
+std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// Runs one COLMAP command, appending its output to the log; returns its wall time in seconds.
+double run_step(const std::string& cmd, const fs::path& log, const std::string& step) {
+  const auto start = std::chrono::steady_clock::now();
+  const int status = std::system((cmd + " >> " + quote(log) + " 2>&1").c_str());
   if (status != 0) throw std::runtime_error("COLMAP " + step + " failed (status " + std::to_string(status) + "); see " + log.string());
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
 
-std::vector<std::optional<Camera>> estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K,
-                                                              int width, int height, const fs::path& workspace,
-                                                              const ColmapOptions& o) {
+ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
+                                     const ColmapOptions& o) {
   o.Check();
   fs::remove_all(workspace);
   fs::create_directories(workspace / "images");
@@ -173,37 +248,62 @@ std::vector<std::optional<Camera>> estimate_poses_with_colmap(const std::vector<
     fs::copy_file(p, workspace / "images" / p.filename());
     names.push_back(p.filename().string());
   }
-  const fs::path db = workspace / "database.db", log = workspace / "colmap.log";
-  const std::string exe = "'" + o.executable + "'";
+  const fs::path db = workspace / "database.db", log = workspace / "colmap.log", image_dir = workspace / "images";
+  const std::string exe = quote(o.executable);
+  const std::string threads = std::to_string(o.threads > 0 ? o.threads : -1);
   std::ostringstream params;
   params.precision(17);
   params << K(0, 0) << "," << K(1, 1) << "," << K(0, 2) + 0.5 << "," << K(1, 2) + 0.5;
-  run_step(exe + " feature_extractor --database_path '" + db.string() + "' --image_path '" + (workspace / "images").string() +
-               "' --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1 --ImageReader.camera_params " + params.str() +
-               " --SiftExtraction.use_gpu 0 --SiftExtraction.max_num_features " + std::to_string(o.max_features),
-           log, "feature_extractor");
-  run_step(exe + " exhaustive_matcher --database_path '" + db.string() + "' --SiftMatching.use_gpu 0", log, "exhaustive_matcher");
+  ColmapRun run;
+  run.step_seconds.emplace_back(
+      "feature_extractor",
+      run_step(exe + " feature_extractor --database_path " + quote(db) + " --image_path " + quote(image_dir) +
+                   " --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1 --ImageReader.camera_params " + params.str() +
+                   " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads " + threads +
+                   " --SiftExtraction.max_num_features " + std::to_string(o.max_features),
+               log, "feature_extractor"));
+  const std::string matcher = o.matcher + "_matcher";
+  std::string match_cmd = exe + " " + matcher + " --database_path " + quote(db) + " --SiftMatching.use_gpu 0 --SiftMatching.num_threads " + threads;
+  if (o.matcher == "sequential") match_cmd += " --SequentialMatching.overlap " + std::to_string(o.sequential_overlap);
+  run.step_seconds.emplace_back(matcher, run_step(match_cmd, log, matcher));
   fs::create_directories(workspace / "sparse");
-  run_step(exe + " mapper --database_path '" + db.string() + "' --image_path '" + (workspace / "images").string() + "' --output_path '" +
-               (workspace / "sparse").string() +
-               "' --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0",
-           log, "mapper");
-  if (!fs::exists(workspace / "sparse" / "0")) throw std::runtime_error("COLMAP mapper built no model; see " + log.string());
-  fs::create_directories(workspace / "model_txt");
-  run_step(exe + " model_converter --input_path '" + (workspace / "sparse" / "0").string() + "' --output_path '" +
-               (workspace / "model_txt").string() + "' --output_type TXT",
-           log, "model_converter");
-  const auto model = read_colmap_text_model(workspace / "model_txt");
-  std::vector<std::optional<Camera>> out(images.size());
-  for (const ColmapImage& im : model) {
+  const std::string mapper_cmd = exe + " mapper --database_path " + quote(db) + " --image_path " + quote(image_dir) +
+                                 " --output_path " + quote(workspace / "sparse") + " --Mapper.num_threads " + threads +
+                                 " --Mapper.init_min_num_inliers " + std::to_string(o.init_min_inliers) +
+                                 " --Mapper.abs_pose_min_num_inliers " + std::to_string(o.abs_pose_min_inliers) +
+                                 " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0";
+  try {
+    run.step_seconds.emplace_back("mapper", run_step(mapper_cmd, log, "mapper"));
+  } catch (const std::runtime_error&) {
+    // COLMAP 3.8 exits non-zero when it cannot start a model; say why, not only "failed".
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("No good initial image pair found") == std::string::npos) throw;
+    throw std::runtime_error("COLMAP mapper found no initial image pair: too few verified matches between views (repetitive "
+                             "textures or little overlap; a lower init_min_inliers, --init-min-inliers, may help); see " +
+                             log.string());
+  }
+  // The mapper writes sparse/0, sparse/1, ... when it cannot join every view into one model.
+  std::vector<ColmapImage> best;
+  double convert_seconds = 0;
+  for (int m = 0; fs::exists(workspace / "sparse" / std::to_string(m)); ++m) {
+    const fs::path txt = workspace / ("model_txt_" + std::to_string(m));
+    fs::create_directories(txt);
+    convert_seconds += run_step(exe + " model_converter --input_path " + quote(workspace / "sparse" / std::to_string(m)) +
+                                    " --output_path " + quote(txt) + " --output_type TXT",
+                                log, "model_converter");
+    auto model = read_colmap_text_model(txt);
+    if (model.size() > best.size()) best = std::move(model);
+  }
+  if (best.empty()) throw std::runtime_error("COLMAP mapper built no model; see " + log.string());
+  run.step_seconds.emplace_back("model_converter", convert_seconds);
+  run.cameras.resize(images.size());
+  for (const ColmapImage& im : best) {
     const auto it = std::find(names.begin(), names.end(), im.name);
     if (it == names.end()) continue;
-    Camera c = im.camera;
-    c.width = width;
-    c.height = height;
-    out[it - names.begin()] = c;
+    run.cameras[it - names.begin()] = im.camera;  // image size as COLMAP read it
   }
-  return out;
+  return run;
 }
 
 }  // namespace lc2wf

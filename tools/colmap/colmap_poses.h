@@ -28,27 +28,52 @@ std::vector<ColmapImage> read_colmap_text_model(const std::filesystem::path& dir
 struct PoseComparison {
   int reference = 0;       // views in the reference
   int registered = 0;      // views COLMAP placed
+  int inliers = 0;         // registered views the final similarity was fitted to
   double scale = 1.0;      // similarity that maps the estimated centres onto the reference ones
   double median_centre_error = 0, max_centre_error = 0;  // reference units, after alignment
   double median_rotation_deg = 0, max_rotation_deg = 0;
+  double camera_distance = 0;  // median distance from a reference camera to the point its axes aim at
+  std::vector<double> centre_error, rotation_deg;  // per view; NaN when not registered
+};
+
+struct AlignOptions {
+  // Views whose centre error exceeds this multiple of the median (and 1% of the camera distance) are
+  // left out of the next fit: one view SfM placed on the wrong side of a symmetric house must not
+  // drag the similarity for all others. 0 fits every registered view once.
+  double outlier_factor = 0;
+  int rounds = 3;
+  void Check() const;
 };
 
 // Aligns the estimated camera centres to the reference ones (Umeyama similarity over views present in
 // both), rewrites the estimated cameras into the reference frame and measures the errors. Needs at least
 // 3 registered views; throws std::invalid_argument otherwise.
-PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vector<std::optional<Camera>>& estimated);
+PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vector<std::optional<Camera>>& estimated,
+                                  const AlignOptions& options = {});
+
+// Least-squares point closest to every camera's optical axis (the point a ring of cameras looks at).
+Vec3 common_aim_point(const std::vector<Camera>& cameras);
 
 struct ColmapOptions {
   std::string executable = "colmap";
   int max_features = 4000;
+  std::string matcher = "exhaustive";  // or "sequential": only views close in name order (video, rings)
+  int sequential_overlap = 10;         // sequential: each view is matched with this many next ones
+  int init_min_inliers = 100;          // mapper: verified matches of the initial pair (COLMAP's default)
+  int abs_pose_min_inliers = 30;       // mapper: 2D-3D inliers to register a view (COLMAP's default)
+  int threads = 0;                     // every COLMAP stage; 0 = all cores
   void Check() const;
 };
 
-// Runs feature_extractor, exhaustive_matcher, mapper and model_converter in `workspace` on `images`
-// (one camera: intrinsics K, fixed during mapping). Returns one optional camera per image (empty when not
-// registered), in COLMAP's own frame. Throws std::runtime_error naming the failing step and its log.
-std::vector<std::optional<Camera>> estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images,
-                                                              const Eigen::Matrix3d& K, int width, int height,
-                                                              const std::filesystem::path& workspace, const ColmapOptions& options);
+struct ColmapRun {
+  std::vector<std::optional<Camera>> cameras;  // one per image (empty when not registered), COLMAP's frame
+  std::vector<std::pair<std::string, double>> step_seconds;  // wall time of each COLMAP command
+};
+
+// Runs feature_extractor, the matcher, mapper and model_converter in `workspace` on `images` (one
+// camera: intrinsics K, fixed during mapping). The mapper may build several models; the one with the
+// most registered images is used. Throws std::runtime_error naming the failing step and its log.
+ColmapRun estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images, const Eigen::Matrix3d& K,
+                                     const std::filesystem::path& workspace, const ColmapOptions& options);
 
 }  // namespace lc2wf

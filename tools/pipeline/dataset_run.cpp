@@ -395,6 +395,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   Json summary = summarise(statuses);
   summary["shard"] = std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count);
   summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
+  summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
   summary["processed_this_run"] = todo.size();
   summary["skipped_already_done"] = names.size() - todo.size();
   summary["wall_seconds_this_run"] = since(start);

@@ -41,6 +41,7 @@ void BlenderOptions::Check() const {
   if (engine != "BLENDER_WORKBENCH" && engine != "BLENDER_EEVEE" && engine != "CYCLES")
     throw std::invalid_argument("BlenderOptions.engine must be BLENDER_WORKBENCH, BLENDER_EEVEE or CYCLES, not " + engine);
   if (samples < 1) throw std::invalid_argument("BlenderOptions.samples must be >= 1");
+  if (textures != "paper" && textures != "sfm") throw std::invalid_argument("BlenderOptions.textures must be paper or sfm, not " + textures);
   if (threads < 0) throw std::invalid_argument("BlenderOptions.threads must be >= 0");
   if (sun_elevation_deg <= 0 || sun_elevation_deg > 90) throw std::invalid_argument("BlenderOptions.sun_elevation_deg must be in (0, 90]");
 }
@@ -86,6 +87,7 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
   job["samples"] = options.samples;
   job["shadows"] = options.shadows;
   job["gt_views"] = options.gt_views;
+  job["textures"] = options.textures;
   job["sun_azimuth_deg"] = options.sun_azimuth_deg;
   job["sun_elevation_deg"] = options.sun_elevation_deg;
   job["buildings"] = Json::array();

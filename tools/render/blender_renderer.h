@@ -20,6 +20,7 @@ struct BlenderOptions {
   // whole Blender path for +3 points GT-edge coverage (tools/README.md).
   int samples = 1;
   bool shadows = true;
+  std::string textures = "paper";               // or "sfm": non-repeating noise that COLMAP can match
   double sun_azimuth_deg = 140.0;
   double sun_elevation_deg = 55.0;
   int threads = 0;                              // Blender's -t (0 = all cores)

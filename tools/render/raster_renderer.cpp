@@ -9,6 +9,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "tools/render/sfm_textures.h"
+
 namespace lc2wf {
 namespace {
 
@@ -92,6 +94,7 @@ void RasterOptions::Check() const {
     throw std::invalid_argument("RasterOptions.sun_elevation_deg must be in (0, 90]");
   if (ambient < 0 || ambient > 1) throw std::invalid_argument("RasterOptions.ambient must be in [0, 1]");
   if (noise_sigma < 0) throw std::invalid_argument("RasterOptions.noise_sigma must be >= 0");
+  if (textures != "paper" && textures != "sfm") throw std::invalid_argument("RasterOptions.textures must be paper or sfm, not " + textures);
   if (blur_sigma_px < 0 || blur_sigma_px > 10) throw std::invalid_argument("RasterOptions.blur_sigma_px must be in [0, 10]");
   if (shadow_map_size < 16 || shadow_map_size > 8192)
     throw std::invalid_argument("RasterOptions.shadow_map_size must be in [16, 8192]");
@@ -211,6 +214,7 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
   const double fx = cam.K(0, 0), fy = cam.K(1, 1), cx = cam.K(0, 2), cy = cam.K(1, 2);
   const double ground_z = mesh_.box_min.z();
   cv::Mat linear(cam.height, cam.width, CV_32FC3);
+  const bool sfm = options_.textures == "sfm";
   for (int y = 0; y < cam.height; ++y) {
     const float* drow = depth.ptr<float>(y);
     const int* irow = ids.ptr<int>(y);
@@ -223,7 +227,7 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
         const FaceFrame& frame = mesh_.frames[irow[x]];
         X = Rt * (m * drow[x] - cam.t);
         n = frame.normal.dot(C - X) >= 0 ? frame.normal : Vec3(-frame.normal);
-        colour = surface_colour(frame, X, style_);
+        colour = sfm ? sfm_surface_colour(frame, X, options_.seed) : surface_colour(frame, X, style_);
       } else {
         const Vec3 r = Rt * m;
         if (r.z() >= -1e-9 || C.z() <= ground_z) {
@@ -232,7 +236,7 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
         }
         X = C + r * ((ground_z - C.z()) / r.z());
         n = Vec3::UnitZ();
-        colour = ground_colour(X.x(), X.y(), style_);
+        colour = sfm ? sfm_ground_colour(X.x(), X.y(), options_.seed) : ground_colour(X.x(), X.y(), style_);
       }
       double direct = std::max(0.0, n.dot(sun_));
       if (direct > 0 && options_.shadows && in_shadow(X)) direct = 0;

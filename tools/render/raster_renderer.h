@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <opencv2/core.hpp>
+#include <string>
 
 #include "tools/render/face_frames.h"
 #include "tools/render/procedural_textures.h"
@@ -24,6 +25,7 @@ struct RasterOptions {
   double blur_sigma_px = 1.0;
   int shadow_map_size = 1024;
   uint64_t seed = 0;                 // texture variation and noise
+  std::string textures = "paper";    // or "sfm": non-repeating noise that COLMAP can match (sfm_textures.h)
   void Check() const;
 };
 
