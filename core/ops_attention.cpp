@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "core/autograd.h"
 #include "core/kernels.h"
 #include "core/ops.h"
+#include "core/simd512.h"
 #include "core/small_gemm.h"
 
 namespace lc2wf {
@@ -96,6 +98,47 @@ inline void softmax_dropout_row(T* pr, T* pd, int64_t Lk_runtime, T scale, const
   }
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+#define LC2WF_ATTENTION_ROW16 1
+// The same row for float scores of 32 or 64 keys, held in registers: masked max, exp, sum, normalise,
+// and the dropout keep mask of 16 keys per instruction.
+template <int LK>
+inline void softmax_dropout_row16(float* pr, float* pd, float scale, const uint8_t* mrow, const DropoutPlan& drop,
+                                  uint64_t row) {
+  constexpr int V = LK / 16;
+  const float neg_inf = -std::numeric_limits<float>::infinity();
+  __m512 x[V];
+  __mmask16 valid[V];
+  __m512 mx = _mm512_set1_ps(neg_inf);
+  for (int v = 0; v < V; ++v) {
+    x[v] = _mm512_mul_ps(_mm512_loadu_ps(pr + 16 * v), _mm512_set1_ps(scale));
+    valid[v] = mrow ? _mm_cmpeq_epi8_mask(_mm_loadu_si128(reinterpret_cast<const __m128i*>(mrow + 16 * v)),
+                                          _mm_setzero_si128())
+                    : static_cast<__mmask16>(0xFFFF);
+    mx = _mm512_mask_max_ps(mx, valid[v], mx, x[v]);
+  }
+  const float m = _mm512_reduce_max_ps(mx);
+  if (m == neg_inf) {
+    std::fill_n(pr, LK, 0.0f);
+    std::fill_n(pd, LK, 0.0f);
+    return;
+  }
+  __m512 sum = _mm512_setzero_ps();
+  for (int v = 0; v < V; ++v) {
+    x[v] = _mm512_maskz_mov_ps(valid[v], exp16(_mm512_sub_ps(x[v], _mm512_set1_ps(m))));
+    sum = _mm512_add_ps(sum, x[v]);
+  }
+  const __m512 inv = _mm512_set1_ps(1.0f / _mm512_reduce_add_ps(sum));
+  const __m512 keep_scale = _mm512_set1_ps(static_cast<float>(drop.scale));
+  const uint64_t base = row * LK;
+  for (int v = 0; v < V; ++v) {
+    __m512 p = _mm512_mul_ps(x[v], inv);
+    _mm512_storeu_ps(pr + 16 * v, p);
+    _mm512_storeu_ps(pd + 16 * v, drop.active ? _mm512_maskz_mul_ps(drop.mask.keep16(base + 16 * v), p, keep_scale) : p);
+  }
+}
+#endif
+
 // Scores, softmax and dropout of one (batch item, head): P gets the probabilities, pd the dropped-out
 // copy. Shared by the forward pass and the backward recomputation, so both see the same bits.
 template <class T>
@@ -108,6 +151,18 @@ inline void attention_probs(const AttnShape& s, int64_t p, const T* Q, int64_t l
     T* pr = P + i * Lk;
     T* pdr = pd + i * Lk;
     uint64_t row = static_cast<uint64_t>(p * Lq + i);
+#ifdef LC2WF_ATTENTION_ROW16
+    if constexpr (std::is_same_v<T, float>) {
+      if (Lk == 32) {
+        softmax_dropout_row16<32>(pr, pdr, scale, mrow, drop, row);
+        continue;
+      }
+      if (Lk == 64) {
+        softmax_dropout_row16<64>(pr, pdr, scale, mrow, drop, row);
+        continue;
+      }
+    }
+#endif
     if (Lk == 32)
       softmax_dropout_row<T, 32>(pr, pdr, Lk, scale, mrow, drop, row);
     else if (Lk == 64)
