@@ -15,6 +15,10 @@
 #include "core/tensor.h"
 #include "core/tensor_impl.h"
 
+#ifdef __AVX512F__
+#include <immintrin.h>
+#endif
+
 namespace lc2wf {
 
 // Elements per parallel chunk for streaming loops: large enough to amortise scheduling, fixed so
@@ -95,6 +99,22 @@ class DropoutMask {
     uint32_t h = fmix32((low ^ k0_) + high_key);
     return (h >> 8) >= threshold_;
   }
+
+#ifdef __AVX512F__
+  // keep(first + l) for lanes l = 0..15; first must be a multiple of 16 (one 2^32 block for all lanes).
+  __mmask16 keep16(uint64_t first) const {
+    const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+    __m512i h = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(static_cast<uint32_t>(first))), lane);
+    h = _mm512_add_epi32(_mm512_xor_si512(h, _mm512_set1_epi32(static_cast<int>(k0_))),
+                         _mm512_set1_epi32(static_cast<int>(high_key(first))));
+    h = _mm512_xor_si512(h, _mm512_srli_epi32(h, 16));
+    h = _mm512_mullo_epi32(h, _mm512_set1_epi32(static_cast<int>(0x85EBCA6Bu)));
+    h = _mm512_xor_si512(h, _mm512_srli_epi32(h, 13));
+    h = _mm512_mullo_epi32(h, _mm512_set1_epi32(static_cast<int>(0xC2B2AE35u)));
+    h = _mm512_xor_si512(h, _mm512_srli_epi32(h, 16));
+    return _mm512_cmpge_epu32_mask(_mm512_srli_epi32(h, 8), _mm512_set1_epi32(static_cast<int>(threshold_)));
+  }
+#endif
 
   // d[i] = s[i] * (keep(i) ? scale : 0) for i in [begin, end).
   template <class T>

@@ -4,6 +4,7 @@
 // indices and class targets I64. Misuse throws std::invalid_argument naming the op and the shapes.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -96,6 +97,18 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
 // like PyTorch; in eval the running buffers are used. weight/bias (C) may be undefined.
 Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Tensor& running_mean,
                   Tensor& running_var, bool training, double momentum = 0.1, double eps = 1e-5);
+
+// ---------------------------------------------------------------- recompute in backward (activation memory)
+// y = linear(layer_norm(x, norm_weight, norm_bias, eps), weight, bias) saving only x and the weights: the
+// normalised rows are rebuilt in the backward pass, one (rows x in) activation less than the two ops.
+Tensor layer_norm_linear(const Tensor& x, const Tensor& norm_weight, const Tensor& norm_bias, double eps,
+                         const Tensor& weight, const Tensor& bias = Tensor());
+// Activation checkpointing: y = fn(inputs, false) is computed without recording and only the inputs are
+// saved; the backward pass calls fn(leaves, true) with recording on and back-propagates through that
+// local graph. fn must give the same values both times and read nothing else that needs a gradient;
+// `recompute` lets it skip side effects such as running-statistics updates.
+using CheckpointFn = std::function<Tensor(const std::vector<Tensor>& inputs, bool recompute)>;
+Tensor checkpoint(const std::vector<Tensor>& inputs, const CheckpointFn& fn);
 
 // ---------------------------------------------------------------- losses (fused, stable)
 enum class Reduction { None, Mean, Sum };

@@ -1,13 +1,15 @@
 // Fused scaled-dot-product attention. One (batch item, head) pair is one cache-resident task: scores,
-// key mask, softmax, dropout and P.V in a single pass; only the probabilities are saved and the
-// dropout mask is recomputed from the counter-based stream in the backward pass.
+// key mask, softmax, dropout and P.V in a single pass. Nothing but the inputs is saved: the backward
+// pass recomputes the probabilities and the counter-based dropout mask pair by pair.
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 
 #include "core/autograd.h"
 #include "core/kernels.h"
 #include "core/ops.h"
+#include "core/simd512.h"
 #include "core/small_gemm.h"
 
 namespace lc2wf {
@@ -96,12 +98,86 @@ inline void softmax_dropout_row(T* pr, T* pd, int64_t Lk_runtime, T scale, const
   }
 }
 
+#if defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+#define LC2WF_ATTENTION_ROW16 1
+// The same row for float scores of 32 or 64 keys, held in registers: masked max, exp, sum, normalise,
+// and the dropout keep mask of 16 keys per instruction.
+template <int LK>
+inline void softmax_dropout_row16(float* pr, float* pd, float scale, const uint8_t* mrow, const DropoutPlan& drop,
+                                  uint64_t row) {
+  constexpr int V = LK / 16;
+  const float neg_inf = -std::numeric_limits<float>::infinity();
+  __m512 x[V];
+  __mmask16 valid[V];
+  __m512 mx = _mm512_set1_ps(neg_inf);
+  for (int v = 0; v < V; ++v) {
+    x[v] = _mm512_mul_ps(_mm512_loadu_ps(pr + 16 * v), _mm512_set1_ps(scale));
+    valid[v] = mrow ? _mm_cmpeq_epi8_mask(_mm_loadu_si128(reinterpret_cast<const __m128i*>(mrow + 16 * v)),
+                                          _mm_setzero_si128())
+                    : static_cast<__mmask16>(0xFFFF);
+    mx = _mm512_mask_max_ps(mx, valid[v], mx, x[v]);
+  }
+  const float m = _mm512_reduce_max_ps(mx);
+  if (m == neg_inf) {
+    std::fill_n(pr, LK, 0.0f);
+    std::fill_n(pd, LK, 0.0f);
+    return;
+  }
+  __m512 sum = _mm512_setzero_ps();
+  for (int v = 0; v < V; ++v) {
+    x[v] = _mm512_maskz_mov_ps(valid[v], exp16(_mm512_sub_ps(x[v], _mm512_set1_ps(m))));
+    sum = _mm512_add_ps(sum, x[v]);
+  }
+  const __m512 inv = _mm512_set1_ps(1.0f / _mm512_reduce_add_ps(sum));
+  const __m512 keep_scale = _mm512_set1_ps(static_cast<float>(drop.scale));
+  const uint64_t base = row * LK;
+  for (int v = 0; v < V; ++v) {
+    __m512 p = _mm512_mul_ps(x[v], inv);
+    _mm512_storeu_ps(pr + 16 * v, p);
+    _mm512_storeu_ps(pd + 16 * v, drop.active ? _mm512_maskz_mul_ps(drop.mask.keep16(base + 16 * v), p, keep_scale) : p);
+  }
+}
+#endif
+
+// Scores, softmax and dropout of one (batch item, head): P gets the probabilities, pd the dropped-out
+// copy. Shared by the forward pass and the backward recomputation, so both see the same bits.
+template <class T>
+inline void attention_probs(const AttnShape& s, int64_t p, const T* Q, int64_t ldq, const T* K, int64_t ldk,
+                            const uint8_t* mrow, T scale, const DropoutPlan& drop, T* kt, T* P, T* pd) {
+  const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
+  transpose_into(Lk, D, K, ldk, kt);
+  small_gemm(Lq, Lk, D, Q, ldq, kt, Lk, P, Lk);  // raw scores
+  for (int64_t i = 0; i < Lq; ++i) {
+    T* pr = P + i * Lk;
+    T* pdr = pd + i * Lk;
+    uint64_t row = static_cast<uint64_t>(p * Lq + i);
+#ifdef LC2WF_ATTENTION_ROW16
+    if constexpr (std::is_same_v<T, float>) {
+      if (Lk == 32) {
+        softmax_dropout_row16<32>(pr, pdr, scale, mrow, drop, row);
+        continue;
+      }
+      if (Lk == 64) {
+        softmax_dropout_row16<64>(pr, pdr, scale, mrow, drop, row);
+        continue;
+      }
+    }
+#endif
+    if (Lk == 32)
+      softmax_dropout_row<T, 32>(pr, pdr, Lk, scale, mrow, drop, row);
+    else if (Lk == 64)
+      softmax_dropout_row<T, 64>(pr, pdr, Lk, scale, mrow, drop, row);
+    else
+      softmax_dropout_row<T>(pr, pdr, Lk, scale, mrow, drop, row);
+  }
+}
+
 template <class T>
 void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, Layout lk, const T* v, Layout lv, T* o,
                        Layout lo, const uint8_t* mask, T scale, const DropoutPlan& drop, T* probs) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
   parallel_for_work(s.B * s.H, kPairsPerTask, 4 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
-    // Without a caller that needs the probabilities (inference), they live in a per-task scratch block.
+    // Unless the caller asked for the weights, they live in a per-task scratch block.
     std::vector<T> kt(static_cast<size_t>(D * Lk)), pd(static_cast<size_t>(Lq * Lk));
     std::vector<T> scratch(probs ? 0 : static_cast<size_t>(Lq * Lk));
     for (int64_t p = p0; p < p1; ++p) {
@@ -109,56 +185,42 @@ void attention_forward(const AttnShape& s, const T* q, Layout lq, const T* k, La
       prefetch_next_pair(s, p, q, lq, k, lk, v, lv);
       const uint8_t* mrow = mask ? mask + b * Lk : nullptr;
       T* P = probs ? probs + p * Lq * Lk : scratch.data();
-      transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt.data());
-      small_gemm(Lq, Lk, D, q + lq.at(b, h), lq.row, kt.data(), Lk, P, Lk);  // raw scores
-      for (int64_t i = 0; i < Lq; ++i) {
-        T* pr = P + i * Lk;
-        T* pdr = pd.data() + i * Lk;
-        uint64_t row = static_cast<uint64_t>(p * Lq + i);
-        if (Lk == 32)
-          softmax_dropout_row<T, 32>(pr, pdr, Lk, scale, mrow, drop, row);
-        else if (Lk == 64)
-          softmax_dropout_row<T, 64>(pr, pdr, Lk, scale, mrow, drop, row);
-        else
-          softmax_dropout_row<T>(pr, pdr, Lk, scale, mrow, drop, row);
-      }
+      attention_probs(s, p, q + lq.at(b, h), lq.row, k + lk.at(b, h), lk.row, mrow, scale, drop, kt.data(), P,
+                      pd.data());
       small_gemm(Lq, D, Lk, pd.data(), Lk, v + lv.at(b, h), lv.row, o + lo.at(b, h), lo.row);
     }
   });
 }
 
-// Writes every row of dq, dk and dv for each (batch item, head).
+// Writes every row of dq, dk and dv for each (batch item, head). The probabilities are recomputed
+// from q and k (B*H*Lq*Lk floats that are never saved: as large as q itself at 32 keys, twice at 64).
 template <class T>
 void attention_backward(const AttnShape& s, const T* q, Layout lq, const T* k, Layout lk, const T* v, Layout lv,
-                        const T* go, Layout lo, const T* probs, T scale, const DropoutPlan& drop, T* dq, Layout ldq,
-                        T* dk, Layout ldk, T* dv, Layout ldv) {
+                        const T* go, Layout lo, const uint8_t* mask, T scale, const DropoutPlan& drop, T* dq,
+                        Layout ldq, T* dk, Layout ldk, T* dv, Layout ldv) {
   const int64_t Lq = s.Lq, Lk = s.Lk, D = s.D;
-  parallel_for_work(s.B * s.H, kPairsPerTask, 8 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
+  parallel_for_work(s.B * s.H, kPairsPerTask, 12 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
     size_t n = static_cast<size_t>(Lq * Lk);
-    std::vector<T> vt(static_cast<size_t>(D * Lk)), ds(n), pd(n);
+    std::vector<T> t(static_cast<size_t>(D * Lk)), P(n), ds(n), pd(n);
     T sc = static_cast<T>(drop.scale);
     for (int64_t p = p0; p < p1; ++p) {
       int64_t b = p / s.H, h = p % s.H;
       prefetch_next_pair(s, p, q, lq, k, lk, v, lv, go, lo);
       const T* Q = q + lq.at(b, h);
       const T* GO = go + lo.at(b, h);
-      const T* P = probs + p * Lq * Lk;
-      transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt.data());
-      small_gemm(Lq, Lk, D, GO, lo.row, vt.data(), Lk, ds.data(), Lk);  // dP (after dropout)
+      const uint8_t* mrow = mask ? mask + b * Lk : nullptr;
+      attention_probs(s, p, Q, lq.row, k + lk.at(b, h), lk.row, mrow, scale, drop, t.data(), P.data(), pd.data());
+      transpose_into(Lk, D, v + lv.at(b, h), lv.row, t.data());
+      small_gemm(Lq, Lk, D, GO, lo.row, t.data(), Lk, ds.data(), Lk);  // dP (after dropout)
       for (int64_t i = 0; i < Lq; ++i) {
-        const T* pr = P + i * Lk;
+        const T* pr = P.data() + i * Lk;
+        const T* pdr = pd.data() + i * Lk;
         T* dr = ds.data() + i * Lk;
-        T* pdr = pd.data() + i * Lk;
         if (drop.active) {
-          uint64_t base = static_cast<uint64_t>((p * Lq + i) * Lk);
+          // The dropout scale is >= 1, so a kept positive probability stays positive in pd: pd != 0
+          // marks the kept keys wherever P > 0, and where P == 0 the gradient below is 0 either way.
 #pragma omp simd
-          for (int64_t j = 0; j < Lk; ++j) {
-            bool keep = drop.mask.keep(base + j);
-            pdr[j] = keep ? pr[j] * sc : T(0);
-            dr[j] = keep ? dr[j] * sc : T(0);
-          }
-        } else {
-          std::copy_n(pr, Lk, pdr);
+          for (int64_t j = 0; j < Lk; ++j) dr[j] = pdr[j] != T(0) ? dr[j] * sc : T(0);
         }
         // Softmax backward folded with the score scale: dS = P * (dP - sum(P * dP)) * scale.
         T dot = 0;
@@ -228,7 +290,7 @@ Tensor scaled_dot_product_attention(const Tensor& q, const Tensor& k, const Tens
   Layout lq{s.H * s.Lq * s.D, s.Lq * s.D, s.D}, lk{s.H * s.Lk * s.D, s.Lk * s.D, s.D};
   Tensor out = Tensor::empty(q.shape(), q.dtype());
   bool grad = needs_grad({&q, &k, &v});
-  Tensor probs = grad || attn_weights ? Tensor::empty({s.B, s.H, s.Lq, s.Lk}, q.dtype()) : Tensor();
+  Tensor probs = attn_weights ? Tensor::empty({s.B, s.H, s.Lq, s.Lk}, q.dtype()) : Tensor();
   const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
   double scale = s.D > 0 ? 1.0 / std::sqrt(static_cast<double>(s.D)) : 1.0;
   dispatch_float(q.dtype(), op, [&](auto tag) {
@@ -243,13 +305,15 @@ Tensor scaled_dot_product_attention(const Tensor& q, const Tensor& k, const Tens
   });
   if (grad) {
     record(out, op, {q, k, v},
-           [qd = q.detach(), kd = k.detach(), vd = v.detach(), probs, drop, s, lq, lk, scale](const Tensor& g) -> std::vector<Tensor> {
+           [qd = q.detach(), kd = k.detach(), vd = v.detach(), mask_t = key_padding_mask, drop, s, lq, lk,
+            scale](const Tensor& g) -> std::vector<Tensor> {
              Tensor dq = Tensor::empty(qd.shape(), g.dtype());
              Tensor dk = Tensor::empty(kd.shape(), g.dtype());
              Tensor dv = Tensor::empty(vd.shape(), g.dtype());
              dispatch_float(g.dtype(), "attention backward", [&](auto tag) {
                using T = decltype(tag);
-               attention_backward<T>(s, ptr<T>(qd), lq, ptr<T>(kd), lk, ptr<T>(vd), lk, ptr<T>(g), lq, ptr<T>(probs),
+               const uint8_t* m = mask_t.defined() ? mask_t.data<uint8_t>() : nullptr;
+               attention_backward<T>(s, ptr<T>(qd), lq, ptr<T>(kd), lk, ptr<T>(vd), lk, ptr<T>(g), lq, m,
                                      static_cast<T>(scale), drop, ptr<T>(dq), lq, ptr<T>(dk), lk, ptr<T>(dv), lk);
                return 0;
              });
@@ -276,7 +340,7 @@ Tensor packed_attention(const Tensor& qkv, int64_t num_heads, const Tensor& key_
   Layout lin{L * 3 * E, Dh, 3 * E}, lout{L * E, Dh, E};
   Tensor out = Tensor::empty({B, L, E}, qkv.dtype());
   bool grad = needs_grad({&qkv});
-  Tensor probs = grad || attn_weights ? Tensor::empty({B, num_heads, L, L}, qkv.dtype()) : Tensor();
+  Tensor probs = attn_weights ? Tensor::empty({B, num_heads, L, L}, qkv.dtype()) : Tensor();
   const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
   double scale = Dh > 0 ? 1.0 / std::sqrt(static_cast<double>(Dh)) : 1.0;
   dispatch_float(qkv.dtype(), op, [&](auto tag) {
@@ -291,13 +355,15 @@ Tensor packed_attention(const Tensor& qkv, int64_t num_heads, const Tensor& key_
     return 0;
   });
   if (grad) {
-    record(out, op, {qkv}, [xd = qkv.detach(), probs, drop, s, lin, lout, scale, E](const Tensor& g) -> std::vector<Tensor> {
+    record(out, op, {qkv}, [xd = qkv.detach(), mask_t = key_padding_mask, drop, s, lin, lout, scale,
+                            E](const Tensor& g) -> std::vector<Tensor> {
       Tensor dx = Tensor::empty(xd.shape(), g.dtype());
       dispatch_float(g.dtype(), "packed_attention backward", [&](auto tag) {
         using T = decltype(tag);
         const T* base = ptr<T>(xd);
         T* dbase = ptr<T>(dx);
-        attention_backward<T>(s, base, lin, base + E, lin, base + 2 * E, lin, ptr<T>(g), lout, ptr<T>(probs),
+        const uint8_t* m = mask_t.defined() ? mask_t.data<uint8_t>() : nullptr;
+        attention_backward<T>(s, base, lin, base + E, lin, base + 2 * E, lin, ptr<T>(g), lout, m,
                               static_cast<T>(scale), drop, dbase, lin, dbase + E, lin, dbase + 2 * E, lin);
         return 0;
       });

@@ -51,6 +51,9 @@ void* heap_allocate(size_t size) {
 void* map_block(size_t size) {
   void* data = mmap(nullptr, size, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (data == MAP_FAILED) throw std::bad_alloc();
+  // Huge pages where the kernel allows them on request: a fresh block then faults in 2 MiB at a time
+  // instead of 4 KiB, so a cache miss costs little more than zeroing the memory.
+  madvise(data, size, MADV_HUGEPAGE);
   return data;
 }
 
@@ -82,10 +85,10 @@ class StorageCache {
       ++misses_;
       live_bytes_ += size;
       high_water_ = std::max(high_water_, live_bytes_);
-      // A repeating step needs a pool somewhat larger than its peak (sizes peak at different moments);
-      // capping cached + live at twice the live high-water mark serves that while a shifting mix of
-      // sizes can never pile up.
-      evict_until(2 * high_water_ - live_bytes_);
+      // Cached + live never exceeds the live high-water mark: the process then holds no more than its
+      // largest working set, at the price of re-mapping (with cheap huge-page faults) the blocks of
+      // sizes that are not live at the peak. A shifting mix of sizes can never pile up.
+      evict_until(high_water_ - live_bytes_);
     }
     return {map_block(size), size};
   }

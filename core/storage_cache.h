@@ -35,7 +35,7 @@ StorageBlock storage_allocate(size_t bytes);
 void storage_release(const StorageBlock& block);
 
 // Most bytes of free blocks kept; beyond it the least recently freed blocks are returned to the system.
-// A miss also returns cached blocks when needed so that cached + live bytes never exceed twice the
+// A miss also returns cached blocks when needed so that cached + live bytes never exceed the
 // high-water mark of live bytes. Default: LC2WF_STORAGE_CACHE_MB if set (a bad value throws
 // std::invalid_argument on the first large allocation), else a quarter of physical memory, at most 4 GiB.
 // 0 disables caching.

@@ -100,6 +100,18 @@ class NoGradGuard {
  private:
   bool previous_;
 };
+// Turns tape recording back on in its scope: recompute-in-backward ops build a local graph while
+// the enclosing backward pass runs without recording.
+class EnableGradGuard {
+ public:
+  EnableGradGuard();
+  ~EnableGradGuard();
+  EnableGradGuard(const EnableGradGuard&) = delete;
+  EnableGradGuard& operator=(const EnableGradGuard&) = delete;
+
+ private:
+  bool previous_;
+};
 bool grad_enabled();
 
 }  // namespace lc2wf

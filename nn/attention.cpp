@@ -31,4 +31,12 @@ Tensor MultiheadAttention::forward(const Tensor& x, const Tensor& key_padding_ma
   return out_proj_.forward(heads);
 }
 
+Tensor MultiheadAttention::forward(const Tensor& x, const LayerNorm& norm, const Tensor& key_padding_mask, Rng& rng,
+                                   Tensor* attn_weights) const {
+  const Tensor qkv = layer_norm_linear(x, norm.weight(), norm.bias(), norm.eps(), in_proj_weight_, in_proj_bias_);
+  const Tensor heads = packed_attention(qkv, num_heads_, key_padding_mask, attn_dropout_, is_training(), rng,
+                                        attn_weights);
+  return out_proj_.forward(heads);
+}
+
 }  // namespace lc2wf

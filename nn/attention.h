@@ -16,6 +16,9 @@ class MultiheadAttention : public Module {
   // x (B, L, E); key_padding_mask Bool (B, L), true = ignore that key, or undefined.
   // attn_weights, when given, receives the head-averaged weights (B, L, L) without gradient.
   Tensor forward(const Tensor& x, const Tensor& key_padding_mask, Rng& rng, Tensor* attn_weights = nullptr) const;
+  // The same on norm(x), with the LayerNorm fused into the in-projection (its output is not kept).
+  Tensor forward(const Tensor& x, const LayerNorm& norm, const Tensor& key_padding_mask, Rng& rng,
+                 Tensor* attn_weights = nullptr) const;
 
  private:
   int64_t num_heads_;

@@ -27,6 +27,12 @@ class BatchNorm : public Module {
  public:
   explicit BatchNorm(int64_t channels, double momentum = 0.1, double eps = 1e-5);
   Tensor forward(const Tensor& x);  // x (M, C); updates the running statistics in training mode
+  const Tensor& weight() const { return weight_; }
+  const Tensor& bias() const { return bias_; }
+  const Tensor& running_mean() const { return running_mean_; }
+  const Tensor& running_var() const { return running_var_; }
+  double momentum() const { return momentum_; }
+  double eps() const { return eps_; }
 
  private:
   Tensor weight_, bias_, running_mean_, running_var_;
@@ -37,6 +43,9 @@ class LayerNorm : public Module {
  public:
   explicit LayerNorm(int64_t channels, double eps = 1e-5);
   Tensor forward(const Tensor& x) const;  // normalises the last axis
+  const Tensor& weight() const { return weight_; }
+  const Tensor& bias() const { return bias_; }
+  double eps() const { return eps_; }
 
  private:
   Tensor weight_, bias_;

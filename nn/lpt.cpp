@@ -59,11 +59,41 @@ Tensor LinePatchTransformer::forward(const Tensor& x, const Tensor& mask, Rng& r
   check_patch_input(x, mask, config_, "LinePatchTransformer");
   const int64_t B = x.size(0), G = x.size(1), N = x.size(2), E = config_.hidden_dim;
   Tensor h = x.reshape({B * G * N, config_.input_dim});
-  for (auto& stage : mlp_) h = stage->forward(h);
+  h = line_mlp(h);
   const Tensor line_mask = mask.reshape({B * G, N});
   const Tensor lines = enc1_.forward(h.reshape({B * G, N, E}), line_mask, rng);
   const Tensor patches = pool(lines, line_mask).reshape({B, G, E});
   return enc2_.forward(patches, Tensor(), rng);
+}
+
+// The MLP runs on every line slot: checkpointed, its Linear outputs and ReLU activations (M x 640 floats
+// twice at the paper's sizes) are rebuilt from the (M x F) input in the backward pass instead of being
+// kept through the whole step. Forward values and gradients are the same ops on the same data.
+Tensor LinePatchTransformer::line_mlp(const Tensor& rows) const {
+  struct Running {
+    Tensor mean, var;
+    double momentum, eps;
+    bool training;
+  };
+  std::vector<Tensor> inputs{rows};
+  std::vector<Running> running;
+  for (const auto& stage : mlp_) {
+    const BatchNorm& bn = stage->bn();
+    inputs.insert(inputs.end(), {stage->fc().weight(), stage->fc().bias(), bn.weight(), bn.bias()});
+    running.push_back({bn.running_mean(), bn.running_var(), bn.momentum(), bn.eps(), bn.is_training()});
+  }
+  return checkpoint(inputs, [running](const std::vector<Tensor>& in, bool recompute) {
+    Tensor h = in[0];
+    for (size_t i = 0; i < running.size(); ++i) {
+      const Running& r = running[i];
+      // The recomputation uses the batch statistics again but must not update the running ones twice.
+      Tensor mean = recompute && r.training ? Tensor() : r.mean;
+      Tensor var = recompute && r.training ? Tensor() : r.var;
+      const Tensor* p = &in[1 + 4 * i];
+      h = relu(batch_norm(linear(h, p[0], p[1]), p[2], p[3], mean, var, r.training, r.momentum, r.eps));
+    }
+    return h;
+  });
 }
 
 Tensor LinePatchTransformer::pool(const Tensor& lines, const Tensor& mask) const {

@@ -20,6 +20,8 @@ class LinearBnRelu : public Module {
  public:
   LinearBnRelu(int64_t in, int64_t out, Rng& init_rng);
   Tensor forward(const Tensor& x);  // (M, in) -> (M, out)
+  const Linear& fc() const { return fc_; }
+  const BatchNorm& bn() const { return bn_; }
 
  private:
   Linear fc_;
@@ -34,6 +36,7 @@ class LinePatchTransformer : public Module {
   const LptConfig& config() const { return config_; }
 
  private:
+  Tensor line_mlp(const Tensor& rows) const;
   Tensor pool(const Tensor& lines, const Tensor& mask) const;
 
   LptConfig config_;

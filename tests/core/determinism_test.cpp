@@ -73,6 +73,22 @@ TEST(Determinism, BatchNormAndLayerNorm) {
   });
 }
 
+TEST(Determinism, RecomputeOps) {
+  expect_bitwise_equal([] {
+    Tensor x = rand32({2000, 64}, 20).set_requires_grad();
+    Tensor nw = rand32({64}, 21).set_requires_grad(), w = rand32({96, 64}, 22).set_requires_grad();
+    Tensor w2 = rand32({48, 96}, 23).set_requires_grad();
+    Tensor rm = Tensor::zeros({96}), rv = Tensor::ones({96});
+    Tensor y = checkpoint({x, nw, w, w2}, [&](const std::vector<Tensor>& p, bool recompute) {
+      Tensor none, mean = recompute ? none : rm, var = recompute ? none : rv;
+      Tensor h = layer_norm_linear(p[0], p[1], Tensor(), 1e-5, p[2]);
+      return linear(relu(batch_norm(h, Tensor(), Tensor(), mean, var, true)), p[3]);
+    });
+    sum(mul(y, rand32({2000, 48}, 24))).backward();
+    return std::vector<Tensor>{y, x.grad(), nw.grad(), w.grad(), w2.grad(), rm, rv};
+  });
+}
+
 TEST(Determinism, Sums) {
   expect_bitwise_equal([] {
     Tensor x = rand32({700, 300, 5}, 10);

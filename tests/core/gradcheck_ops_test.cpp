@@ -239,6 +239,26 @@ TEST_F(GradCheck, AttentionWithMaskAndDropout) {
       {rand({1, 2, 3, 4}), rand({1, 2, 5, 4}), rand({1, 2, 5, 4})}));
 }
 
+TEST_F(GradCheck, LayerNormLinear) {
+  EXPECT_TRUE(gradcheck([](auto& p) { return layer_norm_linear(p[0], p[1], p[2], 1e-5, p[3], p[4]); },
+                        {rand({2, 3, 6}), rand({6}, 0.5, 1.5), rand({6}), rand({5, 6}), rand({5})}));
+  // No affine LayerNorm, no bias.
+  EXPECT_TRUE(gradcheck([](auto& p) { return layer_norm_linear(p[0], Tensor(), Tensor(), 1e-5, p[1]); },
+                        {rand({7, 6}), rand({4, 6})}));
+}
+
+TEST_F(GradCheck, CheckpointedLinearBatchNormRelu) {
+  // Two stages of the per-line MLP; the running statistics are updated by the forward pass only.
+  Tensor rm = Tensor::zeros({4}, DType::F64), rv = Tensor::ones({4}, DType::F64);
+  auto stages = [&](const std::vector<Tensor>& p, bool recompute) {
+    Tensor none, mean = recompute ? none : rm, var = recompute ? none : rv;
+    Tensor h = relu(batch_norm(linear(p[0], p[1], p[2]), p[3], p[4], mean, var, true));
+    return relu(batch_norm(linear(h, p[5]), Tensor(), Tensor(), none, none, true));
+  };
+  EXPECT_TRUE(gradcheck([&](auto& p) { return checkpoint(p, stages); },
+                        {rand({9, 3}), rand({4, 3}), rand({4}), rand({4}, 0.5, 1.5), rand({4}), rand({5, 4})}));
+}
+
 TEST_F(GradCheck, EncoderBlockComposite) {
   // A pre-norm encoder layer as the LPT builds it: every op chained, masked keys, dropout on.
   Tensor mask = Tensor::from_mask({0, 0, 0, 1, 0, 1, 1, 1}, {2, 4});
