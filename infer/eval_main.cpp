@@ -34,6 +34,7 @@ over all buildings) and WED (mean per building). See infer/README.md for the exa
   --weights DIR   run inference first (junction.safetensors + edge.safetensors from lc2wf-train) on the
                   line clouds of --data; predictions go to OUT/predictions
   --release-quirks  with --weights: the release's post-processing instead of the sound rules
+  --no-junction-refine  with --weights: keep the regressed junction positions (see lc2wf-infer --help)
   --previews      with --weights: also write OUT/previews/<name>.png
   --gt DIR        ground truth <name>.obj ('v' + 'f'/'l') or <name>.polyshape (Roof-Image mesh)
   --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth
@@ -54,7 +55,7 @@ the outputs. Exit codes: 0 success, 1 bad or missing input data / I/O error, 2 b
 
 struct Args {
   fs::path pred, gt, data, split, out, weights;
-  bool release_quirks = false, previews = false;
+  bool release_quirks = false, previews = false, no_junction_refine = false;
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kGroupTies;
@@ -72,6 +73,7 @@ Args parse_args(int argc, char** argv) {
     if (f == "--pred") a.pred = value(i);
     else if (f == "--weights") a.weights = value(i);
     else if (f == "--release-quirks") a.release_quirks = true;
+    else if (f == "--no-junction-refine") a.no_junction_refine = true;
     else if (f == "--previews") a.previews = true;
     else if (f == "--gt") a.gt = value(i);
     else if (f == "--data") a.data = value(i);
@@ -100,8 +102,8 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty()) throw UsageError("--weights needs lc2wf built with the nn module");
 #endif
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
-  if (a.weights.empty() && (a.release_quirks || a.previews))
-    throw UsageError("--release-quirks and --previews only apply with --weights");
+  if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine))
+    throw UsageError("--release-quirks, --no-junction-refine and --previews only apply with --weights");
   if (!a.weights.empty()) {
     if (!fs::is_directory(a.weights)) throw UsageError("'" + a.weights.string() + "' is not a folder");
     if (a.out.empty()) throw UsageError("--out DIR is required");
@@ -142,6 +144,7 @@ int run(const Args& a) {
     for (const std::string& name : names) clouds.push_back(find_cloud_file(a.data, name));
     BatchInferenceOptions inference;
     if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
+    if (a.no_junction_refine) inference.post.junction_refine.radius = 0.0;
     inference.quiet = a.quiet;
     if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
     const BatchInferenceSummary s = infer_clouds(WireframePredictor(a.weights), clouds, a.pred, inference);

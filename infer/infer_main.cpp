@@ -29,7 +29,10 @@ wireframe and a note, never a failure.
   --preview PNG       also draw cloud (grey), prediction (red) and GT (green, when the cloud has it);
                       with one cloud PNG is the file, with several it is a folder for <name>.png
   --release-quirks    post-process exactly as the paper's release (suppressor NMS, lower-confidence
-                      edge kept by line NMS, no edge transfer on junction merge); default: sound rules
+                      edge kept by line NMS, no edge transfer on junction merge, no junction
+                      refinement); default: sound rules
+  --no-junction-refine  keep the regressed junction positions (default: each selected junction moves
+                      to the meeting point of the cloud's segments ending within 0.5 m of it)
   --format F          auto (default), lc2wf or release (LineCloud JSON)
   --threads N         compute threads (default: all)
   --quiet             no progress output
@@ -57,6 +60,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "-o" || f == "--out") a.out = value();
     else if (f == "--preview") a.preview = value();
     else if (f == "--release-quirks") a.options.post = PostProcessOptions::release_quirks();
+    else if (f == "--no-junction-refine") a.options.post.junction_refine.radius = 0.0;
     else if (f == "--quiet") a.options.quiet = true;
     else if (f == "--format") {
       try {

@@ -99,6 +99,7 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   r.junctions = junctions;
   auto t0 = Clock::now();
   r.selection = select_junctions(junctions.positions, junctions.confidence, options);
+  r.selection.positions = refine_junctions(r.selection.positions, cloud.segments, options.junction_refine);
   r.notes = r.selection.notes;
   r.post_seconds = seconds_since(t0);
   const int n = static_cast<int>(r.selection.positions.size());

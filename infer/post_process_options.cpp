@@ -28,6 +28,7 @@ void PostProcessOptions::Check() const {
           ">= 0 metres", junction_merge_distance);
   require(std::isfinite(line_nms_distance) && line_nms_distance >= 0.0, "line_nms_distance", ">= 0 metres",
           line_nms_distance);
+  junction_refine.Check();
   if (transfer_edges_on_merge && pruned_junctions_in_merge)
     throw std::invalid_argument(
         "PostProcessOptions.pruned_junctions_in_merge cannot be combined with transfer_edges_on_merge: edges would "
@@ -41,6 +42,7 @@ PostProcessOptions PostProcessOptions::release_quirks() {
   o.transfer_edges_on_merge = false;
   o.pruned_junctions_in_merge = true;
   o.line_nms_keep_higher = false;
+  o.junction_refine.radius = 0.0;
   return o;
 }
 
