@@ -64,10 +64,7 @@ struct Args {
 
 Args parse_args(int argc, char** argv) {
   Args a;
-  auto value = [&](int& i) -> std::string {
-    if (i + 1 >= argc) throw UsageError(std::string(argv[i]) + " needs a value");
-    return argv[++i];
-  };
+  auto value = [&](int& i) { return flag_value(argc, argv, i); };
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     if (f == "--pred") a.pred = value(i);

@@ -52,10 +52,7 @@ Args parse_args(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(f + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return flag_value(argc, argv, i); };
     if (f == "--weights") a.weights = value();
     else if (f == "-o" || f == "--out") a.out = value();
     else if (f == "--preview") a.preview = value();

@@ -29,6 +29,12 @@ inline long long parse_count_flag(const std::string& flag, const std::string& va
   return x;
 }
 
+// The value after the flag at argv[i] (advancing i), or a usage error naming the flag.
+inline std::string flag_value(int argc, char** argv, int& i) {
+  if (i + 1 >= argc) throw UsageError(std::string(argv[i]) + " needs a value");
+  return argv[++i];
+}
+
 // Whole-string integer / number for FLAG; anything else is a usage error naming the flag and the value.
 inline int int_flag(const std::string& flag, const std::string& v) {
   try {

@@ -58,10 +58,7 @@ Args parse_args(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(f + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return lc2wf::flag_value(argc, argv, i); };
     if (f == "--views") a.views = value();
     else if (f == "--workspace") a.workspace = value();
     else if (f == "--intrinsics") a.intrinsics = value();

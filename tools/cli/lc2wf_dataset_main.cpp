@@ -62,10 +62,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
   lc2wf::DatasetRunOptions o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw UsageError(a + " needs a value");
-      return argv[++i];
-    };
+    auto value = [&] { return lc2wf::flag_value(argc, argv, i); };
     if (a == "--meshes") {
       o.meshes = value();
     } else if (a == "--out") {

@@ -2,33 +2,10 @@
 
 #include <cmath>
 
+#include "tools/render/value_noise.h"
+
 namespace lc2wf {
 namespace {
-
-uint64_t mix64(uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
-// Uniform [0,1) from an integer lattice cell.
-double cell_random(int64_t i, int64_t j, uint64_t seed) {
-  const uint64_t h = mix64(seed ^ mix64(static_cast<uint64_t>(i) * 0x632BE59BD9B4E019ull + static_cast<uint64_t>(j)));
-  return static_cast<double>(h >> 11) * 0x1.0p-53;
-}
-
-// Smooth value noise in [0,1).
-double value_noise(double x, double y, uint64_t seed) {
-  const double fx = std::floor(x), fy = std::floor(y);
-  const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
-  double tx = x - fx, ty = y - fy;
-  tx = tx * tx * (3 - 2 * tx);
-  ty = ty * ty * (3 - 2 * ty);
-  const double a = cell_random(ix, iy, seed), b = cell_random(ix + 1, iy, seed);
-  const double c = cell_random(ix, iy + 1, seed), d = cell_random(ix + 1, iy + 1, seed);
-  return (a * (1 - tx) + b * tx) * (1 - ty) + (c * (1 - tx) + d * tx) * ty;
-}
 
 Rgb scale(Rgb c, double s) {
   return {static_cast<float>(c.r * s), static_cast<float>(c.g * s), static_cast<float>(c.b * s)};
