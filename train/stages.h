@@ -41,9 +41,11 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
                           const StageRun& run);
 
 // `<out>/predicted_junctions/<name>.json` for every train and validation building, plus manifest.json.
-// With run.resume a complete hand-off of the same junction checkpoint is kept.
-std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log,
-                                             const StageRun& run);
+// Positions are refined like inference refines them (radius `refine_radius` m, 0 = the release's raw
+// regressions), so the edge stage trains on the junctions it will see. With run.resume a complete
+// hand-off of the same junction checkpoint and radius is kept.
+std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, double refine_radius,
+                                             RunLog& log, const StageRun& run);
 
 // Best weights `<out>/edge.safetensors`; selection by mean sAP (eta 0.25/0.35/0.50 m) of the post-processed
 // wireframes of the validation buildings.

@@ -1,5 +1,6 @@
 #include "train/train_config.h"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -93,6 +94,8 @@ void EdgeStageConfig::Check() const {
   require(max_static_pairs >= 0 && max_static_pairs <= net.lpt.patches, "edge.max_static_pairs",
           "must be in [0, net.lpt.patches]");
   require(top_k >= 2, "edge.top_k", "must be >= 2");
+  require(std::isfinite(junction_refine_radius) && junction_refine_radius >= 0, "edge.junction_refine_radius",
+          "must be >= 0 metres");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

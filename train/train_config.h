@@ -88,6 +88,8 @@ struct EdgeStageConfig {
   StageSchedule schedule = edge_schedule_defaults();
   int64_t max_static_pairs = 256;
   int64_t top_k = 100;
+  // Hand-off junctions refined as at inference (infer/junction_refine.h); 0 = the release's raw positions.
+  double junction_refine_radius = 0.5;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -98,6 +100,7 @@ struct EdgeStageConfig {
     StageSchedule::fields(s.schedule, v);
     v("max_static_pairs", s.max_static_pairs);
     v("top_k", s.top_k);
+    v("junction_refine_radius", s.junction_refine_radius);
   }
   void Check() const;
   nlohmann::json to_json() const;
