@@ -5,18 +5,13 @@
 #include <cmath>
 #include <cstdint>
 
-namespace lc2wf {
+#include "dataset/rng.h"
 
-inline uint64_t mix64(uint64_t z) {
-  z += 0x9E3779B97F4A7C15ull;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
+namespace lc2wf {
 
 // Uniform [0,1) from an integer lattice cell.
 inline double cell_random(int64_t i, int64_t j, uint64_t seed) {
-  const uint64_t h = mix64(seed ^ mix64(static_cast<uint64_t>(i) * 0x632BE59BD9B4E019ull + static_cast<uint64_t>(j)));
+  const uint64_t h = mix_seed(seed ^ mix_seed(static_cast<uint64_t>(i) * 0x632BE59BD9B4E019ull + static_cast<uint64_t>(j)));
   return static_cast<double>(h >> 11) * 0x1.0p-53;
 }
 
