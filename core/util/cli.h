@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -15,45 +16,42 @@ struct UsageError : std::runtime_error {
 constexpr int kExitFailure = 1;
 constexpr int kExitUsage = 2;
 
+// `parse(text, &used)` (std::stoi, std::stod, ...) when it consumes the whole non-empty string, else nothing.
+template <class Parse>
+auto parse_whole(const std::string& text, Parse parse) -> std::optional<decltype(parse(text, nullptr))> {
+  try {
+    size_t used = 0;
+    const auto x = parse(text, &used);
+    if (!text.empty() && used == text.size()) return x;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
 // Whole-string non-negative integer for FLAG ("12x", "-1" and "" are usage errors, not silently 12/0).
 inline long long parse_count_flag(const std::string& flag, const std::string& value) {
-  size_t used = 0;
-  long long x = -1;
-  try {
-    x = std::stoll(value, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (value.empty() || used != value.size() || x < 0)
-    throw UsageError(flag + " needs a non-negative integer, got '" + value + "'");
-  return x;
+  const auto x = parse_whole(value, [](const std::string& t, size_t* used) { return std::stoll(t, used); });
+  if (!x || *x < 0) throw UsageError(flag + " needs a non-negative integer, got '" + value + "'");
+  return *x;
+}
+
+// Whole-string integer / number for FLAG; anything else is a usage error naming the flag and the value.
+inline int int_flag(const std::string& flag, const std::string& value) {
+  const auto x = parse_whole(value, [](const std::string& t, size_t* used) { return std::stoi(t, used); });
+  if (!x) throw UsageError(flag + " expects an integer, got '" + value + "'");
+  return *x;
+}
+
+inline double number_flag(const std::string& flag, const std::string& value) {
+  const auto x = parse_whole(value, [](const std::string& t, size_t* used) { return std::stod(t, used); });
+  if (!x) throw UsageError(flag + " expects a number, got '" + value + "'");
+  return *x;
 }
 
 // The value after the flag at argv[i] (advancing i), or a usage error naming the flag.
 inline std::string flag_value(int argc, char** argv, int& i) {
   if (i + 1 >= argc) throw UsageError(std::string(argv[i]) + " needs a value");
   return argv[++i];
-}
-
-// Whole-string integer / number for FLAG; anything else is a usage error naming the flag and the value.
-inline int int_flag(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const int x = std::stoi(v, &used);
-    if (used == v.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects an integer, got '" + v + "'");
-}
-
-inline double number_flag(const std::string& flag, const std::string& v) {
-  try {
-    size_t used = 0;
-    const double x = std::stod(v, &used);
-    if (used == v.size()) return x;
-  } catch (const std::exception&) {
-  }
-  throw UsageError(flag + " expects a number, got '" + v + "'");
 }
 
 // parse(argc, argv) -> Args (throws UsageError on a bad command line); run(const Args&) -> exit code.
