@@ -68,7 +68,8 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
     Evaluator evaluator{EvalOptions{}};
     double loss_sum = 0.0;
     int64_t loss_buildings = 0;
-    const PostProcessOptions post;
+    PostProcessOptions post;
+    post.junction_refine.radius = 0.0;  // the hand-off positions are already refined (once is enough)
     for (size_t k = 0; k < val.clouds.size(); ++k) {
       const LineCloud& cloud = val.clouds[k];
       if (cloud.wireframe.junctions.size() >= 2) {
