@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "dataset/line_meeting_point.h"
+
 namespace lc2wf {
 
 void JunctionRefineOptions::Check() const {
@@ -20,23 +22,19 @@ std::vector<Vec3> refine_junctions(const std::vector<Vec3>& junctions, const std
   if (options.radius == 0) return out;
   const double r2 = options.radius * options.radius;
   for (Vec3& J : out) {
-    // Normal equations of sum_i w_i |(I - d_i d_iᵀ)(X - p_i)|² + prior |X - J|², w_i = 1 per line.
-    Eigen::Matrix3d A = options.prior_weight * Eigen::Matrix3d::Identity();
-    Vec3 b = options.prior_weight * J;
+    LineMeetingPoint meeting;
+    meeting.add_prior(J, options.prior_weight);
     int used = 0;
     for (const Segment3& s : segments) {
+      if ((s.a - J).squaredNorm() > r2 && (s.b - J).squaredNorm() > r2) continue;  // cheap test first
       const Vec3 d = s.b - s.a;
       const double len = d.norm();
       if (len < options.min_length) continue;
-      if ((s.a - J).squaredNorm() > r2 && (s.b - J).squaredNorm() > r2) continue;
-      const Vec3 u = d / len;
-      const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
-      A += P;
-      b += P * s.a;
+      meeting.add_line(s.a, d / len);
       ++used;
     }
     if (used < options.min_segments) continue;
-    const Vec3 X = A.ldlt().solve(b);
+    const Vec3 X = meeting.A.ldlt().solve(meeting.b);
     if (X.allFinite() && (X - J).squaredNorm() <= r2) J = X;
   }
   return out;

@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "dataset/errors.h"
+#include "dataset/line_meeting_point.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;
@@ -112,15 +113,9 @@ std::vector<ColmapImage> read_colmap_text_model(const fs::path& dir) {
 }
 
 Vec3 common_aim_point(const std::vector<Camera>& cameras) {
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Vec3 rhs = Vec3::Zero();
-  for (const Camera& c : cameras) {
-    const Vec3 d = c.R.transpose().col(2);  // optical axis in the world frame
-    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - d * d.transpose();
-    A += P;
-    rhs += P * c.center();
-  }
-  return A.completeOrthogonalDecomposition().solve(rhs);  // minimum norm when the axes are parallel
+  LineMeetingPoint meeting;
+  for (const Camera& c : cameras) meeting.add_line(c.center(), c.R.transpose().col(2));  // optical axes, world frame
+  return meeting.A.completeOrthogonalDecomposition().solve(meeting.b);  // minimum norm when the axes are parallel
 }
 
 void AlignOptions::Check() const {
@@ -175,12 +170,13 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
   std::vector<int> inliers = ids;
   Similarity sim = fit_similarity(reference, estimated, inliers);
   for (int round = 1; round < options.rounds && options.outlier_factor > 0; ++round) {
+    auto error = [&](int i) { return (sim.s * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm(); };
     std::vector<double> inlier_errors;
-    for (int i : inliers) inlier_errors.push_back((sim.s * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm());
+    for (int i : inliers) inlier_errors.push_back(error(i));
     const double threshold = std::max(options.outlier_factor * median(inlier_errors), 0.01 * camera_distance);
     std::vector<int> kept;
     for (int i : ids)
-      if ((sim.s * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm() <= threshold) kept.push_back(i);
+      if (error(i) <= threshold) kept.push_back(i);
     if (kept == inliers || kept.size() < 3) break;
     inliers = kept;
     sim = fit_similarity(reference, estimated, inliers);
