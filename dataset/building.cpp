@@ -180,6 +180,7 @@ Building make_building(const std::string& name, PolyMesh mesh, const BuildingOpt
   b.units.origin_raw = options.recentre_xy ? Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), lo.z())
                                            : Vec3(0, 0, lo.z());
   for (auto& v : mesh.vertices) v = b.units.to_metres(v);
+  if (!options.gt_after_repair) b.wireframe = build_wireframe(mesh, options.wireframe);
 
   b.issues.merged_vertices = merge_duplicate_vertices(mesh, options.duplicate_tol_m, &b.issues.dropped_faces);
   if (b.issues.merged_vertices > 0) {
@@ -200,7 +201,7 @@ Building make_building(const std::string& name, PolyMesh mesh, const BuildingOpt
     if (options.non_planar == NonPlanarPolicy::Skip) throw BuildingSkipped(name, msg);
     b.issues.warnings.push_back(name + ": " + msg + " (kept)");
   }
-  b.wireframe = build_wireframe(mesh, options.wireframe);
+  if (options.gt_after_repair) b.wireframe = build_wireframe(mesh, options.wireframe);
   b.mesh = std::move(mesh);
   return b;
 }

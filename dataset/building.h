@@ -46,6 +46,9 @@ struct BuildingOptions {
   double planarity_tol_m = 0.05;    // typical faces deviate by 1e-7 m; the one bad building by 1.6 m
   NonPlanarPolicy non_planar = NonPlanarPolicy::Keep;
   WireframeOptions wireframe;
+  // false: the GT wireframe is the release's (every polyshape vertex, every unique polygon edge), taken
+  // before the duplicate repair that only the rendered mesh needs; true: the repaired mesh's wireframe.
+  bool gt_after_repair = false;
   void Check() const;
 };
 
@@ -60,9 +63,9 @@ struct BuildingIssues {
 
 struct Building {
   std::string name;
-  PolyMesh mesh;        // metres, z up, ground at 0
+  PolyMesh mesh;        // metres, z up, ground at 0, near-duplicate vertices merged (for rendering)
   UnitTransform units;  // metres <-> raw units of the source file
-  Wireframe wireframe;  // metres
+  Wireframe wireframe;  // metres; junction ids are the source file's vertex ids unless gt_after_repair
   BuildingIssues issues;
 };
 

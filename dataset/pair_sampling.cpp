@@ -1,9 +1,9 @@
 #include "dataset/pair_sampling.h"
 
-#include <array>
+#include <algorithm>
+#include <memory>
 #include <stdexcept>
 
-#include "dataset/point_nms.h"
 
 namespace lc2wf {
 
@@ -12,8 +12,6 @@ void PairSamplingOptions::Check() const {
   if (max_static_pairs < 0 || max_static_pairs > pairs_per_building) {
     throw std::invalid_argument("PairSamplingOptions.max_static_pairs must be in [0, pairs_per_building]");
   }
-  if (top_k < 2) throw std::invalid_argument("PairSamplingOptions.top_k must be >= 2");
-  if (!(nms_radius_m >= 0)) throw std::invalid_argument("PairSamplingOptions.nms_radius_m must be >= 0");
   if (!(fp_distance_m > 0)) throw std::invalid_argument("PairSamplingOptions.fp_distance_m must be > 0");
 }
 
@@ -51,38 +49,8 @@ int PairClassifier::classify(int a, int b) const {
   return kPairFarther;
 }
 
-namespace {
-
-// All i<j pairs of `points` grouped by class, each group in combination order.
-std::vector<JunctionPair> class_ordered_pairs(const std::vector<Vec3>& points, const std::vector<int>& ids,
-                                              const std::vector<int>* labels, const PairClassifier* cls) {
-  std::array<std::vector<JunctionPair>, 5> groups;
-  std::vector<JunctionPair> unlabelled;
-  for (size_t a = 0; a < points.size(); ++a) {
-    for (size_t b = a + 1; b < points.size(); ++b) {
-      JunctionPair p{points[a], points[b], ids[a], ids[b], -1, false};
-      if (cls) {
-        p.label = cls->classify((*labels)[a], (*labels)[b]);
-        groups[p.label].push_back(p);
-      } else {
-        unlabelled.push_back(p);
-      }
-    }
-  }
-  if (!cls) return unlabelled;
-  std::vector<JunctionPair> out;
-  for (const auto& g : groups) out.insert(out.end(), g.begin(), g.end());
-  return out;
-}
-
-std::vector<int> nms_kept(const PredictedJunctions& pred, double radius) {
-  if (pred.positions.size() != pred.confidence.size()) throw std::invalid_argument("PredictedJunctions: positions and confidences differ in size");
-  return suppressor_nms(pred.positions, pred.confidence, radius);
-}
-
-}  // namespace
-
-std::vector<JunctionPair> sample_training_pairs(const Wireframe& gt, const PredictedJunctions& pred, const PairSamplingOptions& o) {
+std::vector<JunctionPair> sample_training_pairs(const Wireframe& gt, const JunctionSelection& selected,
+                                                const PairSamplingOptions& o) {
   o.Check();
   const int V = static_cast<int>(gt.junctions.size());
   if (V < 2) return {};
@@ -100,33 +68,30 @@ std::vector<JunctionPair> sample_training_pairs(const Wireframe& gt, const Predi
   if (static_cast<int>(out.size()) > o.max_static_pairs) out.resize(o.max_static_pairs);
   const size_t need = static_cast<size_t>(o.pairs_per_building) - out.size();
 
-  std::vector<int> kept = nms_kept(pred, o.nms_radius_m);
-  if (static_cast<int>(kept.size()) > o.top_k) kept.resize(o.top_k);
-  std::vector<Vec3> pts;
-  for (int k : kept) pts.push_back(pred.positions[k]);
-  const std::vector<int> labels = assign_junction_labels(pts, gt.junctions, o.fp_distance_m);
-  std::vector<JunctionPair> dyn = class_ordered_pairs(pts, kept, &labels, &cls);
+  // Grouped by class (a stable sort keeps combination order within a class), as the release orders them.
+  std::vector<JunctionPair> dyn = selection_pairs(selected, &gt, o.fp_distance_m);
+  std::stable_sort(dyn.begin(), dyn.end(), [](const JunctionPair& a, const JunctionPair& b) { return a.label < b.label; });
   const std::vector<JunctionPair> pool = dyn.empty() ? out : dyn;
   if (pool.empty()) return out;
   for (size_t k = 0; k < need; ++k) out.push_back(pool[k % pool.size()]);
   return out;
 }
 
-std::vector<JunctionPair> sample_test_pairs(const PredictedJunctions& pred, const Wireframe* gt, const PairSamplingOptions& o,
-                                            std::vector<int>* kept_out) {
-  o.Check();
-  std::vector<int> kept;
-  for (int k : nms_kept(pred, o.nms_radius_m)) {
-    if (pred.confidence[k] > o.test_confidence) kept.push_back(k);
+std::vector<JunctionPair> selection_pairs(const JunctionSelection& selected, const Wireframe* gt, double fp_distance_m) {
+  const std::vector<Vec3>& points = selected.positions;
+  std::vector<JunctionPair> out;
+  if (points.size() < 2) return out;
+  std::vector<int> labels;
+  std::unique_ptr<PairClassifier> cls;
+  if (gt) {
+    labels = assign_junction_labels(points, gt->junctions, fp_distance_m);
+    cls = std::make_unique<PairClassifier>(*gt);
   }
-  if (kept_out) *kept_out = kept;
-  if (kept.size() < 2) return {};
-  std::vector<Vec3> pts;
-  for (int k : kept) pts.push_back(pred.positions[k]);
-  if (!gt) return class_ordered_pairs(pts, kept, nullptr, nullptr);
-  const PairClassifier cls(*gt);
-  const std::vector<int> labels = assign_junction_labels(pts, gt->junctions, o.fp_distance_m);
-  return class_ordered_pairs(pts, kept, &labels, &cls);
+  out.reserve(points.size() * (points.size() - 1) / 2);
+  for (int a = 0; a < static_cast<int>(points.size()); ++a)
+    for (int b = a + 1; b < static_cast<int>(points.size()); ++b)
+      out.push_back({points[a], points[b], a, b, cls ? cls->classify(labels[a], labels[b]) : -1, false});
+  return out;
 }
 
 }  // namespace lc2wf

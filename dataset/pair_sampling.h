@@ -1,10 +1,12 @@
 // Edge-stage pair labels and pair sampling (release section 3.2-3.4), distances in metres
-// (release raw 7 -> 0.35 m false-positive distance, NMS 5 -> 0.25 m).
+// (release raw 7 -> 0.35 m false-positive distance). Which predicted junctions take part is decided by
+// junction_selection.h, the rule inference uses too.
 #pragma once
 
 #include <vector>
 
 #include "dataset/geometry.h"
+#include "dataset/junction_selection.h"
 #include "dataset/patches.h"
 
 namespace lc2wf {
@@ -15,10 +17,7 @@ enum PairClass : int { kPairIdentical = 0, kPairConnected = 1, kPairDistance2 = 
 struct PairSamplingOptions {
   int pairs_per_building = 512;     // training: static + dynamic
   int max_static_pairs = 256;       // GT pairs kept (first ones, class order)
-  int top_k = 100;                  // training: most confident predicted junctions after NMS
-  double nms_radius_m = 0.25;       // point NMS on predicted junctions
   double fp_distance_m = 0.35;      // a prediction farther than this from every GT junction is a false positive
-  double test_confidence = 0.85;    // test: keep junctions with confidence > this
   void Check() const;
 };
 
@@ -37,24 +36,18 @@ class PairClassifier {
   std::vector<std::vector<char>> adj_;
 };
 
-// Predicted junctions with confidences (metres).
-struct PredictedJunctions {
-  std::vector<Vec3> positions;
-  std::vector<double> confidence;
-};
-
 // Training pairs: all GT pairs class-ordered (edges in the wireframe's edge order, then distance-2, then
-// farther, each upper-triangle row-major), first max_static_pairs; then dynamic pairs of the top-k NMS'd
-// predictions, all i<j combinations in confidence order, grouped by class 0,1,2,3,4, cut or cyclically
-// repeated to fill pairs_per_building. With no dynamic pair the static pairs are repeated instead (the
-// release would fail); a GT with fewer than 2 junctions gives an empty list.
-std::vector<JunctionPair> sample_training_pairs(const Wireframe& gt, const PredictedJunctions& predicted,
+// farther, each upper-triangle row-major), first max_static_pairs; then dynamic pairs of the selected
+// junctions (select_junctions with SelectionCut::kTopK), all i<j combinations in confidence order, grouped
+// by class 0,1,2,3,4, cut or cyclically repeated to fill pairs_per_building. With no dynamic pair the
+// static pairs are repeated instead (the release would fail); a GT with fewer than 2 junctions gives an
+// empty list. Dynamic pair indices i, j are positions in the selection.
+std::vector<JunctionPair> sample_training_pairs(const Wireframe& gt, const JunctionSelection& selected,
                                                 const PairSamplingOptions& options);
 
-// Test pairs: NMS, confidence > test_confidence, all i<j pairs (class-ordered when `gt` is given, with
-// labels; otherwise combination order, label -1). Indices refer to `kept` (filled with the surviving
-// prediction indices, most confident first). Fewer than 2 junctions: empty.
-std::vector<JunctionPair> sample_test_pairs(const PredictedJunctions& predicted, const Wireframe* gt,
-                                            const PairSamplingOptions& options, std::vector<int>* kept = nullptr);
+// The pairs the edge model classifies at inference and validation: every i<j pair of the selection in
+// lexicographic order (indices = positions in the selection), with class labels when `gt` is given
+// (otherwise -1). Fewer than 2 junctions: empty.
+std::vector<JunctionPair> selection_pairs(const JunctionSelection& selected, const Wireframe* gt, double fp_distance_m);
 
 }  // namespace lc2wf

@@ -6,6 +6,7 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <string>
 
 namespace lc2wf {
 namespace {
@@ -257,6 +258,51 @@ PairPatches stack(const std::vector<PairPatches>& parts) {
     append(out.padded, p.padded);
     append(out.label, p.label);
   }
+  return out;
+}
+
+namespace {
+
+// Rows [first, first + count) of a batch whose buildings each hold size / batch values.
+template <class T>
+std::vector<T> rows(const std::vector<T>& v, int batch, int first, int count) {
+  const size_t per = v.size() / static_cast<size_t>(batch);
+  return std::vector<T>(v.begin() + static_cast<std::ptrdiff_t>(per * first),
+                        v.begin() + static_cast<std::ptrdiff_t>(per * (first + count)));
+}
+
+void check_slice(int batch, int first, int count) {
+  if (first < 0 || count < 1 || first + count > batch)
+    throw std::invalid_argument("slice: buildings [" + std::to_string(first) + ", " + std::to_string(first + count) +
+                                ") outside a batch of " + std::to_string(batch));
+}
+
+}  // namespace
+
+JunctionPatches slice(const JunctionPatches& b, int first, int count) {
+  check_slice(b.batch, first, count);
+  JunctionPatches out;
+  out.batch = count;
+  out.num_patches = b.num_patches;
+  out.lines = b.lines;
+  out.features = rows(b.features, b.batch, first, count);
+  out.padded = rows(b.padded, b.batch, first, count);
+  out.points = rows(b.points, b.batch, first, count);
+  out.label = rows(b.label, b.batch, first, count);
+  out.offset = rows(b.offset, b.batch, first, count);
+  out.endpoint = rows(b.endpoint, b.batch, first, count);
+  return out;
+}
+
+PairPatches slice(const PairPatches& b, int first, int count) {
+  check_slice(b.batch, first, count);
+  PairPatches out;
+  out.batch = count;
+  out.num_pairs = b.num_pairs;
+  out.lines = b.lines;
+  out.features = rows(b.features, b.batch, first, count);
+  out.padded = rows(b.padded, b.batch, first, count);
+  out.label = rows(b.label, b.batch, first, count);
   return out;
 }
 

@@ -90,6 +90,9 @@ struct PairPatches {
 // Concatenate buildings along the batch dimension; all parts must have the same G/P and L.
 JunctionPatches stack(const std::vector<JunctionPatches>& parts);
 PairPatches stack(const std::vector<PairPatches>& parts);
+// Buildings [first, first + count) of a batch: the inverse of stack(), for micro-batches.
+JunctionPatches slice(const JunctionPatches& batch, int first, int count);
+PairPatches slice(const PairPatches& batch, int first, int count);
 
 PairPatches build_pair_patches(const SegmentSet& segments, const std::vector<JunctionPair>& pairs, const PatchOptions& options);
 

@@ -1,7 +1,5 @@
-// The release's point NMS: a point is dropped when another point with strictly higher score lies closer
-// than `radius` (strict <), or an equal-score point earlier in the order that is still alive does.
-// This differs from greedy NMS on chains (A > B > C with A-B and B-C close: greedy keeps A and C, this
-// keeps only A). Returns surviving indices sorted by descending score (ties: lower index first).
+// Point non-maximum suppression over scored 3D points: junction candidates before pairing and the density
+// seeds of the junction sampling. One implementation of both rules, so every caller decides the same way.
 #pragma once
 
 #include <vector>
@@ -10,6 +8,19 @@
 
 namespace lc2wf {
 
-std::vector<int> suppressor_nms(const std::vector<Vec3>& points, const std::vector<double>& scores, double radius);
+enum class PointNmsRule {
+  // Classic greedy NMS: walk points by descending score; a point survives unless a *surviving* point lies
+  // within the radius.
+  kGreedy,
+  // The release's rule (reference spec §2.9): a point is also removed by a stronger neighbour that was
+  // itself suppressed, so on a chain A > B > C (A–B and B–C close, A–C far) only A survives.
+  kSuppressor,
+};
+
+// Indices of the surviving points in descending score order (ties: lower index first). Neighbours are
+// points at distance < radius (strict); radius 0 keeps every point. Throws std::invalid_argument on
+// mismatched sizes.
+std::vector<int> point_nms(const std::vector<Vec3>& points, const std::vector<double>& scores, double radius,
+                           PointNmsRule rule);
 
 }  // namespace lc2wf

@@ -41,14 +41,14 @@ JunctionPatches make_junction_sample(const LineCloud& cloud, const JunctionSampl
   return build_junction_patches(SegmentSet(segs), endpoint_labels(cloud, o.endpoint_label_max_distance_m), gt, samples, o.patch);
 }
 
-PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJunctions& predicted,
+PairPatches make_pair_training_sample(const LineCloud& cloud, const JunctionSelection& selected,
                                       const PairSampleOptions& o, uint64_t seed) {
   o.Check();
   require_segments(cloud);
   if (cloud.wireframe.junctions.size() < 2) throw DataError(cloud.name, "fewer than 2 GT junctions: no training pairs");
   DataRng rng(seed);
   const Augmentation aug = o.augment_enabled ? draw_augmentation(rng, o.augment, o.patch.frame) : Augmentation{};
-  std::vector<JunctionPair> pairs = sample_training_pairs(cloud.wireframe, predicted, o.pairs);
+  std::vector<JunctionPair> pairs = sample_training_pairs(cloud.wireframe, selected, o.pairs);
   for (auto& p : pairs) {
     p.u = aug.apply(p.u);
     p.v = aug.apply(p.v);
@@ -56,16 +56,6 @@ PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJun
   std::vector<Segment3> segs = cloud.segments;
   aug.apply(segs);
   return build_pair_patches(SegmentSet(segs), pairs, o.patch);
-}
-
-PairPatches make_pair_test_sample(const LineCloud& cloud, const PredictedJunctions& predicted, const PairSampleOptions& o,
-                                  std::vector<JunctionPair>* pairs_out, std::vector<int>* kept) {
-  o.Check();
-  require_segments(cloud);
-  const Wireframe* gt = cloud.wireframe.junctions.empty() ? nullptr : &cloud.wireframe;
-  const std::vector<JunctionPair> pairs = sample_test_pairs(predicted, gt, o.pairs, kept);
-  if (pairs_out) *pairs_out = pairs;
-  return build_pair_patches(SegmentSet(cloud.segments), pairs, o.patch);
 }
 
 }  // namespace lc2wf

@@ -36,15 +36,9 @@ struct PairSampleOptions {
   void Check() const;
 };
 
-// Training: GT + predicted pairs (release 3.3), augmentation applied jointly to segments, GT and
-// predictions. `predicted` positions in metres.
-PairPatches make_pair_training_sample(const LineCloud& cloud, const PredictedJunctions& predicted,
+// Training: GT + predicted pairs (release 3.3) of the junctions `selected` for this cloud (select_junctions
+// with SelectionCut::kTopK, metres), augmentation applied jointly to segments, GT and predictions.
+PairPatches make_pair_training_sample(const LineCloud& cloud, const JunctionSelection& selected,
                                       const PairSampleOptions& options, uint64_t seed);
-
-// Test: all pairs of the kept predictions (release 3.4); `pairs` receives them (with labels when the
-// cloud has a GT wireframe). Fewer than 2 kept junctions: an empty PairPatches (num_pairs = 0).
-PairPatches make_pair_test_sample(const LineCloud& cloud, const PredictedJunctions& predicted,
-                                  const PairSampleOptions& options, std::vector<JunctionPair>* pairs = nullptr,
-                                  std::vector<int>* kept = nullptr);
 
 }  // namespace lc2wf

@@ -52,7 +52,7 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
     cs.push_back(ratio[i]);
   }
   std::vector<int> out;
-  for (int k : suppressor_nms(cp, cs, o.density_nms_m)) out.push_back(cand[k]);
+  for (int k : point_nms(cp, cs, o.density_nms_m, PointNmsRule::kSuppressor)) out.push_back(cand[k]);
   return out;
 }
 

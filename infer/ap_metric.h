@@ -18,9 +18,10 @@ struct RankedHit {
   bool true_positive = false;
 };
 
-// How equal scores are ranked in the pooled list. The release sorts with an unstable sort, so its result
-// for tied scores is arbitrary; kGroupTies evaluates precision/recall only after a whole group of equal
-// scores (an order-free threshold sweep), kListOrder ranks ties in the order hits were added.
+// How equal scores are ranked in the pooled list. kListOrder (lc2wf-eval's default) ranks ties in the
+// order hits were added: building order, then each building's prediction order, the order in which the
+// release builds its pooled arrays. kGroupTies evaluates precision/recall only after a whole group of
+// equal scores (an order-free threshold sweep).
 enum class ApTieRule { kGroupTies, kListOrder };
 
 struct ApSummary {

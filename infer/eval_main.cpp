@@ -44,7 +44,8 @@ over all buildings) and WED (mean per building). See infer/README.md for the exa
                   with the ground truth's own transform (polyshape/line cloud) or divided by 20 (.obj)
   --gt-y-up       ground-truth .obj files are Y-up exports (Roof-Image res_obj, LC2WF house/)
   --strict-wed    also report the strict WED (charges spurious edges and extra vertices)
-  --ties T        group (default) or list: how equal scores are ranked in the pooled AP list
+  --ties T        list (default: equal scores ranked in building order, then prediction order, as the
+                  release) or group (precision/recall taken only after a whole group of equal scores)
   --method NAME   row label in the tables (default: name of the --pred folder)
   --quiet         no progress output
   -h, --help      this text
@@ -58,7 +59,7 @@ struct Args {
   bool release_quirks = false, previews = false, no_junction_refine = false;
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
-  ApTieRule ties = ApTieRule::kGroupTies;
+  ApTieRule ties = ApTieRule::kListOrder;
   std::string method;
 };
 
@@ -141,7 +142,7 @@ int run(const Args& a) {
     for (const std::string& name : names) clouds.push_back(find_cloud_file(a.data, name));
     BatchInferenceOptions inference;
     if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
-    if (a.no_junction_refine) inference.post.junction_refine.radius = 0.0;
+    if (a.no_junction_refine) inference.post.selection.refine.radius = 0.0;
     inference.quiet = a.quiet;
     if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
     const BatchInferenceSummary s = infer_clouds(WireframePredictor(a.weights), clouds, a.pred, inference);

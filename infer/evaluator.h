@@ -15,7 +15,7 @@ struct EvalOptions {
   std::vector<double> vertex_thresholds{0.15, 0.25, 0.35};  // η for vAP, metres (release: 3/5/7 raw)
   std::vector<double> edge_thresholds{0.25, 0.35, 0.50};    // η for sAP, metres (release: 5/7/10 raw)
   double min_score = 0.0;                // predictions scoring <= this are dropped (release: 0)
-  ApTieRule ties = ApTieRule::kGroupTies;  // ranking of equal scores in the pooled list
+  ApTieRule ties = ApTieRule::kListOrder;  // equal scores: building order, then prediction order (release)
   double raw_per_metre = 20.0;           // dataset scale, used only by the release WED's sqrt(raw) move cost
   bool strict_wed = false;               // also compute the strict WED variant
 

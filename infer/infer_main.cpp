@@ -57,7 +57,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "-o" || f == "--out") a.out = value();
     else if (f == "--preview") a.preview = value();
     else if (f == "--release-quirks") a.options.post = PostProcessOptions::release_quirks();
-    else if (f == "--no-junction-refine") a.options.post.junction_refine.radius = 0.0;
+    else if (f == "--no-junction-refine") a.options.post.selection.refine.radius = 0.0;
     else if (f == "--quiet") a.options.quiet = true;
     else if (f == "--format") {
       try {

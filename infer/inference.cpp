@@ -1,5 +1,6 @@
 #include "infer/inference.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -34,6 +35,19 @@ nlohmann::json stored_net_config(const std::filesystem::path& path, const std::s
   if (found != stage)
     throw std::runtime_error(path.string() + ": expected a " + stage + " model, found stage '" + found + "'");
   return info.config.at("net");
+}
+
+// Row-wise softmax of P x C logits, rounded to float as the probabilities are reported.
+std::vector<float> softmax_rows(const std::vector<double>& logits, size_t C) {
+  std::vector<float> probs(logits.size());
+  for (size_t p = 0; p * C < logits.size(); ++p) {
+    const double* z = &logits[p * C];
+    double zmax = z[0], total = 0.0;
+    for (size_t c = 1; c < C; ++c) zmax = std::max(zmax, z[c]);
+    for (size_t c = 0; c < C; ++c) total += std::exp(z[c] - zmax);
+    for (size_t c = 0; c < C; ++c) probs[p * C + c] = static_cast<float>(std::exp(z[c] - zmax) / total);
+  }
+  return probs;
 }
 
 }  // namespace
@@ -75,55 +89,42 @@ PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud
   return out;
 }
 
-std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
-  if (pairs.empty()) return {};
+Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
   const PairPatches patches = build_pair_patches(SegmentSet(cloud.segments), pairs, pair_patch_options(net.config()));
   const PatchInput in = pair_input(patches);
   EvalScope scope(net);
-  const std::vector<double> logits = net.forward(in.x, in.mask).to_vector();
-  const size_t C = static_cast<size_t>(net.config().num_classes);
-  std::vector<float> probs(logits.size());
-  for (size_t p = 0; p < pairs.size(); ++p) {
-    const double* z = &logits[p * C];
-    double zmax = z[0], total = 0.0;
-    for (size_t c = 1; c < C; ++c) zmax = std::max(zmax, z[c]);
-    for (size_t c = 0; c < C; ++c) total += std::exp(z[c] - zmax);
-    for (size_t c = 0; c < C; ++c) probs[p * C + c] = static_cast<float>(std::exp(z[c] - zmax) / total);
-  }
-  return probs;
+  return net.forward(in.x, in.mask);
+}
+
+std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
+  if (pairs.empty()) return {};
+  return softmax_rows(predict_pair_logits(net, cloud, pairs).to_vector(), static_cast<size_t>(net.config().num_classes));
 }
 
 InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, const PredictedJunctions& junctions,
-                                  const PostProcessOptions& options) {
+                                  const PostProcessOptions& options, const Wireframe* label_against, Tensor* logits) {
   InferenceResult r;
   r.junctions = junctions;
   auto t0 = Clock::now();
-  r.selection = select_junctions(junctions.positions, junctions.confidence, options);
-  r.selection.positions = refine_junctions(r.selection.positions, cloud.segments, options.junction_refine);
+  r.selection = select_junctions(junctions, cloud.segments, options.selection);
   r.notes = r.selection.notes;
+  r.pairs = selection_pairs(r.selection, label_against, PairSamplingOptions{}.fp_distance_m);
   r.post_seconds = seconds_since(t0);
-  const int n = static_cast<int>(r.selection.positions.size());
-  if (n < 2) return r;  // select_junctions' note says why
-  std::vector<JunctionPair> pairs;
-  for (const auto& [i, j] : all_pairs(n)) {
-    JunctionPair p;
-    p.u = r.selection.positions[i];
-    p.v = r.selection.positions[j];
-    p.i = i;
-    p.j = j;
-    pairs.push_back(p);
-  }
+  if (r.pairs.empty()) return r;  // select_junctions' note says why
+
   t0 = Clock::now();
-  const std::vector<float> probs = predict_pair_probabilities(edge_net, cloud, pairs);
+  const Tensor z = predict_pair_logits(edge_net, cloud, r.pairs);
+  const size_t C = static_cast<size_t>(edge_net.config().num_classes);
+  const std::vector<float> probs = softmax_rows(z.to_vector(), C);
+  if (logits) *logits = z;
   r.edge_seconds = seconds_since(t0);
 
   t0 = Clock::now();
   PostProcessInput in;
   in.junctions = r.selection.positions;
   in.confidences = r.selection.confidences;
-  const size_t C = static_cast<size_t>(edge_net.config().num_classes);
-  for (size_t p = 0; p < pairs.size(); ++p)
-    in.pairs.push_back({pairs[p].i, pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
+  for (size_t p = 0; p < r.pairs.size(); ++p)
+    in.pairs.push_back({r.pairs[p].i, r.pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
   PostProcessResult post = post_process(in, options);
   r.wireframe = std::move(post.wireframe);
   r.candidates = std::move(post.candidates);

@@ -1,7 +1,7 @@
 // Running the two networks on a line cloud (reference spec §2.8, §3.4, §4): junction sampling and
-// patches -> JunctionNet -> junction candidates (metres, confidences) -> select_junctions -> all pairs ->
-// EdgeNet over every pair of the building at once (its patch encoder attends across pairs) ->
-// post_process -> ScoredWireframe. Degenerate clouds (no segments, < 2 junctions, no candidate edge) give
+// patches -> JunctionNet -> junction candidates (metres, confidences) -> select_junctions (the rule the
+// training pairs use too) -> every pair of the selection -> EdgeNet over every pair of the building at
+// once (its patch encoder attends across pairs) -> post_process -> ScoredWireframe. Degenerate clouds (no segments, < 2 junctions, no candidate edge) give
 // a valid, possibly empty, wireframe and notes saying why; they never throw.
 #pragma once
 
@@ -28,6 +28,8 @@ PatchOptions pair_patch_options(const EdgeNetConfig& config);
 // Runs in eval mode without a graph. A cloud without segments gives no candidates.
 PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud);
 
+// Class logits (1, P, 5) of the given pairs of one building, in eval mode without a graph.
+Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs);
 // Class probabilities (P x 5, row-major) of the given pairs of one building, in eval mode without a graph.
 std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs);
 
@@ -36,6 +38,7 @@ struct InferenceResult {
   ScoredWireframe candidates;      // candidate edges before clean-up (post_process "before process")
   PredictedJunctions junctions;    // all junction candidates of the junction model
   JunctionSelection selection;     // the junctions that were paired
+  std::vector<JunctionPair> pairs;  // the pairs the edge model classified (labelled when a GT was given)
   std::vector<std::string> notes;  // degenerate cases met on the way
   double junction_seconds = 0.0;   // sampling + patches + junction model
   double edge_seconds = 0.0;       // pair patches + edge model
@@ -62,9 +65,12 @@ class WireframePredictor {
   std::unique_ptr<EdgeNet> edge_;
 };
 
-// The edge half for a caller-owned network (lc2wf-train validates the model it is training).
+// The edge half for a caller-owned network (lc2wf-train validates the model it is training). With
+// `label_against`, the pairs get class labels and `logits` (if given) the network's (1, P, 5) output, so
+// validation computes its loss on exactly the pairs whose wireframe it scores.
 InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, const PredictedJunctions& junctions,
-                                  const PostProcessOptions& options);
+                                  const PostProcessOptions& options, const Wireframe* label_against = nullptr,
+                                  Tensor* logits = nullptr);
 
 // Rebuilds a network from the config stored in a checkpoint written by lc2wf-train and loads its weights.
 std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path);

@@ -180,29 +180,6 @@ ScoredWireframe to_wireframe(const PostProcessInput& in, const std::vector<Edge>
 
 }  // namespace
 
-JunctionSelection select_junctions(const std::vector<Vec3>& candidates, const std::vector<double>& confidences,
-                                   const PostProcessOptions& options) {
-  options.Check();
-  if (candidates.size() != confidences.size())
-    throw std::invalid_argument("select_junctions: " + std::to_string(candidates.size()) + " candidates but " +
-                                std::to_string(confidences.size()) + " confidences");
-  for (size_t k = 0; k < candidates.size(); ++k)
-    if (!finite(candidates[k]) || !std::isfinite(confidences[k]))
-      throw std::invalid_argument("select_junctions: candidate " + std::to_string(k) + " has a non-finite value");
-  JunctionSelection s;
-  for (int k : point_nms(candidates, confidences, options.junction_nms_radius, options.junction_nms)) {
-    if (confidences[k] <= options.junction_min_confidence) continue;
-    s.kept.push_back(k);
-    s.positions.push_back(candidates[k]);
-    s.confidences.push_back(confidences[k]);
-  }
-  if (candidates.empty()) s.notes.push_back("no junction candidates");
-  if (s.kept.size() < 2)
-    s.notes.push_back(std::to_string(s.kept.size()) + " junction(s) with confidence > " +
-                      std::to_string(options.junction_min_confidence) + " after NMS: no pair to connect");
-  return s;
-}
-
 std::vector<std::array<int, 2>> all_pairs(int n) {
   std::vector<std::array<int, 2>> pairs;
   if (n < 2) return pairs;

@@ -1,5 +1,5 @@
-// Inference post-processing: from junction candidates to the junctions that get paired (§3.4), and from
-// the edge model's pair probabilities to the final wireframe (§4). Everything is in metres. No input
+// Inference post-processing: from the edge model's pair probabilities over the selected junctions
+// (dataset/junction_selection.h, §3.4) to the final wireframe (§4). Everything is in metres. No input
 // makes these functions crash: degenerate cases (no candidates, < 2 junctions, no identical pair, no
 // candidate edge) give a valid, possibly empty, result and a note saying what happened.
 #pragma once
@@ -13,19 +13,7 @@
 
 namespace lc2wf {
 
-struct JunctionSelection {
-  std::vector<int> kept;            // indices into the candidates, descending confidence
-  std::vector<Vec3> positions;      // the kept candidates, same order
-  std::vector<double> confidences;  // same order
-  std::vector<std::string> notes;   // set when fewer than 2 junctions remain (nothing to pair)
-};
-
-// Point NMS (options.junction_nms, radius junction_nms_radius), then c > junction_min_confidence.
-// Throws std::invalid_argument on mismatched sizes or non-finite values.
-JunctionSelection select_junctions(const std::vector<Vec3>& candidates, const std::vector<double>& confidences,
-                                   const PostProcessOptions& options);
-
-// All index pairs (i < j) of n junctions in lexicographic order: the pairs the edge model classifies.
+// All index pairs (i < j) of n junctions in lexicographic order: the order of selection_pairs().
 std::vector<std::array<int, 2>> all_pairs(int n);
 
 // Edge-model output for one pair of selected junctions.
@@ -39,7 +27,7 @@ struct PairPrediction {
 struct PostProcessInput {
   std::vector<Vec3> junctions;        // selected junctions (usually JunctionSelection::positions)
   std::vector<double> confidences;    // their confidences
-  std::vector<PairPrediction> pairs;  // distinct unordered pairs (usually all_pairs order)
+  std::vector<PairPrediction> pairs;  // distinct unordered pairs (usually selection_pairs order)
 };
 
 // How many junctions/edges each step removed (diagnostics and tests).

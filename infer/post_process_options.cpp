@@ -14,13 +14,11 @@ void require(bool ok, const char* field, const std::string& rule, double value) 
 }
 
 bool probability(double p) { return std::isfinite(p) && p >= 0.0 && p <= 1.0; }
-bool positive(double d) { return std::isfinite(d) && d > 0.0; }
 
 }  // namespace
 
 void PostProcessOptions::Check() const {
-  require(positive(junction_nms_radius), "junction_nms_radius", "a positive distance in metres", junction_nms_radius);
-  require(probability(junction_min_confidence), "junction_min_confidence", "in [0, 1]", junction_min_confidence);
+  selection.Check();
   require(probability(merge_threshold), "merge_threshold", "in [0, 1]", merge_threshold);
   require(probability(connect_threshold), "connect_threshold", "in [0, 1]", connect_threshold);
   require(hamming_threshold >= 0, "hamming_threshold", ">= 0", hamming_threshold);
@@ -28,7 +26,6 @@ void PostProcessOptions::Check() const {
           ">= 0 metres", junction_merge_distance);
   require(std::isfinite(line_nms_distance) && line_nms_distance >= 0.0, "line_nms_distance", ">= 0 metres",
           line_nms_distance);
-  junction_refine.Check();
   if (transfer_edges_on_merge && pruned_junctions_in_merge)
     throw std::invalid_argument(
         "PostProcessOptions.pruned_junctions_in_merge cannot be combined with transfer_edges_on_merge: edges would "
@@ -37,12 +34,11 @@ void PostProcessOptions::Check() const {
 
 PostProcessOptions PostProcessOptions::release_quirks() {
   PostProcessOptions o;
-  o.junction_nms = PointNmsRule::kSuppressor;
+  o.selection = JunctionSelectionOptions::release();
   o.prune_through_deleted = true;
   o.transfer_edges_on_merge = false;
   o.pruned_junctions_in_merge = true;
   o.line_nms_keep_higher = false;
-  o.junction_refine.radius = 0.0;
   return o;
 }
 

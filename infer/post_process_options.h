@@ -3,19 +3,13 @@
 // release_quirks() reproduces the release's behaviour exactly.
 #pragma once
 
-#include "infer/junction_refine.h"
-#include "infer/point_nms.h"
+#include "dataset/junction_selection.h"
 
 namespace lc2wf {
 
 struct PostProcessOptions {
-  // Junction selection before pairing (§3.4).
-  PointNmsRule junction_nms = PointNmsRule::kGreedy;  // release: kSuppressor
-  double junction_nms_radius = 0.25;                  // metres (release: 5 raw)
-  double junction_min_confidence = 0.85;              // keep junctions with c > this
-  // Selected junctions snap to the meeting point of the cloud's segments ending near them (not in the
-  // release, which keeps the regressed positions: release_quirks() turns it off).
-  JunctionRefineOptions junction_refine{.radius = 0.5};
+  // Junction selection before pairing (§3.4): the rule training uses too (dataset/junction_selection.h).
+  JunctionSelectionOptions selection;
 
   // Identical-pair pruning (§4 step 2): P(identical) > merge_threshold marks the less confident junction.
   double merge_threshold = 0.2;

@@ -66,7 +66,7 @@ LossTerms junction_loss(const JunctionOutput& out, const JunctionTargets& t, con
   return terms;
 }
 
-Tensor edge_loss(const Tensor& logits, const Tensor& labels, const EdgeLossConfig& config) {
+Tensor edge_loss(const Tensor& logits, const Tensor& labels, const EdgeLossConfig& config, double weight_total) {
   config.Check();
   const int64_t C = static_cast<int64_t>(config.class_weights.size());
   if (logits.dim() != 3 || logits.size(2) != C)
@@ -76,7 +76,21 @@ Tensor edge_loss(const Tensor& logits, const Tensor& labels, const EdgeLossConfi
     throw std::invalid_argument("edge_loss: labels must be I64 " + shape_str({logits.size(0), logits.size(1)}));
   const int64_t R = logits.size(0) * logits.size(1);
   const Tensor weight = Tensor::from_vector(config.class_weights, {C}).to(logits.dtype());
-  return cross_entropy(logits.reshape({R, C}), labels.reshape({R}), weight);
+  if (!(weight_total > 0)) return cross_entropy(logits.reshape({R, C}), labels.reshape({R}), weight);
+  return cross_entropy(logits.reshape({R, C}), labels.reshape({R}), weight, -100, Reduction::Sum) * (1.0 / weight_total);
+}
+
+double edge_loss_weight(const Tensor& labels, const EdgeLossConfig& config) {
+  config.Check();
+  if (!labels.defined() || labels.dtype() != DType::I64) throw std::invalid_argument("edge_loss_weight: labels must be I64");
+  const int64_t* t = labels.data<int64_t>();
+  double total = 0.0;
+  for (int64_t k = 0; k < labels.numel(); ++k) {
+    if (t[k] < 0 || t[k] >= static_cast<int64_t>(config.class_weights.size()))
+      throw std::invalid_argument("edge_loss_weight: label " + std::to_string(t[k]) + " is not a class");
+    total += config.class_weights[t[k]];
+  }
+  return total;
 }
 
 }  // namespace lc2wf

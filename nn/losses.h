@@ -27,7 +27,11 @@ struct LossTerms {
 
 LossTerms junction_loss(const JunctionOutput& out, const JunctionTargets& targets, const JunctionLossConfig& config);
 
-// logits (B, P, C), labels I64 (B, P).
-Tensor edge_loss(const Tensor& logits, const Tensor& labels, const EdgeLossConfig& config);
+// logits (B, P, C), labels I64 (B, P). With `weight_total` > 0 the class-weighted sum is divided by it
+// instead of by this batch's own weight sum, so the losses of micro-batches cut from one batch, each
+// divided by the whole batch's edge_loss_weight(), add up to the batch's loss (and so do their gradients).
+Tensor edge_loss(const Tensor& logits, const Tensor& labels, const EdgeLossConfig& config, double weight_total = 0.0);
+// Sum of the class weights of `labels` (the denominator of edge_loss's weighted mean).
+double edge_loss_weight(const Tensor& labels, const EdgeLossConfig& config);
 
 }  // namespace lc2wf

@@ -6,7 +6,6 @@
 #include "core/util/atomic_file.h"
 #include "core/util/progress.h"
 #include "infer/inference.h"
-#include "infer/junction_refine.h"
 #include "nn/checkpoint.h"
 #include "train/junction_handoff.h"
 #include "train/stage_loop.h"
@@ -16,11 +15,11 @@ namespace lc2wf {
 
 namespace fs = std::filesystem;
 
-fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, double refine_radius, RunLog& log,
-                                const StageRun& run) {
-  JunctionRefineOptions refine;
-  refine.radius = refine_radius;
-  refine.Check();
+// Version 2: raw candidates; the edge stage selects and refines them as inference does (version 1 stored
+// refined candidates, so its selection ran in a different order).
+constexpr int kHandoffVersion = 2;
+
+fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run) {
   const fs::path dir = run.out / "predicted_junctions", manifest = dir / "manifest.json";
   const fs::path weights = best_checkpoint_path(run.out, "junction");
   if (!fs::exists(weights)) throw std::runtime_error(weights.string() + ": no junction model yet (run --stage junction first)");
@@ -34,7 +33,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
     std::ifstream in(manifest);
     const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
     bool complete = !m.is_discarded() && m.value("junction_step", int64_t{-1}) == step &&
-                    m.value("junction_refine_radius", -1.0) == refine_radius;
+                    m.value("version", 0) == kHandoffVersion;
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
     if (complete) {
       if (!run.quiet) std::fprintf(stderr, "handoff: predicted junctions in %s are up to date\n", dir.string().c_str());
@@ -50,9 +49,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   const auto t0 = std::chrono::steady_clock::now();
   nlohmann::json names = nlohmann::json::array();
   for (const LineCloud* c : clouds) {
-    PredictedJunctions p = predict_junction_candidates(*net, *c);
-    p.positions = refine_junctions(p.positions, c->segments, refine);
-    write_predicted_junctions(dir, c->name, p);
+    write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c));
     names.push_back(c->name);
     if (bar) bar->step();
   }
@@ -61,7 +58,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   write_text_atomically(manifest, nlohmann::json{{"format", "lc2wf-predicted-junctions-manifest"},
                                                  {"junction_checkpoint", weights.string()},
                                                  {"junction_step", step},
-                                                 {"junction_refine_radius", refine_radius},
+                                                 {"version", kHandoffVersion},
                                                  {"buildings", names}}
                                       .dump(2) + "\n");
   log.append({{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},

@@ -1,11 +1,12 @@
 #include <cmath>
 #include <vector>
 
+#include "core/ops.h"
 #include "core/tensor.h"
 #include "infer/ap_metric.h"
 #include "infer/inference.h"
 #include "infer/patch_tensors.h"
-#include "infer/point_nms.h"
+#include "dataset/point_nms.h"
 #include "nn/junction_net.h"
 #include "nn/losses.h"
 #include "train/patch_stream.h"
@@ -62,12 +63,21 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
   cb.train_step = [&]() -> std::optional<StageStep> {
     std::optional<JunctionPatches> p = stream.next();
     if (!p) return std::nullopt;
-    const PatchInput in = junction_input(*p);
-    const LossTerms loss = junction_loss(net.forward(in.x, in.mask), junction_targets(*p), c.loss);
-    loss.total.backward();
-    return StageStep{loss.total.item(),
-                     {{"cls_loss", loss.classification.item()}, {"reg_loss", loss.regression.item()}},
-                     p->batch};
+    // The loss is a mean over buildings, so a micro-batch's share of it is its share of the buildings.
+    double total = 0.0, cls = 0.0, reg = 0.0;
+    for (const auto& [first, count] : micro_batch_ranges(p->batch, c.schedule.micro_batch)) {
+      const bool whole = count == p->batch;
+      const JunctionPatches part = whole ? JunctionPatches{} : slice(*p, first, count);
+      const JunctionPatches& q = whole ? *p : part;
+      const PatchInput in = junction_input(q);
+      const LossTerms loss = junction_loss(net.forward(in.x, in.mask), junction_targets(q), c.loss);
+      const double share = static_cast<double>(count) / p->batch;
+      (whole ? loss.total : loss.total * share).backward();
+      total += share * loss.total.item();
+      cls += share * loss.classification.item();
+      reg += share * loss.regression.item();
+    }
+    return StageStep{total, {{"cls_loss", cls}, {"reg_loss", reg}}, p->batch};
   };
   cb.validate = [&]() {
     net.eval();

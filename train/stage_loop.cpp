@@ -48,6 +48,13 @@ struct Best {
 
 }  // namespace
 
+std::vector<std::pair<int, int>> micro_batch_ranges(int batch, int64_t micro) {
+  const int step = micro <= 0 || micro >= batch ? batch : static_cast<int>(micro);
+  std::vector<std::pair<int, int>> out;
+  for (int first = 0; first < batch; first += step) out.emplace_back(first, std::min(step, batch - first));
+  return out;
+}
+
 int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, RunLog& log, const StageCallbacks& cb) {
   const std::string& stage = o.stage;
   const fs::path best_path = best_checkpoint_path(o.out, stage);

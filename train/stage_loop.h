@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -59,6 +60,10 @@ struct StageLoopOptions {
   bool resume = false;
   bool quiet = false;
 };
+
+// (first, count) ranges cutting a batch of `batch` buildings into micro-batches of at most `micro`
+// buildings (micro <= 0 or >= batch: the whole batch in one range).
+std::vector<std::pair<int, int>> micro_batch_ranges(int batch, int64_t micro);
 
 // Trains `model` to the end of the schedule (or returns at once when a resumed stage is complete).
 // Returns the number of optimiser steps run by this call.

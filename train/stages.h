@@ -40,11 +40,10 @@ StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig&
 void train_junction_stage(const TrainConfig& config, const BuildingSet& train, const BuildingSet& val, RunLog& log,
                           const StageRun& run);
 
-// `<out>/predicted_junctions/<name>.json` for every train and validation building, plus manifest.json.
-// Positions are refined like inference refines them (radius `refine_radius` m, 0 = the release's raw
-// regressions), so the edge stage trains on the junctions it will see. With run.resume a complete
-// hand-off of the same junction checkpoint and radius is kept.
-std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, double refine_radius,
+// `<out>/predicted_junctions/<name>.json` for every train and validation building, plus manifest.json:
+// the junction model's raw candidates, which the edge stage selects and refines with inference's rule
+// (dataset/junction_selection.h). With run.resume a complete hand-off of the same junction checkpoint is kept.
+std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val,
                                              RunLog& log, const StageRun& run);
 
 // Best weights `<out>/edge.safetensors`; selection by mean sAP (eta 0.25/0.35/0.50 m) of the post-processed

@@ -49,6 +49,7 @@ void StageSchedule::Check(const std::string& w) const {
   require(max_steps_per_epoch >= 0, w + ".max_steps_per_epoch", "must be >= 0 (0 = whole split)");
   require(val_every >= 1, w + ".val_every", "must be >= 1");
   require(checkpoint_every_steps >= 0, w + ".checkpoint_every_steps", "must be >= 0 (0 = per epoch)");
+  require(micro_batch >= 0, w + ".micro_batch", "must be >= 0 (0 = the whole batch)");
 }
 
 // -------------------------------------------------------------------------------- JunctionStageConfig
@@ -94,8 +95,8 @@ void EdgeStageConfig::Check() const {
   require(max_static_pairs >= 0 && max_static_pairs <= net.lpt.patches, "edge.max_static_pairs",
           "must be in [0, net.lpt.patches]");
   require(top_k >= 2, "edge.top_k", "must be >= 2");
-  require(std::isfinite(junction_refine_radius) && junction_refine_radius >= 0, "edge.junction_refine_radius",
-          "must be >= 0 metres");
+  require(post_process == "sound" || post_process == "release", "edge.post_process",
+          "must be \"sound\" or \"release\"");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

@@ -43,6 +43,9 @@ struct StageSchedule {
   int64_t checkpoint_every_steps = 0;  // also save "last" mid-epoch every k steps (0 = per epoch only)
   bool augment = true;              // the release's per-building scale + shift
   bool drop_last = true;
+  // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the
+  // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
+  int64_t micro_batch = 0;          // 0 = the whole batch at once
 
   void Check(const std::string& where) const;
   // The schedule keys live directly in the stage object, so the stages list them through this.
@@ -55,6 +58,7 @@ struct StageSchedule {
     v("checkpoint_every_steps", s.checkpoint_every_steps);
     v("augment", s.augment);
     v("drop_last", s.drop_last);
+    v("micro_batch", s.micro_batch);
   }
 };
 
@@ -88,8 +92,9 @@ struct EdgeStageConfig {
   StageSchedule schedule = edge_schedule_defaults();
   int64_t max_static_pairs = 256;
   int64_t top_k = 100;
-  // Hand-off junctions refined as at inference (infer/junction_refine.h); 0 = the release's raw positions.
-  double junction_refine_radius = 0.5;
+  // Junction selection and post-processing of the training pairs and the validation wireframes, as
+  // lc2wf-infer: "sound" (its defaults) or "release" (--release-quirks).
+  std::string post_process = "sound";
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -100,7 +105,7 @@ struct EdgeStageConfig {
     StageSchedule::fields(s.schedule, v);
     v("max_static_pairs", s.max_static_pairs);
     v("top_k", s.top_k);
-    v("junction_refine_radius", s.junction_refine_radius);
+    v("post_process", s.post_process);
   }
   void Check() const;
   nlohmann::json to_json() const;

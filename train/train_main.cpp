@@ -88,7 +88,7 @@ int run(const Args& a) {
                  train.clouds.size(), val.clouds.size(), static_cast<long long>(config.threads), run.out.string().c_str());
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
   if (a.stage == "edge" || a.stage == "all") {
-    const fs::path handoff = write_junction_handoff(train, val, config.edge.junction_refine_radius, log, run);
+    const fs::path handoff = write_junction_handoff(train, val, log, run);
     train_edge_stage(config, train, val, handoff, log, run);
   }
   if (!a.quiet) {

@@ -81,7 +81,8 @@ void BM_JunctionSampleWithAugmentation(benchmark::State& state) {
 BENCHMARK(BM_JunctionSampleWithAugmentation)->Unit(benchmark::kMillisecond);
 
 void BM_PairPatches512(benchmark::State& state) {
-  const auto pairs = sample_training_pairs(cloud().wireframe, predictions(), PairSamplingOptions{});
+  const auto selected = select_junctions(predictions(), cloud().segments, {}, SelectionCut::kTopK);
+  const auto pairs = sample_training_pairs(cloud().wireframe, selected, PairSamplingOptions{});
   for (auto _ : state) {
     const SegmentSet set(cloud().segments);
     benchmark::DoNotOptimize(build_pair_patches(set, pairs, PatchOptions{}));
@@ -93,9 +94,9 @@ BENCHMARK(BM_PairPatches512)->Unit(benchmark::kMillisecond);
 void BM_PairTrainingSampleWithAugmentation(benchmark::State& state) {
   PairSampleOptions o;
   o.augment_enabled = true;
-  const auto pred = predictions();
+  const auto selected = select_junctions(predictions(), cloud().segments, {}, SelectionCut::kTopK);
   uint64_t seed = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(make_pair_training_sample(cloud(), pred, o, ++seed));
+  for (auto _ : state) benchmark::DoNotOptimize(make_pair_training_sample(cloud(), selected, o, ++seed));
 }
 BENCHMARK(BM_PairTrainingSampleWithAugmentation)->Unit(benchmark::kMillisecond);
 

@@ -60,11 +60,10 @@ PostProcessInput edge_stage_output(const Wireframe& gt) {
 
 void BM_SelectJunctions(benchmark::State& state) {
   const Wireframe gt = lattice();
-  std::vector<Vec3> pts;
-  std::vector<double> conf;
-  candidates(gt, pts, conf);
+  PredictedJunctions c;
+  candidates(gt, c.positions, c.confidence);
   PostProcessOptions o = state.range(0) ? PostProcessOptions::release_quirks() : PostProcessOptions{};
-  for (auto _ : state) benchmark::DoNotOptimize(select_junctions(pts, conf, o));
+  for (auto _ : state) benchmark::DoNotOptimize(select_junctions(c, {}, o.selection));
 }
 BENCHMARK(BM_SelectJunctions)->Arg(0)->Arg(1)->ArgName("release");
 

@@ -89,14 +89,15 @@ void BM_EdgeTrainStep(benchmark::State& state) {
   PairSampleOptions so;
   so.patch = pair_patch_options(config);
   so.augment_enabled = true;
-  std::vector<PredictedJunctions> predicted;
-  for (size_t k = 0; k < clouds().size(); ++k) predicted.push_back(fake_predictions(clouds()[k], k));
+  std::vector<JunctionSelection> selected;
+  for (size_t k = 0; k < clouds().size(); ++k)
+    selected.push_back(select_junctions(fake_predictions(clouds()[k], k), clouds()[k].segments, {}, SelectionCut::kTopK));
   uint64_t step = 0;
   for (auto _ : state) {
     std::vector<PairPatches> parts;
     for (int b = 0; b < B; ++b) {
       const size_t k = (step * B + b) % clouds().size();
-      parts.push_back(make_pair_training_sample(clouds()[k], predicted[k], so, step * 100 + b));
+      parts.push_back(make_pair_training_sample(clouds()[k], selected[k], so, step * 100 + b));
     }
     const PairPatches p = stack(parts);
     const PatchInput in = pair_input(p);

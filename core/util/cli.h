@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/util/version.h"
+
 namespace lc2wf {
 
 struct UsageError : std::runtime_error {
@@ -61,6 +63,10 @@ int cli_main(const char* program, const char* usage, int argc, char** argv, Pars
     const std::string flag = argv[i];
     if (flag == "-h" || flag == "--help") {
       std::fputs(usage, stdout);
+      return 0;
+    }
+    if (flag == "--version") {
+      std::printf("%s %s\n", program, version_line().c_str());
       return 0;
     }
   }

@@ -40,7 +40,10 @@ TEST(Constants, ReleaseValuesInMetres) {
   EXPECT_EQ(s.num_samples, 256);
   const PairSamplingOptions p;
   EXPECT_DOUBLE_EQ(p.fp_distance_m * 20, 7.0);
-  EXPECT_DOUBLE_EQ(p.nms_radius_m * 20, 5.0);
+  const JunctionSelectionOptions j;
+  EXPECT_DOUBLE_EQ(j.nms_radius_m * 20, 5.0);
+  EXPECT_DOUBLE_EQ(j.min_confidence, 0.85);
+  EXPECT_EQ(j.top_k, 100);
   // Metres -> network units reproduces the release's (raw - MEAN) / STD.
   const Vec3 raw(100, -40, 75);
   const Vec3 release = (raw - Vec3(0.12249484, -0.3440005, 70.5140106)) / 266.2135032067564;
@@ -79,10 +82,10 @@ TEST(PointNms, SuppressorRuleOnAChainKeepsOnlyTheTop) {
   const std::vector<Vec3> p = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(10, 0, 0)};
   const std::vector<double> s = {0.9, 0.8, 0.7, 0.1};
   // A-B and B-C closer than 1.5, A-C not: greedy NMS would keep C, the release rule does not.
-  EXPECT_EQ(suppressor_nms(p, s, 1.5), (std::vector<int>{0, 3}));
+  EXPECT_EQ(point_nms(p, s, 1.5, PointNmsRule::kSuppressor), (std::vector<int>{0, 3}));
   // Equal scores: the earlier one wins; strict <: points exactly at the radius survive.
-  EXPECT_EQ(suppressor_nms({Vec3(0, 0, 0), Vec3(0.5, 0, 0)}, {0.5, 0.5}, 1.0), (std::vector<int>{0}));
-  EXPECT_EQ(suppressor_nms({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {0.5, 0.6}, 1.0), (std::vector<int>{1, 0}));
+  EXPECT_EQ(point_nms({Vec3(0, 0, 0), Vec3(0.5, 0, 0)}, {0.5, 0.5}, 1.0, PointNmsRule::kSuppressor), (std::vector<int>{0}));
+  EXPECT_EQ(point_nms({Vec3(0, 0, 0), Vec3(1, 0, 0)}, {0.5, 0.6}, 1.0, PointNmsRule::kSuppressor), (std::vector<int>{1, 0}));
 }
 
 TEST(Sampling, DensitySeedsOnePerCluster) {
@@ -235,10 +238,13 @@ TEST(Pairs, TrainingOrderAndCyclicFill) {
   PredictedJunctions pred;
   pred.positions = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(50, 0, 0), Vec3(0.1, 0, 0)};
   pred.confidence = {0.9, 0.8, 0.7, 0.6};
+  JunctionSelectionOptions so;
+  so.refine.radius = 0.0;
+  const JunctionSelection sel = select_junctions(pred, {}, so, SelectionCut::kTopK);
   PairSamplingOptions o;
   o.pairs_per_building = 10;
   o.max_static_pairs = 10;
-  const auto pairs = sample_training_pairs(path4(), pred, o);
+  const auto pairs = sample_training_pairs(path4(), sel, o);
   std::vector<int> labels;
   for (const auto& p : pairs) labels.push_back(p.label);
   EXPECT_EQ(labels, (std::vector<int>{1, 1, 1, 2, 2, 3, 1, 4, 4, 1}));
@@ -248,33 +254,35 @@ TEST(Pairs, TrainingOrderAndCyclicFill) {
   EXPECT_EQ(pairs[7].j, 2);
   // Static pairs are truncated first.
   o.max_static_pairs = 2;
-  EXPECT_EQ(sample_training_pairs(path4(), pred, o)[2].label, 1);
-  EXPECT_FALSE(sample_training_pairs(path4(), pred, o)[2].from_gt);
+  EXPECT_EQ(sample_training_pairs(path4(), sel, o)[2].label, 1);
+  EXPECT_FALSE(sample_training_pairs(path4(), sel, o)[2].from_gt);
   // No predictions: static pairs are repeated, never a crash.
-  const auto only_gt = sample_training_pairs(path4(), PredictedJunctions{}, o);
+  const auto only_gt = sample_training_pairs(path4(), JunctionSelection{}, o);
   ASSERT_EQ(only_gt.size(), 10u);
   EXPECT_TRUE(only_gt[9].from_gt);
   Wireframe one;
   one.junctions = {Vec3::Zero()};
-  EXPECT_TRUE(sample_training_pairs(one, pred, o).empty());
+  EXPECT_TRUE(sample_training_pairs(one, sel, o).empty());
 }
 
 TEST(Pairs, TestPairsKeepConfidentJunctions) {
   PredictedJunctions pred;
   pred.positions = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(50, 0, 0), Vec3(0.1, 0, 0)};
   pred.confidence = {0.9, 0.8, 0.7, 0.6};
-  PairSamplingOptions o;
-  std::vector<int> kept;
-  EXPECT_TRUE(sample_test_pairs(pred, nullptr, o, &kept).empty());  // only one junction > 0.85
-  EXPECT_EQ(kept, (std::vector<int>{0}));
-  o.test_confidence = 0.5;
+  JunctionSelectionOptions so;
+  so.refine.radius = 0.0;
+  const JunctionSelection one = select_junctions(pred, {}, so);
+  EXPECT_TRUE(selection_pairs(one, nullptr, 0.35).empty());  // only one junction > 0.85
+  EXPECT_EQ(one.kept, (std::vector<int>{0}));
+  so.min_confidence = 0.5;
+  const JunctionSelection s = select_junctions(pred, {}, so);
+  EXPECT_EQ(s.kept, (std::vector<int>{0, 1, 2}));  // 3 is suppressed by 0 (NMS 0.25 m)
   const Wireframe gt = path4();
-  const auto pairs = sample_test_pairs(pred, &gt, o, &kept);
-  EXPECT_EQ(kept, (std::vector<int>{0, 1, 2}));  // 3 is suppressed by 0 (NMS 0.25 m)
+  const auto pairs = selection_pairs(s, &gt, 0.35);
   ASSERT_EQ(pairs.size(), 3u);
   EXPECT_EQ(pairs[0].label, 1);
   EXPECT_EQ(pairs[1].label, 4);
-  EXPECT_EQ(sample_test_pairs(pred, nullptr, o).at(1).j, 2);
+  EXPECT_EQ(selection_pairs(s, nullptr, 0.35).at(1).j, 2);
 }
 
 TEST(Augmentation, IsScaleAndShiftInNetworkUnits) {
@@ -398,12 +406,12 @@ TEST(Samples, PairSamplesOnASyntheticBuilding) {
   pred.confidence.push_back(0.95);
   PairSampleOptions o;
   o.augment_enabled = true;
-  const auto T = make_pair_training_sample(c, pred, o, 5);
+  const auto T = make_pair_training_sample(c, select_junctions(pred, c.segments, {}, SelectionCut::kTopK), o, 5);
   EXPECT_EQ(T.num_pairs, 512);
   EXPECT_EQ(T.lines, 64);
   EXPECT_EQ(T.features.size(), 512u * 64 * 6);
-  std::vector<JunctionPair> pairs;
-  const auto E = make_pair_test_sample(c, pred, o, &pairs);
+  const std::vector<JunctionPair> pairs = selection_pairs(select_junctions(pred, c.segments, {}), &c.wireframe, 0.35);
+  const auto E = build_pair_patches(SegmentSet(c.segments), pairs, o.patch);
   EXPECT_EQ(E.num_pairs, 55);  // C(11, 2)
   int connected = 0, fp = 0;
   for (const auto& p : pairs) {
@@ -412,15 +420,10 @@ TEST(Samples, PairSamplesOnASyntheticBuilding) {
   }
   EXPECT_EQ(connected, 17);
   EXPECT_EQ(fp, 10);
-  // Fewer than 2 junctions at test time: no pairs, no crash.
-  PredictedJunctions one;
-  one.positions = {Vec3::Zero()};
-  one.confidence = {0.99};
-  EXPECT_EQ(make_pair_test_sample(c, one, o).num_pairs, 0);
   LineCloud no_gt = c;
   no_gt.wireframe = {};
   no_gt.labels.clear();
-  EXPECT_THROW(make_pair_training_sample(no_gt, pred, o, 1), DataError);
+  EXPECT_THROW(make_pair_training_sample(no_gt, JunctionSelection{}, o, 1), DataError);
   const auto stacked = stack(std::vector<PairPatches>{T, T});
   EXPECT_EQ(stacked.batch, 2);
   EXPECT_EQ(stacked.features.size(), 2 * T.features.size());

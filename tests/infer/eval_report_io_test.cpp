@@ -45,7 +45,7 @@ TEST(EvalReportIo, JsonHoldsEveryNumber) {
   EXPECT_DOUBLE_EQ(j["wed"]["add_edge_length"].get<double>(), 6.0);
   EXPECT_TRUE(j.contains("wed_strict"));
   EXPECT_EQ(j["per_building"][1]["wed"]["add_vertex"], 3);
-  EXPECT_EQ(j["options"]["ties"], "group");
+  EXPECT_EQ(j["options"]["ties"], "list_order");
 }
 
 TEST(EvalReportIo, CsvRowPerBuildingWithQuoting) {

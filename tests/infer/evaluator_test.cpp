@@ -52,6 +52,26 @@ TEST(Evaluator, PoolsHitsAcrossBuildings) {
   EXPECT_NEAR(r.wed.total_num, (0 + 0 + 3) / 3.0, 1e-12);
 }
 
+TEST(Evaluator, EqualScoresRankInBuildingOrderByDefault) {
+  // Two buildings with unit scores everywhere: a's prediction misses, b's hits. The release ranks the tie
+  // in building order, so the AP depends on which building comes first.
+  EXPECT_EQ(EvalOptions{}.ties, ApTieRule::kListOrder);
+  for (const bool b_first : {false, true}) {
+    Evaluator ev(EvalOptions{});
+    ScoredWireframe miss = ScoredWireframe::with_unit_scores(segment(10)), hit = ScoredWireframe::with_unit_scores(segment(0));
+    if (b_first) {
+      ev.add("b", hit, segment(0));
+      ev.add("a", miss, segment(0));
+    } else {
+      ev.add("a", miss, segment(0));
+      ev.add("b", hit, segment(0));
+    }
+    const EvalReport r = ev.report();
+    // Vertices: 2 misses and 2 hits of 4 GT, all scored 1. Hits first: precision 1 up to recall 1/2.
+    EXPECT_NEAR(r.vertex[0].ap, b_first ? 0.5 : 0.25, 1e-12) << b_first;
+  }
+}
+
 TEST(Evaluator, StrictWedOnlyWhenAsked) {
   EvalOptions o;
   o.strict_wed = true;

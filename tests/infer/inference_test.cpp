@@ -56,7 +56,7 @@ class Inference : public ::testing::Test {
 
 PostProcessOptions keep_every_junction() {
   PostProcessOptions o;
-  o.junction_min_confidence = 0.0;  // random weights are never confident: let every candidate through
+  o.selection.min_confidence = 0.0;  // random weights are never confident: let every candidate through
   return o;
 }
 
@@ -108,7 +108,7 @@ TEST_F(Inference, DegenerateCloudsGiveEmptyWireframesWithNotes) {
   }
   // Nothing above the default 0.85 confidence: fewer than 2 junctions, a note, no edge.
   PostProcessOptions strict;
-  strict.junction_min_confidence = 0.999999;
+  strict.selection.min_confidence = 0.999999;
   r = predictor.predict(cloud_, strict);
   EXPECT_TRUE(r.wireframe.wireframe.edges.empty());
   EXPECT_FALSE(r.notes.empty());

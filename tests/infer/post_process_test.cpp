@@ -44,49 +44,6 @@ PostProcessOptions no_merge_no_nms(PostProcessOptions o) {
   return o;
 }
 
-TEST(PointNms, GreedyAndSuppressorDifferOnChains) {
-  const std::vector<Vec3> p{{0, 0, 0}, {0.2, 0, 0}, {0.4, 0, 0}};
-  const std::vector<double> c{.9, .8, .7};
-  EXPECT_EQ(point_nms(p, c, 0.25, PointNmsRule::kGreedy), (std::vector<int>{0, 2}));
-  EXPECT_EQ(point_nms(p, c, 0.25, PointNmsRule::kSuppressor), (std::vector<int>{0}));
-}
-
-TEST(PointNms, OrderTiesAndStrictRadius) {
-  // Output in descending confidence; equal confidences: lower index wins; distance == radius is not close.
-  const std::vector<Vec3> p{{5, 0, 0}, {0, 0, 0}, {0.1, 0, 0}, {5.25, 0, 0}};
-  const std::vector<double> c{.5, .7, .7, .6};
-  for (auto rule : {PointNmsRule::kGreedy, PointNmsRule::kSuppressor})
-    EXPECT_EQ(point_nms(p, c, 0.25, rule), (std::vector<int>{1, 3, 0}));
-  EXPECT_TRUE(point_nms({}, {}, 0.25, PointNmsRule::kSuppressor).empty());
-  EXPECT_THROW(point_nms(p, {1.0}, 0.25, PointNmsRule::kGreedy), std::invalid_argument);
-}
-
-TEST(PointNms, SuppressorTieBehindADroppedPoint) {
-  // H drops J (same confidence as K); J never gets to drop K, so K survives under both rules.
-  const std::vector<Vec3> p{{0, 0, 0}, {0.2, 0, 0}, {0.4, 0, 0}};
-  const std::vector<double> c{.9, .8, .8};
-  EXPECT_EQ(point_nms(p, c, 0.25, PointNmsRule::kSuppressor), (std::vector<int>{0, 2}));
-}
-
-TEST(SelectJunctions, NmsThenStrictConfidenceThreshold) {
-  const std::vector<Vec3> p{{0, 0, 0}, {0.1, 0, 0}, {3, 0, 0}, {6, 0, 0}};
-  const std::vector<double> c{.86, .99, .85, .9};
-  const JunctionSelection s = select_junctions(p, c, PostProcessOptions{});
-  EXPECT_EQ(s.kept, (std::vector<int>{1, 3}));  // 0 suppressed by 1; 2 is not > 0.85
-  EXPECT_EQ(s.confidences, (std::vector<double>{.99, .9}));
-  EXPECT_TRUE(s.notes.empty());
-}
-
-TEST(SelectJunctions, EmptyAndSingleJunctionGiveNotesNotCrashes) {
-  const JunctionSelection none = select_junctions({}, {}, PostProcessOptions{});
-  EXPECT_TRUE(none.kept.empty());
-  EXPECT_FALSE(none.notes.empty());
-  const JunctionSelection one = select_junctions({{0, 0, 0}, {1, 0, 0}}, {.95, .2}, PostProcessOptions{});
-  EXPECT_EQ(one.kept.size(), 1u);
-  EXPECT_FALSE(one.notes.empty());
-  EXPECT_TRUE(all_pairs(static_cast<int>(one.kept.size())).empty());
-}
-
 TEST(PostProcess, AllPairsInLexicographicOrder) {
   EXPECT_EQ(all_pairs(4), (std::vector<std::array<int, 2>>{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}));
   EXPECT_TRUE(all_pairs(1).empty());

@@ -7,7 +7,7 @@ JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z 
    "textures": "paper" (default: the paper-like look) | "sfm" (non-repeating noise for structure from motion),
    "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
    "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
-                  "labels": [1|2|3 ...], "edges": [[i,j]...],
+                  "labels": [1|2|3 ...], "edges": [[i,j]...] (into "gt_junctions": [[x,y,z]...], default the vertices),
                   "cameras": [{"K": [9 floats, row-major], "R": [9], "t": [3], "width": W, "height": H}...]}]}
 
 Per building, in out_dir: view_000.png ..., cameras.json (K, R, t read back from Blender's cameras in the
@@ -452,6 +452,8 @@ def render_building(b, job):
     scene.collection.objects.link(cam_obj)
     scene.camera = cam_obj
     with_gt = bool(job.get("gt_views", True))  # views.json is only wanted when the renders are kept
+    # GT edges index these, not the repaired mesh's vertices
+    gt_junctions = [Vector(v) for v in b["gt_junctions"]] if "gt_junctions" in b else verts
     bvh = BVHTree.FromPolygons([tuple(v) for v in verts], [list(f) for f in b["faces"]]) if with_gt else None
     t_scene = time.time()
     t_render = t_gt = 0.0
@@ -472,10 +474,10 @@ def render_building(b, job):
         if not with_gt:
             continue
         t1 = time.time()
-        junc2d = [project(K2, R2, t2, v)[0] for v in verts]
+        junc2d = [project(K2, R2, t2, v)[0] for v in gt_junctions]
         edges = []
         for a, bb in b.get("edges", []):
-            frac = edge_visibility(bvh, K2, R2, t2, width, height, verts[a], verts[bb])
+            frac = edge_visibility(bvh, K2, R2, t2, width, height, gt_junctions[a], gt_junctions[bb])
             edges.append([a, bb, 1 if frac >= 0.5 else 0, round(frac, 4)])
         views.append({"junc2D": junc2d, "edges": edges})
         t_gt += time.time() - t1

@@ -60,6 +60,7 @@ std::pair<int, int> split_pair(const std::string& flag, const std::string& v, ch
 
 lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
   lc2wf::DatasetRunOptions o;
+  o.command_line.assign(argv, argv + argc);
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&] { return lc2wf::flag_value(argc, argv, i); };

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "core/util/progress.h"
+#include "core/util/version.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "dataset/errors.h"
@@ -396,6 +397,9 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["shard"] = std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count);
   summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
   summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
+  summary["command"] = o.command_line;
+  summary["lc2wf_version"] = lc2wf_version();
+  summary["commit"] = lc2wf_git_commit();
   summary["processed_this_run"] = todo.size();
   summary["skipped_already_done"] = names.size() - todo.size();
   summary["wall_seconds_this_run"] = since(start);

@@ -35,6 +35,7 @@ struct DatasetRunOptions {
   uint64_t seed = 0;             // cameras, textures and noise; combined with each building's name
   bool keep_views = false;       // keep renders, cameras and per-view GT visibility under out/views/
   bool progress = true;
+  std::vector<std::string> command_line;  // recorded in the summary with the lc2wf version and commit
   void Check() const;
 };
 

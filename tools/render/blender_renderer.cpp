@@ -98,7 +98,9 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
     j["out_dir"] = fs::absolute(b.out_dir).string();
     j["seed"] = b.seed;
     Json verts = Json::array(), faces = Json::array(), labels = Json::array(), edges = Json::array(), cams = Json::array();
+    Json gt_junctions = Json::array();
     for (const Vec3& v : b.building->mesh.vertices) verts.push_back({v.x(), v.y(), v.z()});
+    for (const Vec3& v : b.building->wireframe.junctions) gt_junctions.push_back({v.x(), v.y(), v.z()});
     for (const auto& f : b.building->mesh.faces) faces.push_back(f);
     for (size_t f = 0; f < b.building->mesh.faces.size(); ++f)
       labels.push_back(b.building->mesh.labels.empty() ? 3 : static_cast<int>(b.building->mesh.labels[f]));
@@ -108,6 +110,7 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
     j["faces"] = faces;
     j["labels"] = labels;
     j["edges"] = edges;
+    j["gt_junctions"] = gt_junctions;
     j["cameras"] = cams;
     job["buildings"].push_back(j);
   }

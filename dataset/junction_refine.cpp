@@ -1,4 +1,4 @@
-#include "infer/junction_refine.h"
+#include "dataset/junction_refine.h"
 
 #include <stdexcept>
 #include <string>

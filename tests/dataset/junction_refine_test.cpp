@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <stdexcept>
 
-#include "infer/junction_refine.h"
-#include "infer/post_process_options.h"
+#include "dataset/junction_refine.h"
 
 namespace lc2wf {
 namespace {
@@ -29,11 +29,9 @@ TEST(JunctionRefine, SnapsToTheCornerOfItsSegments) {
   EXPECT_LT((refined[0] - C).norm(), 0.02) << refined[0].transpose();
 }
 
-TEST(JunctionRefine, OffLeavesPositionsUntouchedAndReleaseQuirksTurnItOff) {
+TEST(JunctionRefine, OffLeavesPositionsUntouched) {
   const Vec3 C(2, 3, 5), P = C + Vec3(0.2, -0.15, 0.1);
   EXPECT_EQ(refine_junctions({P}, corner_segments(C), radius(0.0))[0], P);
-  EXPECT_EQ(PostProcessOptions::release_quirks().junction_refine.radius, 0.0);
-  EXPECT_GT(PostProcessOptions{}.junction_refine.radius, 0.0);
 }
 
 TEST(JunctionRefine, IgnoresFarAndShortSegments) {

@@ -1,0 +1,50 @@
+#include "dataset/junction_selection.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace lc2wf {
+
+void JunctionSelectionOptions::Check() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("JunctionSelectionOptions." + what); };
+  if (!(nms_radius_m > 0) || !std::isfinite(nms_radius_m)) fail("nms_radius_m must be a positive distance in metres");
+  if (!(min_confidence >= 0 && min_confidence <= 1)) fail("min_confidence must be in [0, 1]");
+  if (top_k < 2) fail("top_k must be >= 2");
+  refine.Check();
+}
+
+JunctionSelectionOptions JunctionSelectionOptions::release() {
+  JunctionSelectionOptions o;
+  o.nms = PointNmsRule::kSuppressor;
+  o.refine.radius = 0.0;
+  return o;
+}
+
+JunctionSelection select_junctions(const PredictedJunctions& c, const std::vector<Segment3>& segments,
+                                   const JunctionSelectionOptions& o, SelectionCut cut) {
+  o.Check();
+  if (c.positions.size() != c.confidence.size())
+    throw std::invalid_argument("select_junctions: " + std::to_string(c.positions.size()) + " candidates but " +
+                                std::to_string(c.confidence.size()) + " confidences");
+  for (size_t k = 0; k < c.positions.size(); ++k)
+    if (!c.positions[k].allFinite() || !std::isfinite(c.confidence[k]))
+      throw std::invalid_argument("select_junctions: candidate " + std::to_string(k) + " has a non-finite value");
+  JunctionSelection s;
+  for (int k : point_nms(c.positions, c.confidence, o.nms_radius_m, o.nms)) {
+    if (cut == SelectionCut::kConfidence ? c.confidence[k] <= o.min_confidence : static_cast<int>(s.kept.size()) >= o.top_k)
+      continue;
+    s.kept.push_back(k);
+    s.positions.push_back(c.positions[k]);
+    s.confidences.push_back(c.confidence[k]);
+  }
+  s.positions = refine_junctions(s.positions, segments, o.refine);
+  if (c.positions.empty()) s.notes.push_back("no junction candidates");
+  if (s.kept.size() < 2) {
+    const std::string cut_text =
+        cut == SelectionCut::kConfidence ? "with confidence > " + std::to_string(o.min_confidence) + " " : "";
+    s.notes.push_back(std::to_string(s.kept.size()) + " junction(s) " + cut_text + "after NMS: no pair to connect");
+  }
+  return s;
+}
+
+}  // namespace lc2wf

@@ -1,0 +1,49 @@
+// The one rule that turns the junction model's candidates into the junctions that get paired, shared by
+// the edge stage's training pairs, its validation and inference (reference spec §3.3, §3.4): point NMS on
+// the regressed positions, then a cut (c > min_confidence, or at training time the top_k without a cut),
+// then refinement of the survivors against the cloud's segments.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "dataset/geometry.h"
+#include "dataset/junction_refine.h"
+#include "dataset/point_nms.h"
+
+namespace lc2wf {
+
+// Junction hypotheses of the junction model, one per sample point (metres).
+struct PredictedJunctions {
+  std::vector<Vec3> positions;
+  std::vector<double> confidence;
+};
+
+struct JunctionSelectionOptions {
+  PointNmsRule nms = PointNmsRule::kGreedy;  // release: kSuppressor
+  double nms_radius_m = 0.25;                // release: 5 raw
+  double min_confidence = 0.85;              // inference and validation keep c > this
+  int top_k = 100;                           // training keeps the top_k after NMS, whatever their confidence
+  // Not in the release (its junctions stay where they were regressed): see junction_refine.h.
+  JunctionRefineOptions refine{.radius = 0.5};
+
+  void Check() const;  // throws std::invalid_argument naming the bad field
+  static JunctionSelectionOptions release();
+};
+
+// Which cut follows the NMS: inference and validation cut by confidence, training pair sampling keeps the
+// top_k (release §3.3 uses no threshold there).
+enum class SelectionCut { kConfidence, kTopK };
+
+struct JunctionSelection {
+  std::vector<int> kept;            // indices into the candidates, descending confidence
+  std::vector<Vec3> positions;      // the kept candidates (refined), same order
+  std::vector<double> confidences;  // same order
+  std::vector<std::string> notes;   // set when fewer than 2 junctions remain (nothing to pair)
+};
+
+// Throws std::invalid_argument on mismatched sizes or non-finite candidates.
+JunctionSelection select_junctions(const PredictedJunctions& candidates, const std::vector<Segment3>& segments,
+                                   const JunctionSelectionOptions& options, SelectionCut cut = SelectionCut::kConfidence);
+
+}  // namespace lc2wf
