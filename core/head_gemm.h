@@ -12,21 +12,37 @@
 namespace lc2wf::head_gemm {
 
 // A(i, k) is A[i * lda + k], or A[k * lda + i] when kTransA (C = A^T B without a transpose copy).
+// The accumulators are named variables: GCC kept an array of them on the stack, one store per FMA.
 template <int MR, int NV, bool kTransA>
 inline void block(int64_t K, const float* A, int64_t lda, const float* B, int64_t ldb, float* C, int64_t ldc) {
-  __m256 c[MR][NV];
-  for (int i = 0; i < MR; ++i)
-    for (int v = 0; v < NV; ++v) c[i][v] = _mm256_setzero_ps();
+  static_assert(MR >= 1 && MR <= 6 && (NV == 1 || NV == 2));
+  __m256 c00 = _mm256_setzero_ps(), c01 = c00, c10 = c00, c11 = c00, c20 = c00, c21 = c00, c30 = c00, c31 = c00,
+         c40 = c00, c41 = c00, c50 = c00, c51 = c00;
   for (int64_t k = 0; k < K; ++k) {
-    __m256 b[NV];
-    for (int v = 0; v < NV; ++v) b[v] = _mm256_loadu_ps(B + k * ldb + 8 * v);
-    for (int i = 0; i < MR; ++i) {
+    const __m256 b0 = _mm256_loadu_ps(B + k * ldb);
+    const __m256 b1 = NV == 2 ? _mm256_loadu_ps(B + k * ldb + 8) : b0;
+    auto row = [&](int i, __m256& x0, __m256& x1) {
       const __m256 a = _mm256_broadcast_ss(kTransA ? A + k * lda + i : A + i * lda + k);
-      for (int v = 0; v < NV; ++v) c[i][v] = _mm256_fmadd_ps(a, b[v], c[i][v]);
-    }
+      x0 = _mm256_fmadd_ps(a, b0, x0);
+      if constexpr (NV == 2) x1 = _mm256_fmadd_ps(a, b1, x1);
+    };
+    row(0, c00, c01);
+    if constexpr (MR > 1) row(1, c10, c11);
+    if constexpr (MR > 2) row(2, c20, c21);
+    if constexpr (MR > 3) row(3, c30, c31);
+    if constexpr (MR > 4) row(4, c40, c41);
+    if constexpr (MR > 5) row(5, c50, c51);
   }
-  for (int i = 0; i < MR; ++i)
-    for (int v = 0; v < NV; ++v) _mm256_storeu_ps(C + i * ldc + 8 * v, c[i][v]);
+  auto store = [&](int i, __m256 x0, __m256 x1) {
+    _mm256_storeu_ps(C + i * ldc, x0);
+    if constexpr (NV == 2) _mm256_storeu_ps(C + i * ldc + 8, x1);
+  };
+  store(0, c00, c01);
+  if constexpr (MR > 1) store(1, c10, c11);
+  if constexpr (MR > 2) store(2, c20, c21);
+  if constexpr (MR > 3) store(3, c30, c31);
+  if constexpr (MR > 4) store(4, c40, c41);
+  if constexpr (MR > 5) store(5, c50, c51);
 }
 
 template <int NV, bool kTransA>
