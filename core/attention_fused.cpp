@@ -71,8 +71,8 @@ Span item_span(const float* base, Layout l, int64_t b, int64_t H, int64_t rows, 
   return {first, first + (H - 1) * l.head + (rows - 1) * l.row + D};
 }
 
-// Requests part `part` of `parts` of the next batch item's operand memory into L2, so the gather of
-// that item reads cached lines; spread over the heads of the current item so the requests never
+// Requests part `part` of `parts` of the next batch item's operand memory, so the gather of that item
+// reads cached lines; spread over the heads of the current item so the requests never
 // pile up. Spans of the packed layout overlap (q, k, v share rows) and are merged first.
 class NextItemPrefetch {
  public:
@@ -107,12 +107,11 @@ inline __m256 lanes8(const int32_t* valid, int64_t v) {
   return _mm256_castsi256_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(valid + 8 * v)));
 }
 
-// The probabilities of one row from raw scores and the row statistics; the backward pass calls it with
-// the saved statistics, so both passes see the same bits.
-inline __m256 prob8(__m256 s, __m256 scale, __m256 m, __m256 inv, const int32_t* valid, int64_t v) {
+// exp(s * scale - m) of 8 keys, masked keys zero: the forward pass and the backward recomputation
+// both go through here, so P = e * inv has the same bits in both.
+inline __m256 shifted_exp8(__m256 s, __m256 scale, __m256 m, const int32_t* valid, int64_t v) {
   __m256 e = exp8_nonpositive(_mm256_fmsub_ps(s, scale, m));
-  if (valid) e = _mm256_and_ps(e, lanes8(valid, v));
-  return _mm256_mul_ps(e, inv);
+  return valid ? _mm256_and_ps(e, lanes8(valid, v)) : e;
 }
 
 // Softmax and dropout of one score row in place: s holds raw scores on entry and the dropped-out
@@ -138,13 +137,17 @@ void forward_row(float* s, float* p, int64_t nv, float scale, const int32_t* val
   }
   // Rounding is monotonic, so max(s) * scale is the maximum of the scaled scores.
   const float m = top * scale;
-  const __m256 vscale = _mm256_set1_ps(scale), vm = _mm256_set1_ps(m), one = _mm256_set1_ps(1.0f);
+  const __m256 vscale = _mm256_set1_ps(scale), vm = _mm256_set1_ps(m);
   __m256 sum = _mm256_setzero_ps();
-  for (int64_t v = 0; v < nv; ++v) sum = _mm256_add_ps(sum, prob8(_mm256_loadu_ps(s + 8 * v), vscale, vm, one, valid, v));
+  for (int64_t v = 0; v < nv; ++v) {
+    const __m256 e = shifted_exp8(_mm256_loadu_ps(s + 8 * v), vscale, vm, valid, v);
+    _mm256_storeu_ps(s + 8 * v, e);
+    sum = _mm256_add_ps(sum, e);
+  }
   const float inv = 1.0f / hsum8(sum);
   const __m256 vinv = _mm256_set1_ps(inv), keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
   for (int64_t v = 0; v < nv; ++v) {
-    __m256 pv = prob8(_mm256_loadu_ps(s + 8 * v), vscale, vm, vinv, valid, v);
+    __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(s + 8 * v), vinv);
     if (p) _mm256_storeu_ps(p + 8 * v, pv);
     if (drop.active) {
       const __m256 keep = _mm256_castsi256_ps(drop.mask.keep8(first + 8 * static_cast<uint64_t>(v)));
@@ -165,7 +168,7 @@ void backward_row(float* s, float* dp, float* pd, int64_t nv, float scale, const
   const __m256 keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
   __m256 dot = _mm256_setzero_ps();
   for (int64_t v = 0; v < nv; ++v) {
-    const __m256 pv = prob8(_mm256_loadu_ps(s + 8 * v), vscale, vm, vinv, valid, v);
+    const __m256 pv = _mm256_mul_ps(shifted_exp8(_mm256_loadu_ps(s + 8 * v), vscale, vm, valid, v), vinv);
     const __m256 pt = drop.active ? _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), bits_to_mask8(bits[v])) : pv;
     _mm256_storeu_ps(s + 8 * v, pv);
     _mm256_storeu_ps(pd + 8 * v, pt);
