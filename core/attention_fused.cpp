@@ -26,77 +26,15 @@ void key_lanes(const uint8_t* mrow, int64_t Lk, std::vector<int32_t>& lanes) {
   for (int64_t j = 0; j < Lk; ++j) lanes[static_cast<size_t>(j)] = mrow[j] ? 0 : -1;
 }
 
-// Copies one batch item's heads between a strided layout and contiguous head-major blocks
-// (H x rows x D), rows outer when that walks the source in memory order (the packed (B, L, 3E) layout):
-// a sequential stream the hardware prefetchers follow, where reading head by head jumps 3 KiB per row
-// and spends the kernel's time waiting on memory. In the packed layout the rows of one head also fall
-// into a few L1 sets, so products rereading them in place would miss.
-template <bool kToBlock>
-void move_heads(int64_t H, int64_t rows, int64_t D, float* strided, Layout l, int64_t b, float* block) {
-  auto move = [&](int64_t h, int64_t r) {
-    float* x = strided + l.at(b, h) + r * l.row;
-    float* y = block + (h * rows + r) * D;
-    for (int64_t c = 0; c < D; c += 8) {
-      if constexpr (kToBlock)
-        _mm256_storeu_ps(y + c, _mm256_loadu_ps(x + c));
-      else
-        _mm256_storeu_ps(x + c, _mm256_loadu_ps(y + c));
-    }
-  };
-  if (l.row >= l.head) {
-    for (int64_t r = 0; r < rows; ++r)
-      for (int64_t h = 0; h < H; ++h) move(h, r);
-  } else {
-    for (int64_t h = 0; h < H; ++h)
-      for (int64_t r = 0; r < rows; ++r) move(h, r);
-  }
+// One head's rows copied out of a strided layout into a contiguous block that stays in L1. In the packed
+// (B, L, 3E) layout the rows of q, k and v sit 3 KiB apart and fall into a few L1 sets, so products
+// rereading them in place would miss.
+void copy_head(int64_t rows, int64_t cols, const float* src, int64_t lds, float* dst) {
+  for (int64_t r = 0; r < rows; ++r)
+    for (int64_t c = 0; c < cols; c += 8) _mm256_storeu_ps(dst + r * cols + c, _mm256_loadu_ps(src + r * lds + c));
 }
 
-void gather_heads(int64_t H, int64_t rows, int64_t D, const float* src, Layout l, int64_t b, float* block) {
-  move_heads<true>(H, rows, D, const_cast<float*>(src), l, b, block);
-}
-
-void scatter_heads(int64_t H, int64_t rows, int64_t D, const float* block, float* dst, Layout l, int64_t b) {
-  move_heads<false>(H, rows, D, dst, l, b, const_cast<float*>(block));
-}
-
-// The memory of one batch item's rows of an operand: [first, last) in floats from the operand's base.
-struct Span {
-  const float* first;
-  const float* last;
-};
-
-Span item_span(const float* base, Layout l, int64_t b, int64_t H, int64_t rows, int64_t D) {
-  const float* first = base + l.at(b, 0);
-  return {first, first + (H - 1) * l.head + (rows - 1) * l.row + D};
-}
-
-// Requests part `part` of `parts` of the next batch item's operand memory, so the gather of that item
-// reads cached lines; spread over the heads of the current item so the requests never
-// pile up. Spans of the packed layout overlap (q, k, v share rows) and are merged first.
-class NextItemPrefetch {
- public:
-  void add(Span s) {
-    for (Span& t : spans_)
-      if (s.first <= t.last && t.first <= s.last) {
-        t.first = std::min(t.first, s.first), t.last = std::max(t.last, s.last);
-        return;
-      }
-    spans_.push_back(s);
-  }
-  void part(int64_t part, int64_t parts) const {
-    for (const Span& s : spans_) {
-      const int64_t lines = (s.last - s.first + 15) / 16;
-      for (int64_t l = lines * part / parts; l < lines * (part + 1) / parts; ++l) __builtin_prefetch(s.first + 16 * l, 0, 3);
-    }
-  }
-
- private:
-  std::vector<Span> spans_;
-};
-
-// Per-thread scratch reused across calls: one batch item's blocks are 0.1-2 MB, and a fresh allocation
-// per item would be mapped and page-faulted in every time. Holds the largest shape seen.
+// Per-thread scratch reused across calls, so no call allocates (at L = 512 a head's blocks are 3 MB).
 float* thread_scratch(size_t floats) {
   thread_local std::vector<float> buffer;
   if (buffer.size() < floats) buffer.resize(floats);
@@ -191,42 +129,30 @@ void fused_forward(const Shape4& s, const float* q, Layout lq, const float* k, L
                    float* o, Layout lo, const uint8_t* mask, float scale, const DropoutPlan& drop, float* probs,
                    float* stats, uint8_t* keep_bits) {
   const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8;
-  const int64_t qn = Lq * D, kn = Lk * D;
   parallel_for_work(s.B, 1, H * 4 * Lq * Lk * (D + 4), [&](int64_t b0, int64_t b1) {
-    float* qb = thread_scratch(static_cast<size_t>(H * (2 * qn + 2 * kn) + D * Lk + Lq * Lk));
-    float *kb = qb + H * qn, *vb = kb + H * kn, *ob = vb + H * kn, *kt = ob + H * qn, *S = kt + D * Lk;
+    float* kt = thread_scratch(static_cast<size_t>(D * Lk + Lq * D + Lk * D + Lq * Lk));
+    float *qc = kt + D * Lk, *vc = qc + Lq * D, *S = vc + Lk * D;
     std::vector<int32_t> valid;
     for (int64_t b = b0; b < b1; ++b) {
       if (mask) key_lanes(mask + b * Lk, Lk, valid);
-      gather_heads(H, Lq, D, q, lq, b, qb);
-      gather_heads(H, Lk, D, k, lk, b, kb);
-      gather_heads(H, Lk, D, v, lv, b, vb);
-      NextItemPrefetch next;
-      if (b + 1 < s.B) {
-        next.add(item_span(q, lq, b + 1, H, Lq, D));
-        next.add(item_span(k, lk, b + 1, H, Lk, D));
-        next.add(item_span(v, lv, b + 1, H, Lk, D));
-      }
       for (int64_t h = 0; h < H; ++h) {
         const int64_t p = b * H + h;
-        next.part(h, H);
-        transpose_into(Lk, D, kb + h * kn, D, kt);
-        head_gemm::gemm_nn(Lq, Lk, D, qb + h * qn, D, kt, Lk, S, Lk);
+        transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt);
+        copy_head(Lq, D, q + lq.at(b, h), lq.row, qc);
+        copy_head(Lk, D, v + lv.at(b, h), lv.row, vc);
+        head_gemm::gemm_nn(Lq, Lk, D, qc, D, kt, Lk, S, Lk);
         for (int64_t i = 0; i < Lq; ++i) {
           const int64_t row = p * Lq + i;
           forward_row(S + i * Lk, probs ? probs + row * Lk : nullptr, nv, scale, mask ? valid.data() : nullptr, drop,
                       static_cast<uint64_t>(row * Lk), stats ? stats + 2 * row : nullptr,
                       keep_bits ? keep_bits + row * nv : nullptr);
         }
-        head_gemm::gemm_nn(Lq, D, Lk, S, Lk, vb + h * kn, D, ob + h * qn, D);
+        head_gemm::gemm_nn(Lq, D, Lk, S, Lk, vc, D, o + lo.at(b, h), lo.row);
       }
-      scatter_heads(H, Lq, D, ob, o, lo, b);
     }
   });
 }
 
-// Each batch item's q, k, v and g are gathered once, every head's dq, dk, dv go to blocks that are
-// scattered once; the dq, dk, dv layouts must not overlap the inputs.
 void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, Layout lk, const float* v, Layout lv,
                     const float* go, Layout lo, const uint8_t* mask, float scale, const DropoutPlan& drop,
                     const float* stats, const uint8_t* keep_bits, float* dq, Layout ldq, float* dk, Layout ldk,
@@ -234,30 +160,18 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
   const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8;
   const int64_t qn = Lq * D, kn = Lk * D, sn = Lq * Lk;
   parallel_for_work(s.B, 1, H * 12 * Lq * Lk * (D + 4), [&](int64_t b0, int64_t b1) {
-    float* qb = thread_scratch(static_cast<size_t>(H * (4 * qn + 4 * kn) + 2 * D * Lk + 3 * sn));
-    float *kb = qb + H * qn, *vb = kb + H * kn, *gb = vb + H * kn;
-    float *dqb = gb + H * qn, *dkb = dqb + H * qn, *dvb = dkb + H * kn;
-    float *kt = dvb + H * kn, *vt = kt + D * Lk, *S = vt + D * Lk, *dP = S + sn, *Pd = dP + sn;
+    float* kt = thread_scratch(static_cast<size_t>(2 * D * Lk + 2 * qn + kn + 3 * sn));
+    float *vt = kt + D * Lk, *Q = vt + D * Lk, *K = Q + qn, *G = K + kn, *S = G + qn, *dP = S + sn, *Pd = dP + sn;
     std::vector<int32_t> valid;
     for (int64_t b = b0; b < b1; ++b) {
       if (mask) key_lanes(mask + b * Lk, Lk, valid);
-      gather_heads(H, Lq, D, q, lq, b, qb);
-      gather_heads(H, Lk, D, k, lk, b, kb);
-      gather_heads(H, Lk, D, v, lv, b, vb);
-      gather_heads(H, Lq, D, go, lo, b, gb);
-      NextItemPrefetch next;
-      if (b + 1 < s.B) {
-        next.add(item_span(q, lq, b + 1, H, Lq, D));
-        next.add(item_span(k, lk, b + 1, H, Lk, D));
-        next.add(item_span(v, lv, b + 1, H, Lk, D));
-        next.add(item_span(go, lo, b + 1, H, Lq, D));
-      }
       for (int64_t h = 0; h < H; ++h) {
         const int64_t p = b * H + h;
-        next.part(h, H);
-        const float *Q = qb + h * qn, *K = kb + h * kn, *G = gb + h * qn;
+        copy_head(Lq, D, q + lq.at(b, h), lq.row, Q);
+        copy_head(Lk, D, k + lk.at(b, h), lk.row, K);
+        copy_head(Lq, D, go + lo.at(b, h), lo.row, G);
         transpose_into(Lk, D, K, D, kt);
-        transpose_into(Lk, D, vb + h * kn, D, vt);
+        transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt);
         head_gemm::gemm_nn(Lq, Lk, D, Q, D, kt, Lk, S, Lk);   // raw scores again
         head_gemm::gemm_nn(Lq, Lk, D, G, D, vt, Lk, dP, Lk);  // dP~ = g v^T
         for (int64_t i = 0; i < Lq; ++i) {
@@ -265,13 +179,10 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
           backward_row(S + i * Lk, dP + i * Lk, Pd + i * Lk, nv, scale, mask ? valid.data() : nullptr, drop,
                        stats + 2 * row, keep_bits ? keep_bits + row * nv : nullptr);
         }
-        head_gemm::gemm_nn(Lq, D, Lk, dP, Lk, K, D, dqb + h * qn, D);  // dS k
-        head_gemm::gemm_tn(Lk, D, Lq, dP, Lk, Q, D, dkb + h * kn, D);  // dS^T q
-        head_gemm::gemm_tn(Lk, D, Lq, Pd, Lk, G, D, dvb + h * kn, D);  // P~^T g
+        head_gemm::gemm_nn(Lq, D, Lk, dP, Lk, K, D, dq + ldq.at(b, h), ldq.row);  // dS k
+        head_gemm::gemm_tn(Lk, D, Lq, dP, Lk, Q, D, dk + ldk.at(b, h), ldk.row);  // dS^T q
+        head_gemm::gemm_tn(Lk, D, Lq, Pd, Lk, G, D, dv + ldv.at(b, h), ldv.row);  // P~^T g
       }
-      scatter_heads(H, Lq, D, dqb, dq, ldq, b);
-      scatter_heads(H, Lk, D, dkb, dk, ldk, b);
-      scatter_heads(H, Lk, D, dvb, dv, ldv, b);
     }
   });
 }
