@@ -5,7 +5,6 @@
 // the four gradient products. Probabilities are never stored.
 #include "core/attention_fused.h"
 
-#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -34,7 +33,7 @@ void copy_head(int64_t rows, int64_t cols, const float* src, int64_t lds, float*
     for (int64_t c = 0; c < cols; c += 8) _mm256_storeu_ps(dst + r * cols + c, _mm256_loadu_ps(src + r * lds + c));
 }
 
-// Per-thread scratch reused across calls, so no call allocates (at L = 512 a head's blocks are 3 MB).
+// Per-thread scratch reused across calls, so no call allocates (at L = 512 one head's blocks take 3.5 MB).
 float* thread_scratch(size_t floats) {
   thread_local std::vector<float> buffer;
   if (buffer.size() < floats) buffer.resize(floats);
