@@ -35,7 +35,7 @@ py=/usr/bin/python3
 
 export OMP_NUM_THREADS=$threads OPENBLAS_NUM_THREADS=$threads OPENBLAS_CORETYPE=SkylakeX
 
-declare -A filter=([junction_train]=BM_JunctionTrainStep [edge_train]=BM_EdgeTrainStep
+declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1 [edge_train]=BM_EdgeTrainStep/fused:1
                    [junction_infer]=BM_JunctionInference [edge_infer]=BM_EdgeInference)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

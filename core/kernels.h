@@ -15,7 +15,7 @@
 #include "core/tensor.h"
 #include "core/tensor_impl.h"
 
-#ifdef __AVX512F__
+#if defined(__AVX512F__) || defined(__AVX2__)
 #include <immintrin.h>
 #endif
 
@@ -113,6 +113,23 @@ class DropoutMask {
     h = _mm512_mullo_epi32(h, _mm512_set1_epi32(static_cast<int>(0xC2B2AE35u)));
     h = _mm512_xor_si512(h, _mm512_srli_epi32(h, 16));
     return _mm512_cmpge_epu32_mask(_mm512_srli_epi32(h, 8), _mm512_set1_epi32(static_cast<int>(threshold_)));
+  }
+#endif
+
+#if defined(__AVX2__)
+  // keep(first + l) for lanes l = 0..7 as all-ones lanes; first must be a multiple of 8.
+  __m256i keep8(uint64_t first) const {
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256i h = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(static_cast<uint32_t>(first))), lane);
+    h = _mm256_add_epi32(_mm256_xor_si256(h, _mm256_set1_epi32(static_cast<int>(k0_))),
+                         _mm256_set1_epi32(static_cast<int>(high_key(first))));
+    h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
+    h = _mm256_mullo_epi32(h, _mm256_set1_epi32(static_cast<int>(0x85EBCA6Bu)));
+    h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 13));
+    h = _mm256_mullo_epi32(h, _mm256_set1_epi32(static_cast<int>(0xC2B2AE35u)));
+    h = _mm256_xor_si256(h, _mm256_srli_epi32(h, 16));
+    // Both sides are below 2^24 + 1, so the signed compare is the unsigned one.
+    return _mm256_cmpgt_epi32(_mm256_srli_epi32(h, 8), _mm256_set1_epi32(static_cast<int>(threshold_) - 1));
   }
 #endif
 

@@ -134,5 +134,10 @@ Tensor scaled_dot_product_attention(const Tensor& q, const Tensor& k, const Tens
 // Returns (B, L, E) with the heads concatenated, ready for the out-projection.
 Tensor packed_attention(const Tensor& qkv, int64_t num_heads, const Tensor& key_padding_mask,
                         double dropout_p, bool training, Rng& rng, Tensor* attn_weights = nullptr);
+// Float attention runs the fused AVX2 kernel where the build and shape allow (key count and head
+// width multiples of 8), else the reference kernel that double uses. Tests and benchmarks switch the
+// fused kernel off to compare both in one process; the setting is process-wide.
+void set_fused_attention(bool enabled);
+bool fused_attention_enabled();
 
 }  // namespace lc2wf

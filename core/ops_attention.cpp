@@ -1,11 +1,14 @@
-// Fused scaled-dot-product attention. One (batch item, head) pair is one cache-resident task: scores,
-// key mask, softmax, dropout and P.V in a single pass. Nothing but the inputs is saved: the backward
-// pass recomputes the probabilities and the counter-based dropout mask pair by pair.
+// The attention ops and their reference kernel. One (batch item, head) pair is one cache-resident task:
+// scores, key mask, softmax, dropout and P.V in a single pass. The reference kernel (double, and float
+// shapes the fused kernel of attention_fused.cpp does not take) saves nothing but the inputs: its
+// backward pass recomputes the probabilities and the counter-based dropout mask pair by pair.
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <type_traits>
 
+#include "core/attention_fused.h"
+#include "core/attention_layout.h"
 #include "core/autograd.h"
 #include "core/kernels.h"
 #include "core/ops.h"
@@ -16,43 +19,11 @@ namespace lc2wf {
 
 namespace {
 
-// Where the rows of one head live: element (b, h, i, d) is at b*batch + h*head + i*row + d.
-struct Layout {
-  int64_t batch, head, row;
-  int64_t at(int64_t b, int64_t h) const { return b * batch + h * head; }
-};
-
-struct AttnShape {
-  int64_t B, H, Lq, Lk, D;
-};
-
-struct DropoutPlan {
-  DropoutMask mask;
-  double scale = 1.0;
-  bool active = false;
-};
-
-constexpr int64_t kPairsPerTask = 4;
-
-// Software prefetch of one head's rows: the rows sit a packed-row stride apart, which the hardware
-// prefetchers pick up too late, so the next pair's operands are requested while this pair computes.
-template <class T>
-inline void prefetch_rows(const T* base, int64_t rows, int64_t row_stride, int64_t cols) {
-  for (int64_t r = 0; r < rows; ++r)
-    for (int64_t c = 0; c < cols; c += 64 / static_cast<int64_t>(sizeof(T))) __builtin_prefetch(base + r * row_stride + c);
-}
-
-// Prefetches q, k, v (and, in backward, the output gradient) of pair p + 1, if there is one.
-template <class T>
-inline void prefetch_next_pair(const AttnShape& s, int64_t p, const T* q, Layout lq, const T* k, Layout lk, const T* v,
-                               Layout lv, const T* go = nullptr, Layout lo = {}) {
-  if (p + 1 >= s.B * s.H) return;
-  const int64_t nb = (p + 1) / s.H, nh = (p + 1) % s.H;
-  prefetch_rows(q + lq.at(nb, nh), s.Lq, lq.row, s.D);
-  prefetch_rows(k + lk.at(nb, nh), s.Lk, lk.row, s.D);
-  prefetch_rows(v + lv.at(nb, nh), s.Lk, lv.row, s.D);
-  if (go) prefetch_rows(go + lo.at(nb, nh), s.Lq, lo.row, s.D);
-}
+using attention::DropoutPlan;
+using attention::kPairsPerTask;
+using attention::Layout;
+using attention::prefetch_next_pair;
+using AttnShape = attention::Shape4;
 
 // Softmax of one score row in place (scaled, masked keys excluded; all masked -> zeros), then the
 // dropped-out copy into pd. Element j of row `row` has dropout index row * Lk + j.
@@ -270,7 +241,116 @@ void check_mask(const Tensor& mask, int64_t B, int64_t L, const char* op) {
     throw_arg(std::string(op) + ": key_padding_mask " + shape_str(mask.shape()) + " must be " + shape_str({B, L}));
 }
 
+bool g_fused_attention = true;
+
+// Where the three operands and the output of one call live: q, k, v as offsets into their source
+// tensors (one packed qkv tensor, or three separate ones) with their head layouts.
+struct Operands {
+  Tensor qs, ks, vs;
+  int64_t q_off, k_off, v_off;
+  Layout lq, lk, lv, lo;
+  bool packed;  // qs, ks and vs are one tensor, which gets one gradient
+};
+
+// What the backward pass of the fused kernel reads besides the inputs (empty for the reference kernel).
+struct FusedSaved {
+  Tensor stats, keep_bits;
+};
+
+bool takes_fused(DType dtype, const AttnShape& s) {
+  return g_fused_attention && dtype == DType::F32 && attention::fused_supported(s.Lk, s.D);
+}
+
+// Runs the forward kernel into out; probs (B, H, Lq, Lk) is filled when defined.
+FusedSaved run_forward(const AttnShape& s, const Operands& x, Tensor& out, const uint8_t* mask, double scale,
+                       const DropoutPlan& drop, Tensor& probs, bool keep_for_backward, const char* op) {
+  FusedSaved saved;
+  if (takes_fused(x.qs.dtype(), s)) {
+    if (keep_for_backward) {
+      saved.stats = Tensor::empty({attention::fused_stats_floats(s)}, DType::F32);
+      // Raw keep bits, 8 keys per byte, in a byte tensor so the storage cache accounts for them.
+      if (drop.active) saved.keep_bits = Tensor::empty({attention::fused_keep_bytes(s)}, DType::Bool);
+    }
+    attention::fused_forward(s, ptr<float>(x.qs) + x.q_off, x.lq, ptr<float>(x.ks) + x.k_off, x.lk,
+                             ptr<float>(x.vs) + x.v_off, x.lv, ptr<float>(out), x.lo, mask, static_cast<float>(scale),
+                             drop, probs.defined() ? ptr<float>(probs) : nullptr,
+                             saved.stats.defined() ? ptr<float>(saved.stats) : nullptr,
+                             saved.keep_bits.defined() ? saved.keep_bits.data<uint8_t>() : nullptr);
+    return saved;
+  }
+  dispatch_float(x.qs.dtype(), op, [&](auto tag) {
+    using T = decltype(tag);
+    attention_forward<T>(s, ptr<T>(x.qs) + x.q_off, x.lq, ptr<T>(x.ks) + x.k_off, x.lk, ptr<T>(x.vs) + x.v_off, x.lv,
+                         ptr<T>(out), x.lo, mask, static_cast<T>(scale), drop,
+                         probs.defined() ? ptr<T>(probs) : nullptr);
+    return 0;
+  });
+  return saved;
+}
+
+// Writes the gradients of q, k and v into dq, dk, dv (at the operands' offsets and layouts).
+void run_backward(const AttnShape& s, const Operands& x, const Tensor& g, const uint8_t* mask, double scale,
+                  const DropoutPlan& drop, const FusedSaved& saved, Tensor& dq, Tensor& dk, Tensor& dv,
+                  const char* op) {
+  if (saved.stats.defined()) {
+    attention::fused_backward(s, ptr<float>(x.qs) + x.q_off, x.lq, ptr<float>(x.ks) + x.k_off, x.lk,
+                              ptr<float>(x.vs) + x.v_off, x.lv, ptr<float>(g), x.lo, mask, static_cast<float>(scale),
+                              drop, ptr<float>(saved.stats),
+                              saved.keep_bits.defined() ? saved.keep_bits.data<uint8_t>() : nullptr,
+                              ptr<float>(dq) + x.q_off, x.lq, ptr<float>(dk) + x.k_off, x.lk,
+                              ptr<float>(dv) + x.v_off, x.lv);
+    return;
+  }
+  dispatch_float(g.dtype(), op, [&](auto tag) {
+    using T = decltype(tag);
+    attention_backward<T>(s, ptr<T>(x.qs) + x.q_off, x.lq, ptr<T>(x.ks) + x.k_off, x.lk, ptr<T>(x.vs) + x.v_off,
+                          x.lv, ptr<T>(g), x.lo, mask, static_cast<T>(scale), drop, ptr<T>(dq) + x.q_off, x.lq,
+                          ptr<T>(dk) + x.k_off, x.lk, ptr<T>(dv) + x.v_off, x.lv);
+    return 0;
+  });
+}
+
+// The forward pass, the head-averaged weights when asked for, and the backward closure of both ops.
+Tensor attention_op(const AttnShape& s, const Operands& x, const Shape& out_shape, const Tensor& key_padding_mask,
+                    const DropoutPlan& drop, bool grad, const std::vector<Tensor>& inputs, Tensor* attn_weights,
+                    const char* op) {
+  Tensor out = Tensor::empty(out_shape, x.qs.dtype());
+  Tensor probs = attn_weights ? Tensor::empty({s.B, s.H, s.Lq, s.Lk}, x.qs.dtype()) : Tensor();
+  const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
+  const double scale = s.D > 0 ? 1.0 / std::sqrt(static_cast<double>(s.D)) : 1.0;
+  FusedSaved saved = run_forward(s, x, out, mask, scale, drop, probs, grad, op);
+  if (attn_weights) {
+    *attn_weights = Tensor::empty({s.B, s.Lq, s.Lk}, x.qs.dtype());
+    dispatch_float(x.qs.dtype(), op, [&](auto tag) {
+      using T = decltype(tag);
+      head_average<T>(s, ptr<T>(probs), ptr<T>(*attn_weights));
+      return 0;
+    });
+  }
+  if (!grad) return out;
+  Operands kept{x.qs.detach(), x.ks.detach(), x.vs.detach(), x.q_off, x.k_off, x.v_off, x.lq, x.lk, x.lv, x.lo,
+                x.packed};
+  record(out, op, inputs,
+         [kept, mask_t = key_padding_mask, drop, s, scale, saved, op](const Tensor& g) -> std::vector<Tensor> {
+           const uint8_t* m = mask_t.defined() ? mask_t.data<uint8_t>() : nullptr;
+           if (kept.packed) {
+             Tensor dx = Tensor::empty(kept.qs.shape(), g.dtype());
+             run_backward(s, kept, g, m, scale, drop, saved, dx, dx, dx, op);
+             return {dx};
+           }
+           Tensor dq = Tensor::empty(kept.qs.shape(), g.dtype());
+           Tensor dk = Tensor::empty(kept.ks.shape(), g.dtype());
+           Tensor dv = Tensor::empty(kept.vs.shape(), g.dtype());
+           run_backward(s, kept, g, m, scale, drop, saved, dq, dk, dv, op);
+           return {dq, dk, dv};
+         });
+  return out;
+}
+
 }  // namespace
+
+void set_fused_attention(bool enabled) { g_fused_attention = enabled; }
+bool fused_attention_enabled() { return g_fused_attention; }
 
 Tensor scaled_dot_product_attention(const Tensor& q, const Tensor& k, const Tensor& v, const Tensor& key_padding_mask,
                                     double dropout_p, bool training, Rng& rng, Tensor* attn_weights) {
@@ -288,39 +368,8 @@ Tensor scaled_dot_product_attention(const Tensor& q, const Tensor& k, const Tens
   check_mask(key_padding_mask, s.B, s.Lk, op);
   DropoutPlan drop = make_dropout(dropout_p, training, rng, static_cast<uint64_t>(s.B * s.H * s.Lq * s.Lk), op);
   Layout lq{s.H * s.Lq * s.D, s.Lq * s.D, s.D}, lk{s.H * s.Lk * s.D, s.Lk * s.D, s.D};
-  Tensor out = Tensor::empty(q.shape(), q.dtype());
-  bool grad = needs_grad({&q, &k, &v});
-  Tensor probs = attn_weights ? Tensor::empty({s.B, s.H, s.Lq, s.Lk}, q.dtype()) : Tensor();
-  const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
-  double scale = s.D > 0 ? 1.0 / std::sqrt(static_cast<double>(s.D)) : 1.0;
-  dispatch_float(q.dtype(), op, [&](auto tag) {
-    using T = decltype(tag);
-    attention_forward<T>(s, ptr<T>(q), lq, ptr<T>(k), lk, ptr<T>(v), lk, ptr<T>(out), lq, mask,
-                         static_cast<T>(scale), drop, probs.defined() ? ptr<T>(probs) : nullptr);
-    if (attn_weights) {
-      *attn_weights = Tensor::empty({s.B, s.Lq, s.Lk}, q.dtype());
-      head_average<T>(s, ptr<T>(probs), ptr<T>(*attn_weights));
-    }
-    return 0;
-  });
-  if (grad) {
-    record(out, op, {q, k, v},
-           [qd = q.detach(), kd = k.detach(), vd = v.detach(), mask_t = key_padding_mask, drop, s, lq, lk,
-            scale](const Tensor& g) -> std::vector<Tensor> {
-             Tensor dq = Tensor::empty(qd.shape(), g.dtype());
-             Tensor dk = Tensor::empty(kd.shape(), g.dtype());
-             Tensor dv = Tensor::empty(vd.shape(), g.dtype());
-             dispatch_float(g.dtype(), "attention backward", [&](auto tag) {
-               using T = decltype(tag);
-               const uint8_t* m = mask_t.defined() ? mask_t.data<uint8_t>() : nullptr;
-               attention_backward<T>(s, ptr<T>(qd), lq, ptr<T>(kd), lk, ptr<T>(vd), lk, ptr<T>(g), lq, m,
-                                     static_cast<T>(scale), drop, ptr<T>(dq), lq, ptr<T>(dk), lk, ptr<T>(dv), lk);
-               return 0;
-             });
-             return {dq, dk, dv};
-           });
-  }
-  return out;
+  Operands x{q, k, v, 0, 0, 0, lq, lk, lk, lq, false};
+  return attention_op(s, x, q.shape(), key_padding_mask, drop, needs_grad({&q, &k, &v}), {q, k, v}, attn_weights, op);
 }
 
 Tensor packed_attention(const Tensor& qkv, int64_t num_heads, const Tensor& key_padding_mask, double dropout_p,
@@ -338,39 +387,8 @@ Tensor packed_attention(const Tensor& qkv, int64_t num_heads, const Tensor& key_
   check_mask(key_padding_mask, B, L, op);
   DropoutPlan drop = make_dropout(dropout_p, training, rng, static_cast<uint64_t>(B * num_heads * L * L), op);
   Layout lin{L * 3 * E, Dh, 3 * E}, lout{L * E, Dh, E};
-  Tensor out = Tensor::empty({B, L, E}, qkv.dtype());
-  bool grad = needs_grad({&qkv});
-  Tensor probs = attn_weights ? Tensor::empty({B, num_heads, L, L}, qkv.dtype()) : Tensor();
-  const uint8_t* mask = key_padding_mask.defined() ? key_padding_mask.data<uint8_t>() : nullptr;
-  double scale = Dh > 0 ? 1.0 / std::sqrt(static_cast<double>(Dh)) : 1.0;
-  dispatch_float(qkv.dtype(), op, [&](auto tag) {
-    using T = decltype(tag);
-    const T* base = ptr<T>(qkv);
-    attention_forward<T>(s, base, lin, base + E, lin, base + 2 * E, lin, ptr<T>(out), lout, mask,
-                         static_cast<T>(scale), drop, probs.defined() ? ptr<T>(probs) : nullptr);
-    if (attn_weights) {
-      *attn_weights = Tensor::empty({B, L, L}, qkv.dtype());
-      head_average<T>(s, ptr<T>(probs), ptr<T>(*attn_weights));
-    }
-    return 0;
-  });
-  if (grad) {
-    record(out, op, {qkv}, [xd = qkv.detach(), mask_t = key_padding_mask, drop, s, lin, lout, scale,
-                            E](const Tensor& g) -> std::vector<Tensor> {
-      Tensor dx = Tensor::empty(xd.shape(), g.dtype());
-      dispatch_float(g.dtype(), "packed_attention backward", [&](auto tag) {
-        using T = decltype(tag);
-        const T* base = ptr<T>(xd);
-        T* dbase = ptr<T>(dx);
-        const uint8_t* m = mask_t.defined() ? mask_t.data<uint8_t>() : nullptr;
-        attention_backward<T>(s, base, lin, base + E, lin, base + 2 * E, lin, ptr<T>(g), lout, m,
-                              static_cast<T>(scale), drop, dbase, lin, dbase + E, lin, dbase + 2 * E, lin);
-        return 0;
-      });
-      return {dx};
-    });
-  }
-  return out;
+  Operands x{qkv, qkv, qkv, 0, E, 2 * E, lin, lin, lin, lout, true};
+  return attention_op(s, x, {B, L, E}, key_padding_mask, drop, needs_grad({&qkv}), {qkv}, attn_weights, op);
 }
 
 }  // namespace lc2wf

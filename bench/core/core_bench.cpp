@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <vector>
 
 #include "core/gemm.h"
@@ -154,6 +155,63 @@ void BM_AttentionForwardBackward(benchmark::State& state) {
   report_flops(state, 3 * attention_flops(B, L));
 }
 BENCHMARK(BM_AttentionForwardBackward)->Arg(32)->Arg(64)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// Attention fwd+bwd against the Linear fwd+bwd above, alternated within every iteration, so both see the
+// same load: ratio = attention GFLOP/s / linear GFLOP/s, the ratio_cpu counter the same in thread CPU time
+// (meaningful with LC2WF_THREADS=1). fused = 0 runs the reference kernel (the one before the fused
+// kernel) for a before/after in one process. Dropout 0.5 and a key mask of a quarter of the keys in
+// every other patch, as in training. tokens = 1024 keeps qkv (3 MiB) in the caches, 8192 streams it.
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+void BM_AttentionOverLinear(benchmark::State& state) {
+  const int64_t L = state.range(0), B = state.range(2) / L;
+  const bool was_fused = fused_attention_enabled();
+  set_fused_attention(state.range(1) != 0);
+  Tensor qkv = rand32({B, L, 3 * kWidth}, 5, true), seed = rand32({B, L, kWidth}, 6);
+  std::vector<uint8_t> m(static_cast<size_t>(B * L), 0);
+  for (int64_t b = 0; b < B; b += 2)
+    for (int64_t j = L - L / 4; j < L; ++j) m[static_cast<size_t>(b * L + j)] = 1;
+  Tensor mask = Tensor::from_mask(m, {B, L});
+  Tensor x = rand32({kTokens, kWidth}, 1, true), w = rand32({kWidth, kWidth}, 2, true), bias = rand32({kWidth}, 3, true);
+  Tensor lseed = rand32({kTokens, kWidth}, 4);
+  Rng rng(1);
+  double attn_wall = 0, lin_wall = 0, attn_cpu = 0, lin_cpu = 0;
+  for (auto _ : state) {
+    auto t0 = std::chrono::steady_clock::now();
+    double c0 = thread_cpu_seconds();
+    packed_attention(qkv, 8, mask, 0.5, true, rng).backward(seed);
+    qkv.zero_grad();
+    auto t1 = std::chrono::steady_clock::now();
+    double c1 = thread_cpu_seconds();
+    linear(x, w, bias).backward(lseed);
+    x.zero_grad();
+    w.zero_grad();
+    bias.zero_grad();
+    auto t2 = std::chrono::steady_clock::now();
+    double c2 = thread_cpu_seconds();
+    attn_wall += std::chrono::duration<double>(t1 - t0).count();
+    lin_wall += std::chrono::duration<double>(t2 - t1).count();
+    attn_cpu += c1 - c0;
+    lin_cpu += c2 - c1;
+  }
+  set_fused_attention(was_fused);
+  const double n = static_cast<double>(state.iterations());
+  const double attn_flops = 3 * attention_flops(B, L), lin_flops = 3 * 2.0 * kTokens * kWidth * kWidth;
+  state.counters["attn_ms"] = 1e3 * attn_wall / n;
+  state.counters["attn_GFLOP/s"] = attn_flops * n / attn_wall / 1e9;
+  state.counters["linear_GFLOP/s"] = lin_flops * n / lin_wall / 1e9;
+  state.counters["ratio"] = (attn_flops / attn_wall) / (lin_flops / lin_wall);
+  state.counters["ratio_cpu"] = (attn_flops / attn_cpu) / (lin_flops / lin_cpu);
+}
+BENCHMARK(BM_AttentionOverLinear)
+    ->ArgsProduct({{32, 64}, {0, 1}, {kTokens, 1024}})
+    ->ArgNames({"L", "fused", "tokens"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 // ---------------------------------------------------------------- normalisation over 8192x256
 // Bytes: the minimal traffic (forward reads x, writes y; backward reads x and g, writes dx).

@@ -44,7 +44,18 @@ Batch make_batch(int64_t B, int64_t G, int64_t N, int64_t F, int64_t classes, ui
 
 void finish(benchmark::State& state) { state.counters["peak_rss_MB"] = peak_rss_mb(); }
 
+// Arg "fused" 0 runs attention on the reference kernel (the one before core/attention_fused.cpp), for a
+// before/after of the training step from one build; run one variant per process for its peak RSS.
+struct AttentionKernel {
+  explicit AttentionKernel(const benchmark::State& state) : before(fused_attention_enabled()) {
+    set_fused_attention(state.range(0) != 0);
+  }
+  ~AttentionKernel() { set_fused_attention(before); }
+  bool before;
+};
+
 void BM_JunctionTrainStep(benchmark::State& state) {
+  AttentionKernel kernel(state);
   JunctionNet net{JunctionNetConfig{}};
   AdamW opt(net.named_parameters(), OptimConfig{});
   const Batch b = make_batch(16, 256, 32, 7, 2, 1);
@@ -62,6 +73,7 @@ void BM_JunctionTrainStep(benchmark::State& state) {
 }
 
 void BM_EdgeTrainStep(benchmark::State& state) {
+  AttentionKernel kernel(state);
   EdgeNet net{EdgeNetConfig{}};
   AdamW opt(net.named_parameters(), OptimConfig{});
   const Batch b = make_batch(4, 512, 64, 6, 5, 2);
@@ -96,8 +108,8 @@ void BM_EdgeInference(benchmark::State& state) {
   finish(state);
 }
 
-BENCHMARK(BM_JunctionTrainStep)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_EdgeTrainStep)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_JunctionTrainStep)->ArgName("fused")->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_EdgeTrainStep)->ArgName("fused")->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_JunctionInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 BENCHMARK(BM_EdgeInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 

@@ -1,0 +1,191 @@
+// The fused float attention kernel (core/attention_fused.cpp) against the reference kernel, against
+// attention composed from the elementary ops (same dropout stream), and against finite differences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/ops.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "tests/core/gradcheck.h"
+
+namespace lc2wf {
+namespace {
+
+// Restores the process-wide kernel choice when a test ends.
+struct FusedSwitch {
+  explicit FusedSwitch(bool on) : before(fused_attention_enabled()) { set_fused_attention(on); }
+  ~FusedSwitch() { set_fused_attention(before); }
+  bool before;
+};
+
+// Item 0: no key masked; item 1: the last third masked; item 2: every key masked; then alternating.
+Tensor padding_mask(int64_t B, int64_t L) {
+  std::vector<uint8_t> m(static_cast<size_t>(B * L), 0);
+  for (int64_t b = 0; b < B; ++b)
+    for (int64_t j = 0; j < L; ++j) {
+      const int64_t kind = b % 3;
+      m[static_cast<size_t>(b * L + j)] = kind == 2 || (kind == 1 && j >= L - L / 3);
+    }
+  return Tensor::from_mask(m, {B, L});
+}
+
+Tensor rand32(const Shape& s, Rng& rng, double lo = -2, double hi = 2) {
+  return test::random_tensor(s, rng, lo, hi, DType::F32);
+}
+
+void expect_close(const Tensor& a, const Tensor& b, double tol, const char* what) {
+  std::vector<double> x = a.to_vector(), y = b.to_vector();
+  ASSERT_EQ(x.size(), y.size()) << what;
+  for (size_t i = 0; i < x.size(); ++i)
+    ASSERT_NEAR(x[i], y[i], tol * (1 + std::abs(y[i]))) << what << " at " << i;
+}
+
+struct AttentionRun {
+  Tensor out, grad, weights;
+  uint64_t counter;
+};
+
+AttentionRun packed_run(const Tensor& qkv_in, int64_t H, const Tensor& mask, double p, const Tensor& seed, bool fused) {
+  FusedSwitch use(fused);
+  Tensor qkv = qkv_in.detach().clone().set_requires_grad();
+  Rng rng(42);
+  Tensor weights;
+  Tensor out = packed_attention(qkv, H, mask, p, true, rng, &weights);
+  out.backward(seed);
+  return {out, qkv.grad(), weights, rng.counter()};
+}
+
+TEST(FusedAttention, MatchesTheReferenceKernel) {
+  for (int64_t L : {32, 64, 8, 24}) {
+    Rng init(static_cast<uint64_t>(L));
+    const int64_t B = 7, H = 4, E = 4 * 32;
+    Tensor qkv = rand32({B, L, 3 * E}, init), seed = rand32({B, L, E}, init);
+    Tensor mask = padding_mask(B, L);
+    for (double p : {0.0, 0.5}) {
+      AttentionRun fused = packed_run(qkv, H, mask, p, seed, true), ref = packed_run(qkv, H, mask, p, seed, false);
+      EXPECT_EQ(fused.counter, ref.counter);
+      expect_close(fused.out, ref.out, 1e-5, "output");
+      expect_close(fused.grad, ref.grad, 1e-4, "dqkv");
+      expect_close(fused.weights, ref.weights, 1e-6, "weights");
+      // Item 2 has every key masked: zero output and zero gradient, no NaN.
+      std::vector<double> o = fused.out.to_vector(), g = fused.grad.to_vector();
+      for (int64_t i = 0; i < L * E; ++i) ASSERT_EQ(o[static_cast<size_t>(2 * L * E + i)], 0.0);
+      for (int64_t i = 0; i < L * 3 * E; ++i) ASSERT_EQ(g[static_cast<size_t>(2 * L * 3 * E + i)], 0.0);
+    }
+  }
+}
+
+TEST(FusedAttention, SeparateQkvWithDifferentLengthsMatchesTheReferenceKernel) {
+  Rng init(5);
+  const int64_t B = 3, H = 2, Lq = 13, Lk = 40, D = 16;
+  Tensor q = rand32({B, H, Lq, D}, init), k = rand32({B, H, Lk, D}, init), v = rand32({B, H, Lk, D}, init);
+  Tensor seed = rand32({B, H, Lq, D}, init), mask = padding_mask(B, Lk);
+  std::vector<std::vector<double>> results[2];
+  for (bool fused : {false, true}) {
+    FusedSwitch use(fused);
+    Tensor a = q.clone().set_requires_grad(), b = k.clone().set_requires_grad(), c = v.clone().set_requires_grad();
+    Rng rng(8);
+    Tensor out = scaled_dot_product_attention(a, b, c, mask, 0.3, true, rng);
+    out.backward(seed);
+    results[fused] = {out.to_vector(), a.grad().to_vector(), b.grad().to_vector(), c.grad().to_vector()};
+  }
+  for (size_t t = 0; t < 4; ++t)
+    for (size_t i = 0; i < results[0][t].size(); ++i)
+      ASSERT_NEAR(results[1][t][i], results[0][t][i], 1e-4 * (1 + std::abs(results[0][t][i]))) << t << " " << i;
+}
+
+// Attention from the elementary ops with the same dropout draws: dropout() over the (B, H, L, L)
+// probabilities reserves the same block of the stream and keys element i the same way.
+Tensor unfused_attention(const Tensor& qkv, int64_t H, const Tensor& mask, double p, Rng& rng) {
+  const int64_t B = qkv.size(0), L = qkv.size(1), E = qkv.size(2) / 3, D = E / H;
+  auto heads = [&](int64_t part) {
+    return slice(qkv, 2, part * E, (part + 1) * E).reshape({B, L, H, D}).permute({0, 2, 1, 3});
+  };
+  Tensor q = heads(0), k = heads(1), v = heads(2);
+  Tensor s = matmul(q, k.transpose(-1, -2)) * (1.0 / std::sqrt(static_cast<double>(D)));
+  Tensor probs = softmax(masked_fill(s, mask.reshape({B, 1, 1, L}), -1e30), -1);
+  // softmax of a fully masked row is uniform; the op defines it as zero.
+  std::vector<double> live(static_cast<size_t>(B));
+  std::vector<double> m = mask.to(DType::F64).to_vector();
+  for (int64_t b = 0; b < B; ++b) {
+    live[static_cast<size_t>(b)] = 0;
+    for (int64_t j = 0; j < L; ++j) live[static_cast<size_t>(b)] += m[static_cast<size_t>(b * L + j)] == 0;
+    live[static_cast<size_t>(b)] = live[static_cast<size_t>(b)] > 0;
+  }
+  probs = probs * Tensor::from_vector(live, {B, 1, 1, 1}).to(qkv.dtype());
+  Tensor out = matmul(dropout(probs, p, true, rng), v);
+  return out.permute({0, 2, 1, 3}).reshape({B, L, E});
+}
+
+TEST(FusedAttention, MatchesAttentionFromTheElementaryOps) {
+  for (int64_t L : {32, 64}) {
+    Rng init(static_cast<uint64_t>(100 + L));
+    const int64_t B = 6, H = 8, E = 256;
+    Tensor qkv = rand32({B, L, 3 * E}, init), seed = rand32({B, L, E}, init);
+    Tensor mask = padding_mask(B, L);
+    AttentionRun fused = packed_run(qkv, H, mask, 0.5, seed, true);
+    Tensor x = qkv.clone().set_requires_grad();
+    Rng rng(42);
+    Tensor ref = unfused_attention(x, H, mask, 0.5, rng);
+    ref.backward(seed);
+    EXPECT_EQ(rng.counter(), fused.counter);
+    expect_close(fused.out, ref, 1e-5, "output");
+    expect_close(fused.grad, x.grad(), 1e-4, "dqkv");
+  }
+}
+
+// Central differences of the float op along random directions, summed in double: the loss
+// sum(out * R) is smooth in qkv for a fixed dropout stream (the mask does not depend on the values).
+TEST(FusedAttention, FiniteDifferenceGradient) {
+  FusedSwitch use(true);
+  Rng init(9);
+  const int64_t B = 3, L = 16, H = 2, E = 2 * 8;
+  Tensor qkv = rand32({B, L, 3 * E}, init, -1, 1), R = rand32({B, L, E}, init, -1, 1);
+  Tensor mask = padding_mask(B, L);
+  for (double p : {0.0, 0.5}) {
+    auto loss = [&](const Tensor& x) {
+      NoGradGuard no_grad;
+      Rng rng(3);
+      std::vector<double> o = packed_attention(x, H, mask, p, true, rng).to_vector(), r = R.to_vector();
+      double s = 0;
+      for (size_t i = 0; i < o.size(); ++i) s += o[i] * r[i];
+      return s;
+    };
+    Tensor x = qkv.clone().set_requires_grad();
+    Rng rng(3);
+    packed_attention(x, H, mask, p, true, rng).backward(R);
+    std::vector<double> grad = x.grad().to_vector();
+    for (int dir = 0; dir < 6; ++dir) {
+      Tensor u = rand32(qkv.shape(), init, -1, 1);
+      std::vector<double> uv = u.to_vector();
+      const double eps = 1e-2;
+      const double fd = (loss(qkv + u * eps) - loss(qkv - u * eps)) / (2 * eps);
+      double analytic = 0;
+      for (size_t i = 0; i < uv.size(); ++i) analytic += grad[i] * uv[i];
+      EXPECT_NEAR(fd, analytic, 3e-4 * (1 + std::abs(analytic))) << "p=" << p << " direction " << dir;
+    }
+  }
+}
+
+TEST(FusedAttention, BitIdenticalAtOneAndTwoThreads) {
+  FusedSwitch use(true);
+  Rng init(11);
+  Tensor qkv = rand32({20, 32, 3 * 256}, init), seed = rand32({20, 32, 256}, init);
+  Tensor mask = padding_mask(20, 32);
+  std::vector<double> results[2];
+  const int before = num_threads();
+  for (int threads : {1, 2}) {
+    set_num_threads(threads);
+    AttentionRun r = packed_run(qkv, 8, mask, 0.5, seed, true);
+    results[threads - 1] = r.out.to_vector();
+    std::vector<double> g = r.grad.to_vector();
+    results[threads - 1].insert(results[threads - 1].end(), g.begin(), g.end());
+  }
+  set_num_threads(before);
+  EXPECT_EQ(results[0], results[1]);
+}
+
+}  // namespace
+}  // namespace lc2wf
