@@ -364,6 +364,23 @@ TEST(Samples, NearGtAndEndpointDistanceOptions) {
   EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
+TEST(Samples, SliceUndoesStackForJunctionPatches) {
+  JunctionSampleOptions jo;
+  jo.augment_enabled = true;
+  const LineCloud c = make_synthetic_line_cloud(make_random_building(2, "b"), 2);
+  const JunctionPatches a = make_junction_sample(c, jo, 1), b = make_junction_sample(c, jo, 2);
+  const JunctionPatches two = stack(std::vector<JunctionPatches>{a, b});
+  const JunctionPatches back = slice(two, 1, 1);
+  EXPECT_EQ(back.batch, 1);
+  EXPECT_EQ(back.features, b.features);
+  EXPECT_EQ(back.padded, b.padded);
+  EXPECT_EQ(back.points, b.points);
+  EXPECT_EQ(back.label, b.label);
+  EXPECT_EQ(back.offset, b.offset);
+  EXPECT_EQ(back.endpoint, b.endpoint);
+  EXPECT_EQ(slice(two, 0, 1).features, a.features);
+}
+
 TEST(Samples, LoaderStacksJunctionSamplesDeterministically) {
   std::vector<LineCloud> clouds;
   for (uint64_t s = 0; s < 5; ++s) clouds.push_back(make_synthetic_line_cloud(make_random_building(s, "b"), s));
@@ -427,6 +444,17 @@ TEST(Samples, PairSamplesOnASyntheticBuilding) {
   const auto stacked = stack(std::vector<PairPatches>{T, T});
   EXPECT_EQ(stacked.batch, 2);
   EXPECT_EQ(stacked.features.size(), 2 * T.features.size());
+  // slice() undoes stack(): micro-batches see exactly their buildings' patches.
+  const auto T2 = make_pair_training_sample(c, select_junctions(pred, c.segments, {}, SelectionCut::kTopK), o, 6);
+  const auto two = stack(std::vector<PairPatches>{T, T2});
+  const PairPatches second = slice(two, 1, 1);
+  EXPECT_EQ(second.batch, 1);
+  EXPECT_EQ(second.features, T2.features);
+  EXPECT_EQ(second.padded, T2.padded);
+  EXPECT_EQ(second.label, T2.label);
+  EXPECT_EQ(slice(two, 0, 2).features, two.features);
+  EXPECT_THROW(slice(two, 1, 2), std::invalid_argument);
+  EXPECT_THROW(slice(two, 0, 0), std::invalid_argument);
 }
 
 }  // namespace

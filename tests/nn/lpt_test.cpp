@@ -109,6 +109,37 @@ TEST(Lpt, DropoutStreamAdvancesOnlyInTraining) {
   EXPECT_EQ(net.dropout_rng().counter(), after_train);
 }
 
+TEST(Losses, EdgeMicroBatchesAddUpToTheBatchLossAndGradient) {
+  // Two "buildings" of 3 pairs with different class mixes: the weighted mean is not a mean of means, so
+  // each part must be divided by the whole batch's weight sum.
+  std::vector<float> z(2 * 3 * 5);
+  for (size_t k = 0; k < z.size(); ++k) z[k] = static_cast<float>(std::sin(0.7 * static_cast<double>(k)));
+  const std::vector<int64_t> y{1, 1, 0, 3, 4, 2};
+  const EdgeLossConfig cfg;
+  Tensor whole = Tensor::from_vector(z, {2, 3, 5});
+  whole.set_requires_grad();
+  const Tensor labels = Tensor::from_vector(y, {2, 3});
+  const Tensor full = edge_loss(whole, labels, cfg);
+  full.backward();
+  const double W = edge_loss_weight(labels, cfg);
+  EXPECT_DOUBLE_EQ(W, 3 + 3 + 1 + 1 + 1 + 1);
+  double parts = 0;
+  std::vector<double> grad;
+  for (int b = 0; b < 2; ++b) {
+    Tensor part = Tensor::from_vector(std::vector<float>(z.begin() + 15 * b, z.begin() + 15 * (b + 1)), {1, 3, 5});
+    part.set_requires_grad();
+    const Tensor l = edge_loss(part, Tensor::from_vector(std::vector<int64_t>(y.begin() + 3 * b, y.begin() + 3 * (b + 1)), {1, 3}), cfg, W);
+    l.backward();
+    parts += l.item();
+    for (double g : part.grad().to_vector()) grad.push_back(g);
+  }
+  EXPECT_NEAR(parts, full.item(), 1e-6);
+  const std::vector<double> expected = whole.grad().to_vector();
+  ASSERT_EQ(grad.size(), expected.size());
+  for (size_t k = 0; k < grad.size(); ++k) EXPECT_NEAR(grad[k], expected[k], 1e-7) << k;
+  EXPECT_THROW(edge_loss_weight(Tensor::from_vector(std::vector<int64_t>{5}, {1, 1}), cfg), std::invalid_argument);
+}
+
 TEST(Losses, RejectBadTargets) {
   JunctionNet net(small());
   const JunctionOutput out = net.forward(inputs(1, 4, 6, 7, 1), mask_every(1, 4, 6, 3));

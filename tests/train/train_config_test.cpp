@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include "train/stage_loop.h"
 #include "train/train_config.h"
 
 namespace lc2wf {
@@ -107,6 +108,14 @@ TEST(TrainConfig, RejectsBadValuesByName) {
     const std::string err = error_of(j);
     EXPECT_NE(err.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << err;
   }
+}
+
+TEST(TrainConfig, MicroBatchRangesCoverTheBatch) {
+  using R = std::vector<std::pair<int, int>>;
+  EXPECT_EQ(micro_batch_ranges(32, 0), (R{{0, 32}}));
+  EXPECT_EQ(micro_batch_ranges(32, 32), (R{{0, 32}}));
+  EXPECT_EQ(micro_batch_ranges(10, 4), (R{{0, 4}, {4, 4}, {8, 2}}));
+  EXPECT_EQ(micro_batch_ranges(3, 1), (R{{0, 1}, {1, 1}, {2, 1}}));
 }
 
 TEST(TrainConfig, FileErrorsNameTheFile) {
