@@ -114,7 +114,7 @@
     state.order.forEach((i, k) => {
       const r = rows[i];
       const cls = (i === state.current ? 'sel' : '') + (k < 10 ? ' worst' : '') + (r.miss ? ' missing' : '');
-      html.push('<tr data-i="' + i + '" class="' + cls + '"><td class="rank">' + (k + 1) + '</td>' +
+      html.push('<tr data-i="' + i + '" class="' + cls + '"' + (r.miss ? ' title="no prediction file: scored as empty"' : '') + '><td class="rank">' + (k + 1) + '</td>' +
         columns.map((c) => '<td' + (c.cls ? ' class="' + c.cls + '"' : '') + '>' + c.fmt(c.get(r)) + '</td>').join('') + '</tr>');
     });
     $('buildings').tBodies[0].innerHTML = html.join('');
