@@ -17,7 +17,7 @@ namespace lc2wf {
 
 struct HtmlReportOptions {
   std::filesystem::path three_js_dir;  // holds three.min.js and examples/js/controls/OrbitControls.js
-  int max_cloud_segments = 4000;       // per building; larger clouds are thinned evenly (the viewer says so)
+  int max_cloud_segments = 3000;       // per building (real clouds: 550-1130 on average); larger ones are thinned evenly
 };
 
 // LC2WF_THREE_JS_DIR from the environment, else the build's default (Debian: /usr/share/javascript/three).

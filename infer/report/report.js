@@ -274,7 +274,9 @@
     const radius = Math.max(0.5, box.getSize(new THREE.Vector3()).length() / 2);
     size = radius;
     const dir = new THREE.Vector3(1.0, -1.3, 0.9).normalize();
-    camera.position.copy(centre).addScaledVector(dir, radius / Math.sin((camera.fov * Math.PI) / 360) * 1.05);
+    // Fit the bounding sphere in the narrower of the vertical and horizontal fields of view.
+    const vHalf = (camera.fov * Math.PI) / 360, hHalf = Math.atan(Math.tan(vHalf) * camera.aspect);
+    camera.position.copy(centre).addScaledVector(dir, radius / Math.sin(Math.min(vHalf, hHalf)) * 1.02);
     camera.near = radius / 100; camera.far = radius * 100;
     camera.updateProjectionMatrix();
     controls.target.copy(centre);

@@ -54,10 +54,18 @@ TEST(ReportBrowser, ChromiumLoadsSortsAndRendersTheReport) {
     write_line_cloud(clouds / (name + ".lcloud"), make_synthetic_line_cloud(b, 7 + k));
     if (k < 3) write_prediction(pred, name, imperfect_prediction(b.wireframe));  // synth_3: no prediction
   }
-  const testing::CliResult eval = testing::run_cli(std::string(LC2WF_EVAL_BIN) + " --pred " + pred.string() + " --data " +
-                                                   clouds.string() + " --out " + out.string() + " --html --quiet");
+  // A first run to compare with (as the --release-quirks run would be), then the report.
+  const std::string common = std::string(LC2WF_EVAL_BIN) + " --pred " + pred.string() + " --data " + clouds.string();
+  const testing::CliResult base = testing::run_cli(common + " --out " + (dir.path() / "base").string() + " --method baseline-run --quiet");
+  ASSERT_EQ(base.code, 0) << base.err;
+  const testing::CliResult eval = testing::run_cli(common + " --out " + out.string() + " --html --html-compare " +
+                                                   (dir.path() / "base").string() + " --quiet");
   ASSERT_EQ(eval.code, 0) << eval.err;
   ASSERT_TRUE(fs::exists(out / "report.html"));
+  EXPECT_NE(testing::read_text(out / "report.html").find("baseline-run"), std::string::npos);
+  const testing::CliResult usage = testing::run_cli(common + " --out " + out.string() + " --html-compare " + out.string());
+  EXPECT_EQ(usage.code, 2);
+  EXPECT_NE(usage.err.find("--html-compare"), std::string::npos) << usage.err;
 
   const testing::CliResult check = testing::run_cli("python3 " + std::string(LC2WF_SOURCE_DIR) +
                                                     "/tools/report/check_report.py --chromium " + chromium_path() + " " +
@@ -90,6 +98,7 @@ TEST(ReportBrowser, ChromiumLoadsSortsAndRendersTheReport) {
   EXPECT_TRUE(std::is_sorted(recall.begin(), recall.end())) << r["column_sR"].dump();
   EXPECT_EQ(recall.front(), 0.0);  // synth_3 has no prediction
   EXPECT_NE(r["rendered_after_click"], r["rendered"]);
+  EXPECT_EQ(r["summary_rows"], 2);  // this run and the compared one
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ def plot(lines, title):
     if all_losses and max(all_losses) / min(all_losses) > 20:
         loss_ax.set_yscale("log")
     if loss_ax.get_legend_handles_labels()[0]:
-        loss_ax.legend()
+        loss_ax.legend(loc="upper right", fontsize=9)
 
     series = [("junction", "vAP_mean", BLUE, "-", "junction stage: vAP"),
               ("edge", "sAP_mean", ORANGE, "-", "edge stage: sAP"),

@@ -181,8 +181,10 @@ def pixel_stats(png):
 
 def canvas_stats(browser, save_as):
     """Screenshot of the 3D view (half resolution keeps the pure-Python PNG decoding quick) and its statistics."""
-    rect = browser.evaluate("(() => { const r = document.querySelector('#view3d canvas').getBoundingClientRect();"
-                            " return {x: r.x, y: r.y, width: r.width, height: r.height}; })()")
+    # Clip coordinates are the document's: scroll the view in, then add the scroll offsets.
+    rect = browser.evaluate("(() => { const c = document.querySelector('#view3d canvas'); c.scrollIntoView({block: 'center'});"
+                            " const r = c.getBoundingClientRect();"
+                            " return {x: r.x + scrollX, y: r.y + scrollY, width: r.width, height: r.height}; })()")
     png = base64.b64decode(browser.send("Page.captureScreenshot", {"format": "png", "clip": dict(rect, scale=0.5)})["data"])
     if save_as:
         with open(save_as, "wb") as f:
@@ -206,6 +208,7 @@ def check(report, chromium, timeout, shots=None):
         out["open_seconds"] = time.monotonic() - started
         out["first_render_ms"] = browser.evaluate("window.lc2wfReport.firstRenderMs")
         out["buildings"] = browser.evaluate("window.lc2wfReport.order().length")
+        out["summary_rows"] = browser.evaluate("document.querySelectorAll('#summary table')[0].tBodies[0].rows.length")
         out["canvas"] = canvas_stats(browser, shots and os.path.join(shots, "first.png"))
         # Sorting by clicking headers: name ascending, then descending; an edge-recall sort, worst first.
         out["order_initial"] = browser.evaluate("window.lc2wfReport.order()")
@@ -217,8 +220,8 @@ def check(report, chromium, timeout, shots=None):
         out["sort_sR"] = browser.evaluate("window.lc2wfReport.sortKey()")
         out["column_sR"] = browser.evaluate(
             "[...document.querySelectorAll('#buildings tbody tr')].map(tr => parseFloat(tr.children[7].textContent))")
-        # Opening another building from the table.
-        browser.click("#buildings tbody tr:nth-child(2)")
+        # Opening another building from the table: the first row not shown already.
+        browser.click("#buildings tbody tr:not(.sel)")
         out["rendered_after_click"] = browser.wait_for(
             "document.body.dataset.rendered !== %s && document.body.dataset.rendered" % json.dumps(out["rendered"]),
             "the clicked building")
