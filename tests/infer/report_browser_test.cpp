@@ -99,6 +99,10 @@ TEST(ReportBrowser, ChromiumLoadsSortsAndRendersTheReport) {
   EXPECT_EQ(recall.front(), 0.0);  // synth_3 has no prediction
   EXPECT_NE(r["rendered_after_click"], r["rendered"]);
   EXPECT_EQ(r["summary_rows"], 2);  // this run and the compared one
+  // Coloured by score (viridis), the prediction's red gives way to other hues; the GT stays.
+  const nlohmann::json& scored = r["canvas_by_score"];
+  EXPECT_LT(scored["red"].get<double>(), 0.5 * c["red"].get<double>()) << scored.dump();
+  EXPECT_GT(scored["green"].get<double>(), 0.0002) << scored.dump();
 }
 
 }  // namespace

@@ -44,7 +44,7 @@ def plot(metrics, eta_index):
     pr_ax.set_xlabel("fraction of edges")
     pr_ax.set_ylabel("buildings")
     pr_ax.set_xlim(0, 1)
-    pr_ax.legend(loc="upper center")
+    pr_ax.legend(loc="upper left")
 
     worst = sorted(rows, key=lambda b: b["wed"]["total_dist"], reverse=True)[:10]
     names = [("%s (no pred.)" % b["name"]) if b["prediction_missing"] else b["name"] for b in worst][::-1]

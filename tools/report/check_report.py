@@ -226,6 +226,11 @@ def check(report, chromium, timeout, shots=None):
             "document.body.dataset.rendered !== %s && document.body.dataset.rendered" % json.dumps(out["rendered"]),
             "the clicked building")
         out["canvas_after_click"] = canvas_stats(browser, shots and os.path.join(shots, "clicked.png"))
+        # Colour by score and another threshold: the prediction is no longer drawn in plain red.
+        browser.click("#by-score")
+        browser.evaluate("(() => { const s = document.getElementById('eta'); s.value = '2';"
+                         " s.dispatchEvent(new Event('change')); })()")
+        out["canvas_by_score"] = canvas_stats(browser, shots and os.path.join(shots, "by_score.png"))
         browser.send("Runtime.evaluate", {"expression": "0"})  # flush pending events
     finally:
         browser.close()
