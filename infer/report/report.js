@@ -59,6 +59,12 @@
     $('subtitle').textContent = S.buildings + ' buildings' + (missing ? ' (' + missing + ' without a prediction, scored as empty)' : '') +
       '. Distances in metres. Ties: ' + S.options.ties + '.';
     document.title = 'lc2wf evaluation: ' + S.method;
+    // The headline numbers above the buildings; the full tables follow below them.
+    const items = [['vAP avg.', pct(S.vertex_avg.ap) + ' %'], ['sAP avg.', pct(S.edge_avg.ap) + ' %'],
+      ['WED total', num(S.wed.total_num) + ' / ' + num(S.wed.total_dist) + ' m']];
+    if (S.building3d) items.push(['CF1', pct(S.building3d.cf1) + ' %'], ['EF1', pct(S.building3d.ef1) + ' %']);
+    $('headline').innerHTML = items.map(([k, v]) => '<span>' + k + ' <b>' + v + '</b></span>').join('') +
+      '<span><a href="#summary">all tables ↓</a></span>';
     if (data.plots && data.plots.length) {
       $('plots').hidden = false;
       $('plots').innerHTML = '<h2>Plots</h2>' + data.plots.map((p) =>

@@ -44,8 +44,6 @@ TEST(ReportBrowser, ChromiumLoadsSortsAndRendersTheReport) {
   if (!fs::exists(chromium_path()))
     GTEST_SKIP() << "Chromium not found at " << chromium_path()
                  << ": apt-get install chromium (tools/setup-deps.sh) or set LC2WF_CHROMIUM to run the browser test";
-  if (!fs::exists("/usr/share/javascript/three/three.min.js") && !std::getenv("LC2WF_THREE_JS_DIR"))
-    GTEST_SKIP() << "three.js not found: apt-get install libjs-three (tools/setup-deps.sh)";
   testing::ScratchDir dir("browser");
   const fs::path clouds = dir.path() / "clouds", pred = dir.path() / "pred", out = dir.path() / "out";
   for (int k = 0; k < 4; ++k) {
