@@ -46,6 +46,9 @@ std::string encode_report_geometry(const ReportGeometryInput& in, int max_cloud_
   const Wireframe& gt = *in.gt;
   if (pw.junctions.size() > 65535 || gt.junctions.size() > 65535)
     throw std::invalid_argument("report geometry: more than 65535 junctions in one wireframe");
+  if (in.junctions.pred.size() != pw.junctions.size() || in.junctions.gt.size() != gt.junctions.size() ||
+      in.edges.pred.size() != pw.edges.size() || in.edges.gt.size() != gt.edges.size())
+    throw std::invalid_argument("report geometry: match status sizes differ from the wireframes");
   std::vector<const Segment3*> cloud;
   const size_t total = in.cloud ? in.cloud->size() : 0;
   const size_t keep = std::min<size_t>(total, static_cast<size_t>(std::max(0, max_cloud_segments)));

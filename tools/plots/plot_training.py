@@ -55,9 +55,10 @@ def plot(lines, title):
     if loss_ax.get_legend_handles_labels()[0]:
         loss_ax.legend(loc="upper right", fontsize=9)
 
-    series = [("junction", "vAP_mean", BLUE, "-", "junction stage: vAP"),
-              ("edge", "sAP_mean", ORANGE, "-", "edge stage: sAP"),
-              ("edge", "vAP_mean", GREEN, "--", "edge stage: vAP")]
+    # The junction stage scores raw candidates (after point NMS), the edge stage post-processed wireframes.
+    series = [("junction", "vAP_mean", BLUE, "-", "junction stage: vAP, raw candidates"),
+              ("edge", "sAP_mean", ORANGE, "-", "edge stage: sAP, wireframes"),
+              ("edge", "vAP_mean", GREEN, "--", "edge stage: vAP, wireframes")]
     for stage, key, colour, style, label in series:
         val = [l for l in lines if l.get("stage") == stage and l.get("type") == "val" and key in l]
         if not val:
@@ -77,7 +78,7 @@ def plot(lines, title):
     top = max([l.get(k, 0) for l in lines if l.get("type") == "val" for k in ("vAP_mean", "sAP_mean")] + [0.5])
     val_ax.set_ylim(0, min(105, 100 * top + 10))  # headroom for the "best" labels
     if val_ax.get_legend_handles_labels()[0]:
-        val_ax.legend(loc="lower right")
+        val_ax.legend(loc="best", fontsize=9, frameon=True, facecolor="white", edgecolor="none", framealpha=0.9)
     else:
         val_ax.text(0.5, 0.5, "no validation lines yet", ha="center", va="center", transform=val_ax.transAxes, color="#888")
     for ax in (loss_ax, val_ax):
