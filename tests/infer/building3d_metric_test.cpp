@@ -13,9 +13,10 @@ namespace lc2wf {
 namespace {
 
 TEST(MinCostAssignment, SquareMatrixFindsTheCheapestPermutation) {
-  // Greedy row by row would take 1 + 0 + ... ; the optimum is row0->1, row1->0, row2->2 (1 + 2 + 2 = 5).
-  const std::vector<int> a = min_cost_assignment({{4, 1, 3}, {2, 0, 5}, {3, 2, 2}});
-  EXPECT_EQ(a, (std::vector<int>{1, 0, 2}));
+  // Rows 0 and 1 both prefer column 1; it goes to row 0 (1 + 2 + 2 = 5, against 4 + 0 + 2 = 6).
+  EXPECT_EQ(min_cost_assignment({{4, 1, 3}, {2, 0, 5}, {3, 2, 2}}), (std::vector<int>{1, 0, 2}));
+  // Greedy per row (row 0 -> its nearest column 0) would cost 1 + 10; the assignment costs 2 + 1.
+  EXPECT_EQ(min_cost_assignment({{1, 2}, {1, 10}}), (std::vector<int>{1, 0}));
 }
 
 TEST(MinCostAssignment, MoreRowsThanColumnsLeavesTheCostliestRowOut) {
