@@ -48,13 +48,14 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --gt-y-up       ground-truth .obj files are Y-up exports (Roof-Image res_obj, LC2WF house/)
   --strict-wed    also report the strict WED (charges spurious edges and extra vertices)
   --ties T        group (default) or list: how equal scores are ranked in the pooled AP list
+  --method NAME   row label in the tables (default: name of the --pred folder)
+  --quiet         no progress output
+
   --html          also write OUT/report.html: one self-contained page (opens offline) with the tables, a
                   per-building table sortable by every metric and a 3D viewer per building (needs Debian's
                   libjs-three; LC2WF_THREE_JS_DIR overrides /usr/share/javascript/three)
   --html-compare DIR  with --html: add the Table-2 rows of another lc2wf-eval --out folder (its metrics.json,
                   e.g. the --release-quirks run) to the report; may be repeated
-  --method NAME   row label in the tables (default: name of the --pred folder)
-  --quiet         no progress output
   -h, --help      this text
 
 A building listed in the split without a prediction file is scored as an empty wireframe and listed in
@@ -65,10 +66,11 @@ struct Args {
   fs::path pred, gt, data, split, out, weights;
   bool release_quirks = false, previews = false, no_junction_refine = false;
   CoordinateUnits units = CoordinateUnits::kMetres;
-  bool gt_y_up = false, strict_wed = false, quiet = false, html = false;
-  std::vector<fs::path> html_compare;
+  bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kGroupTies;
   std::string method;
+  bool html = false;                   // --html
+  std::vector<fs::path> html_compare;  // --html-compare, repeatable
 };
 
 Args parse_args(int argc, char** argv) {
