@@ -126,6 +126,7 @@ std::string HtmlReport::html(const EvalReport& report, const std::string& method
   h.reserve(three_js_.size() + 64 * 1024 + blocks_.size() * 40 * 1024);
   h += "<!doctype html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<meta name=\"generator\" content=\"lc2wf-eval\">\n"
+       "<link rel=\"icon\" href=\"data:,\">\n"  // no favicon request (a 404 when served over HTTP)
        "<title>lc2wf evaluation: " + html_escape(method) + "</title>\n<style>\n";
   h += embedded::kReportCss;
   h += "</style>\n</head>\n<body>\n";
