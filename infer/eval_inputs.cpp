@@ -52,6 +52,7 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
       throw DataError(path.string(), "line cloud has no ground-truth wireframe");
     gt.wireframe = std::move(cloud.wireframe);
     gt.units = cloud.units;
+    gt.cloud_segments = std::move(cloud.segments);
   } else if (path.extension() == ".polyshape") {
     Building b = load_roof_image_building(path);
     gt.wireframe = std::move(b.wireframe);

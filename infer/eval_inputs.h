@@ -28,6 +28,7 @@ struct GroundTruth {
   std::filesystem::path path;
   Wireframe wireframe;  // metres
   UnitTransform units;  // how this building's raw coordinates map to metres (used for raw predictions)
+  std::vector<Segment3> cloud_segments;  // line-cloud sources only: the cloud (metres), for reports and frames
 };
 
 // The file of `name` in the source folder: `<name>.obj` or `<name>.polyshape` (mesh folder; both present is

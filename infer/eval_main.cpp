@@ -10,7 +10,9 @@
 #include "core/util/progress.h"
 #include "infer/eval_inputs.h"
 #include "infer/eval_report_io.h"
+#include "infer/building3d_io.h"
 #include "infer/evaluator.h"
+#include "infer/html_report.h"
 #include "infer/prediction_io.h"
 #if LC2WF_EVAL_WITH_WEIGHTS
 #include "infer/batch_inference.h"
@@ -27,7 +29,8 @@ const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) --o
 
 Scores predicted wireframes against the ground truth with the LC2WF paper's metrics (Table 2):
 vAP/vRecall at eta = 0.15/0.25/0.35 m, sAP/sRecall at eta = 0.25/0.35/0.50 m (one ranked list pooled
-over all buildings) and WED (mean per building). See infer/README.md for the exact definitions.
+over all buildings) and WED (mean per building), plus Building3D-style CP/CR/CF1, EP/ER/EF1, ACO and
+B3D-nWED in a separate section. See infer/README.md for the exact definitions.
 
   --pred DIR      predicted wireframes <name>.obj ('v' + 'l') with optional <name>.json scores
                   (junction_scores / edge_scores); without scores every score is 1
@@ -48,6 +51,12 @@ over all buildings) and WED (mean per building). See infer/README.md for the exa
                   release) or group (precision/recall taken only after a whole group of equal scores)
   --method NAME   row label in the tables (default: name of the --pred folder)
   --quiet         no progress output
+
+  --html          also write OUT/report.html: one self-contained page (opens offline) with the tables, a
+                  per-building table sortable by every metric and a 3D viewer per building (needs Debian's
+                  libjs-three; LC2WF_THREE_JS_DIR overrides /usr/share/javascript/three)
+  --html-compare DIR  with --html: add the Table-2 rows of another lc2wf-eval --out folder (its metrics.json,
+                  e.g. the --release-quirks run) to the report; may be repeated
   -h, --help      this text
 
 A building listed in the split without a prediction file is scored as an empty wireframe and listed in
@@ -61,6 +70,8 @@ struct Args {
   bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kListOrder;
   std::string method;
+  bool html = false;                   // --html
+  std::vector<fs::path> html_compare;  // --html-compare, repeatable
 };
 
 Args parse_args(int argc, char** argv) {
@@ -81,6 +92,8 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--gt-y-up") a.gt_y_up = true;
     else if (f == "--strict-wed") a.strict_wed = true;
     else if (f == "--quiet") a.quiet = true;
+    else if (f == "--html") a.html = true;
+    else if (f == "--html-compare") a.html_compare.push_back(value(i));
     else if (f == "--units") {
       const std::string u = value(i);
       if (u == "metres" || u == "meters") a.units = CoordinateUnits::kMetres;
@@ -109,6 +122,10 @@ Args parse_args(int argc, char** argv) {
     fs::create_directories(a.pred);
   }
   if (a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
+  if (!a.html_compare.empty() && !a.html) throw UsageError("--html-compare only applies with --html");
+  for (const fs::path& d : a.html_compare)
+    if (!fs::is_regular_file(d / "metrics.json"))
+      throw UsageError("--html-compare: '" + (d / "metrics.json").string() + "' does not exist");
   if (a.out.empty()) throw UsageError("--out DIR is required");
   for (const fs::path& d : {a.pred, a.gt.empty() ? a.data : a.gt})
     if (!fs::is_directory(d)) throw UsageError("'" + d.string() + "' is not a folder");
@@ -160,6 +177,10 @@ int run(const Args& a) {
   options.strict_wed = a.strict_wed;
   options.raw_per_metre = source.raw_per_metre;
   Evaluator evaluator(options);
+  // Building3D-style counts in the frame of the line cloud (or of the GT corners when there is no cloud).
+  std::vector<Building3dCounts> building3d;
+  std::unique_ptr<HtmlReport> html;
+  if (a.html) html = std::make_unique<HtmlReport>(HtmlReportOptions{default_three_js_dir()});
   std::unique_ptr<Progress> progress;
   if (!a.quiet) progress = std::make_unique<Progress>("evaluating", static_cast<int64_t>(names.size()));
   for (const std::string& name : names) {
@@ -177,19 +198,28 @@ int run(const Args& a) {
         missing ? ScoredWireframe{}
                 : read_prediction(pred_path, a.units == CoordinateUnits::kRaw ? &gt.units : nullptr);
     evaluator.add(name, pred, gt.wireframe, missing);
+    const NormalisationFrame frame =
+        gt.cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(gt.cloud_segments);
+    building3d.push_back(building3d_counts(pred, gt.wireframe, frame));
+    if (html) html->add(pred, gt.wireframe, gt.cloud_segments, options);
     if (progress) progress->step();
   }
   if (progress) progress->finish();
 
   const EvalReport report = evaluator.report();
-  write_eval_outputs(a.out, report, a.method);
+  const Building3dReport b3d{summarize_building3d(building3d, {}, a.gt.empty() ? "line-cloud segment endpoints" : "GT corners"),
+                             names, building3d};
+  write_eval_outputs(a.out, report, a.method, &b3d);
   const auto missing = report.missing_predictions();
   if (!missing.empty())
     std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings have no prediction in %s (scored as empty)\n",
                  missing.size(), names.size(), a.pred.string().c_str());
-  std::fputs(eval_markdown(report, a.method).c_str(), stdout);
+  std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method)).c_str(), stdout);
   std::fprintf(stdout, "\nWrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),
                (a.out / "metrics.json").string().c_str(), (a.out / "per_building.csv").string().c_str());
+  if (html)
+    std::fprintf(stdout, "Report: %s\n",
+                 write_html_report(a.out, *html, report, a.method, &b3d, a.html_compare, a.weights).string().c_str());
   return 0;
 }
 

@@ -176,9 +176,16 @@ std::string eval_per_building_csv(const EvalReport& r) {
   return s;
 }
 
-void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method) {
-  write_text_atomically(dir / "metrics.md", eval_markdown(report, method));
-  write_text_atomically(dir / "metrics.json", eval_json(report, method).dump(2) + "\n");
+void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method,
+                        const Building3dReport* building3d) {
+  std::string md = eval_markdown(report, method);
+  nlohmann::json j = eval_json(report, method);
+  if (building3d) {
+    md += building3d_markdown(*building3d, method);
+    j["building3d"] = building3d_json(*building3d);
+  }
+  write_text_atomically(dir / "metrics.md", md);
+  write_text_atomically(dir / "metrics.json", j.dump(2) + "\n");
   write_text_atomically(dir / "per_building.csv", eval_per_building_csv(report));
 }
 

@@ -21,7 +21,13 @@ echo
 echo "== Same buildings, the release's post-processing (--release-quirks) =="
 "$build_dir/infer/lc2wf-eval" --weights "$out" --data "$data/clouds" --split "$data/test.txt" \
   --out "$out/eval-release-quirks" --release-quirks --method "lc2wf demo, release quirks" --quiet
+# Plots (PNG) and the HTML report with both runs' tables; scoring the saved predictions again needs no inference.
+/usr/bin/python3 "$root/tools/plots/plot_training.py" "$out" --out "$out/eval/plots/training.png" >/dev/null
+/usr/bin/python3 "$root/tools/plots/plot_eval.py" "$out/eval" >/dev/null
+"$build_dir/infer/lc2wf-eval" --pred "$out/eval/predictions" --data "$data/clouds" --split "$data/test.txt" \
+  --out "$out/eval" --method "lc2wf demo" --html --html-compare "$out/eval-release-quirks" --quiet >/dev/null
 echo
+echo "Report (open in a browser; tables, buildings worst first, 3D viewer, plots): $root/$out/eval/report.html"
 echo "Wireframes (.obj + scores .json): $root/$out/eval/predictions/"
 echo "Previews (grey: line cloud, red: prediction, green: ground truth): $root/$out/eval/previews/"
 echo "Metrics: $root/$out/eval/metrics.md (also metrics.json, per_building.csv); training log: $root/$out/log.jsonl"

@@ -7,10 +7,15 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libopencv-dev libopencv-contrib-dev
   python3-numpy
+  libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
 )
 # Rendering and pose tools are only needed by the dataset generator (tools/), so they are opt-in.
 if [[ "${LC2WF_WITH_RENDER_TOOLS:-0}" == 1 ]]; then
   packages+=(blender colmap)
+fi
+# Headless Chromium for the HTML report's browser test; tools/test.sh asks for it.
+if [[ "${LC2WF_WITH_BROWSER:-0}" == 1 ]]; then
+  packages+=(chromium)
 fi
 
 missing=()

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# The test command: installs missing dependencies (Blender too, for the end-to-end render test), builds,
-# and runs the default CTest suite.
+# The test command: installs missing dependencies (Blender too, for the end-to-end render test, and
+# Chromium for the HTML report's browser test), builds, and runs the default CTest suite.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} "$root/tools/build.sh" "$@"
+LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} LC2WF_WITH_BROWSER=${LC2WF_WITH_BROWSER:-1} \
+  "$root/tools/build.sh" "$@"
 cd "${LC2WF_BUILD_DIR:-$root/build}"
 # Long runs carry the "slow" label and are opt-in: ctest -L slow
 ctest --output-on-failure -j "$(nproc)" -LE slow

@@ -37,6 +37,7 @@ TEST(EvalCli, HelpAndUsageErrors) {
   const CliResult help = run_eval(dir.path(), "--help");
   EXPECT_EQ(help.code, 0);
   EXPECT_NE(help.out.find("Usage: lc2wf-eval"), std::string::npos);
+  for (const char* flag : {"--html", "--html-compare"}) EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
   const CliResult none = run_eval(dir.path(), "--pred " + dir.path().string() + " --out x");
   EXPECT_EQ(none.code, 2);
   EXPECT_NE(none.err.find("--gt"), std::string::npos);
@@ -68,7 +69,16 @@ TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {
   EXPECT_DOUBLE_EQ(j["wed_strict"]["add_vertex"].get<double>(), 4.0);
   const std::string csv = testing::read_text(out / "per_building.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
-  EXPECT_FALSE(testing::read_text(out / "metrics.md").empty());
+  EXPECT_NE(testing::read_text(out / "metrics.md").find("Building3D"), std::string::npos);
+  EXPECT_NE(j["building3d"]["frame"].get<std::string>().find("GT corners"), std::string::npos);  // no line cloud
+  EXPECT_DOUBLE_EQ(j["building3d"]["cr"].get<double>(), 0.5);  // b1's 8 corners exact, b2 missing
+  // --html without three.js: exit 1 naming the package; nothing half-written.
+  const CliResult html = testing::run_cli("LC2WF_THREE_JS_DIR=" + (dir.path() / "none").string() + " " +
+                                          LC2WF_EVAL_BIN + " --pred " + pred.string() + " --gt " + gt.string() +
+                                          " --out " + (dir.path() / "out_html").string() + " --units raw --html --quiet");
+  EXPECT_EQ(html.code, 1);
+  EXPECT_NE(html.err.find("libjs-three"), std::string::npos) << html.err;
+  EXPECT_FALSE(fs::exists(dir.path() / "out_html" / "report.html"));
   // Read in metres instead, the raw coordinates are 20x too large: nothing matches.
   const CliResult metres = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --out " +
                                               (dir.path() / "out_m").string() + " --quiet");
