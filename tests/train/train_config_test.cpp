@@ -47,6 +47,7 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.edge.net.lpt.patches, 512);
   EXPECT_EQ(c.junction.schedule.batch_size, 16);
   EXPECT_EQ(c.edge.schedule.batch_size, 32);
+  EXPECT_EQ(c.edge.schedule.micro_batch, 4);  // same batch and steps; bounds the edge step's memory
   EXPECT_EQ(c.junction.schedule.epochs, 41);
   EXPECT_EQ(c.edge.schedule.epochs, 31);
   EXPECT_EQ(c.junction.optim.milestones, (std::vector<int64_t>{15, 30, 41}));
