@@ -2,15 +2,12 @@
 
 #include <cstdio>
 
+#include "core/util/number_format.h"
+
 namespace lc2wf {
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-std::string pct(double v) { return fmt("%.1f", 100 * v); }
+std::string pct(double v) { return format_number("%.1f", 100 * v); }
 
 nlohmann::json counts_json(const Building3dCounts& c) {
   return {{"tp_corners", c.tp_corners}, {"pred_corners", c.pred_corners}, {"gt_corners", c.gt_corners},
@@ -26,12 +23,12 @@ std::string building3d_markdown(const Building3dReport& r, const std::string& me
   std::string md = "\n## (c) Building3D-style metrics (not the paper's; comparable in kind, not in value)\n\n";
   md += "| method | CP | CR | CF1 | EP | ER | EF1 | ACO (m) | B3D-nWED |\n|---|---|---|---|---|---|---|---|---|\n";
   md += "| " + method + " | " + pct(s.cp) + " | " + pct(s.cr) + " | " + pct(s.cf1) + " | " + pct(s.ep) + " | " +
-        pct(s.er) + " | " + pct(s.ef1) + " | " + fmt("%.3f", s.aco) + " | " + fmt("%.3f", s.nwed_mean) + " |\n\n";
+        pct(s.er) + " | " + pct(s.ef1) + " | " + format_number("%.3f", s.aco) + " | " + format_number("%.3f", s.nwed_mean) + " |\n\n";
   md += "Frame: centred on the " + s.frame_source + " centroid, divided by its maximum radius (mean " +
-        fmt("%.2f", s.mean_radius) + " m). Threshold: " + fmt("%g", s.options.distance_threshold) +
-        " normalised (≈ " + fmt("%.2f", s.options.distance_threshold * s.mean_radius) +
+        format_number("%.2f", s.mean_radius) + " m). Threshold: " + format_number("%g", s.options.distance_threshold) +
+        " normalised (≈ " + format_number("%.2f", s.options.distance_threshold * s.mean_radius) +
         " m at the mean radius). Confidence cut: predicted edges with score > " +
-        fmt("%g", s.options.confidence_threshold) +
+        format_number("%g", s.options.confidence_threshold) +
         " and their corners. Variant: Building3D 2023 calculator (Hungarian corner matching; an edge is a TP when "
         "both ends match the ends of a GT edge), counts pooled over buildings; ACO over all TP corners, in metres. "
         "B3D-nWED: the 2024 calculator's edit distance (corner moves + spurious and missed edge lengths) over the "

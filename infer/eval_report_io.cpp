@@ -5,25 +5,21 @@
 #include <cstdio>
 
 #include "core/util/atomic_file.h"
+#include "core/util/number_format.h"
 
 namespace lc2wf {
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 // Table 2b style: 0.766, 1.810, 11.49, 124.8.
 std::string wed_number(double v) {
   const double a = std::fabs(v);
-  return fmt(a < 10 ? "%.3f" : a < 100 ? "%.2f" : "%.1f", v);
+  return format_number(a < 10 ? "%.3f" : a < 100 ? "%.2f" : "%.1f", v);
 }
 
-std::string pct_pair(double ap, double recall) { return fmt("%.1f", 100 * ap) + "/" + fmt("%.1f", 100 * recall); }
+std::string pct_pair(double ap, double recall) { return format_number("%.1f", 100 * ap) + "/" + format_number("%.1f", 100 * recall); }
 
-std::string eta(double metres) { return fmt("%.2f", metres); }
+std::string eta(double metres) { return format_number("%.2f", metres); }
 
 std::string csv_field(const std::string& s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -65,7 +61,7 @@ std::string eval_markdown(const EvalReport& r, const std::string& method) {
   std::string s = "# Evaluation: " + method + "\n\n";
   s += std::to_string(r.buildings.size()) + " buildings";
   if (!missing.empty()) s += " (" + std::to_string(missing.size()) + " without a prediction, scored as empty)";
-  s += ". Distances in metres; thresholds η in metres (release raw units = η × " + fmt("%g", r.options.raw_per_metre) +
+  s += ". Distances in metres; thresholds η in metres (release raw units = η × " + format_number("%g", r.options.raw_per_metre) +
        ").\n\n";
 
   s += "## (a) vAP / vRecall and sAP / sRecall (%)\n\n| method |";
@@ -85,7 +81,7 @@ std::string eval_markdown(const EvalReport& r, const std::string& method) {
   s += "| " + method + " | " + wed_cell(r.wed.add_vertex, r.wed.move) + " | " +
        wed_cell(r.wed.add_edge, r.wed.add_edge_length) + " | " + wed_cell(r.wed.del_edge, r.wed.del_edge_length) +
        " | " + wed_cell(r.wed.total_num, r.wed.total_dist) + " |\n\n";
-  s += "Release WED: \"+vertex Dist\" is the move cost Σ sqrt(raw distance)/" + fmt("%g", r.options.raw_per_metre) +
+  s += "Release WED: \"+vertex Dist\" is the move cost Σ sqrt(raw distance)/" + format_number("%g", r.options.raw_per_metre) +
        "; spurious edges and extra vertices are free.\n";
   if (r.options.strict_wed) {
     const WedMean& w = r.wed_strict;
@@ -155,7 +151,7 @@ std::string eval_per_building_csv(const EvalReport& r) {
     s += ",strict_add_vertex,strict_del_vertex,strict_move,strict_add_edge,strict_add_edge_length,strict_del_edge,"
          "strict_del_edge_length,strict_total_num,strict_total_dist";
   s += "\n";
-  auto num = [](double v) { return fmt("%.9g", v); };
+  auto num = [](double v) { return format_number("%.9g", v); };
   for (const auto& b : r.buildings) {
     s += csv_field(b.name) + "," + (b.prediction_missing ? "1" : "0") + "," + std::to_string(b.gt_vertices) + "," +
          std::to_string(b.gt_edges) + "," + std::to_string(b.pred_vertices) + "," + std::to_string(b.pred_edges);
