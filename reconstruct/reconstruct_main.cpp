@@ -36,8 +36,11 @@ ground at z = 0:
           exist; --up z keeps the input z axis, --up X,Y,Z gives it
   scale   --scale F (metres per COLMAP unit), or --known-distance A,B,D (the camera centres of images
           A and B are D metres apart), else an estimate: the cloud's height above its ground is set
-          to 7.25 m (every Roof-Image building is that tall; for real buildings give a scale)
+          to 7.25 m (every Roof-Image building is that tall; for real buildings give a scale;
+          height = 99th - 1st percentile of the endpoint heights)
   origin  x/y at the median segment midpoint, z = 0 at the 1st percentile of endpoint heights
+Up, height and origin are measured on the lines with >= 5 supporting 2D segments (when there are
+>= 50), so texture clutter above the roof and below the ground does not bias them.
 With --cameras FILE.json (the project's cameras: metres, z up) the frame is kept: up z, scale 1.
 
 Options:
@@ -49,6 +52,9 @@ Options:
   --focal-35mm F         else fx = fy = F / 36 x width (EXIF FocalLengthIn35mmFilm; default 35)
   --max-features N       SIFT features per image (default 2000)
   --matcher M            exhaustive (default) or sequential (photos taken in order)
+  --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
+                         the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two
+                         confirming views)
   --up U                 auto (default), cameras (no line refinement), z, or X,Y,Z
   --scale F              metres per input unit
   --known-distance A,B,D camera centres of images A and B (file names) are D metres apart
@@ -91,6 +97,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--focal-35mm") o.focal_35mm = number_flag(f, value());
     else if (f == "--max-features") o.colmap.max_features = int_flag(f, value());
     else if (f == "--matcher") o.colmap.matcher = value();
+    else if (f == "--min-score") o.triangulator.min_best_score = number_flag(f, value());
     else if (f == "--scale") {
       o.frame.scale = number_flag(f, value());
       if (!(o.frame.scale > 0)) throw UsageError("--scale must be > 0");

@@ -41,6 +41,10 @@ struct ReconstructOptions {
   TriangulatorOptions triangulator;
 
   MetricFrameOptions frame;
+  // The frame is measured on lines with at least this many supporting 2D segments (source, partner and
+  // 3 agreeing views), when there are frame_min_lines of them; else on all lines.
+  int frame_min_supports = 5;
+  int frame_min_lines = 50;
   bool up_given = false;     // frame.up set on the command line
   bool scale_given = false;  // frame.scale or a known distance set on the command line
   std::string known_image_a, known_image_b;  // file names for frame.known_distance_m

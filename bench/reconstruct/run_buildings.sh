@@ -6,7 +6,9 @@
 #      (--cameras), each aligned to the render cameras by a similarity for scoring;
 #   3. lc2wf-eval of the three against the GT meshes, and the per-stage seconds of every run.
 # usage: bench/reconstruct/run_buildings.sh WEIGHTS NAMES_FILE OUT [MESHES_DIR]
-# e.g.   bench/reconstruct/run_buildings.sh models/base runs/test-names.txt runs/recon-bench
+# e.g.   bench/reconstruct/run_buildings.sh models/base bench/reconstruct/test-buildings.txt runs/recon-bench
+# POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
+# output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.
 set -euo pipefail
 weights=$1 names=$2 out=$3
 meshes=${4:-../shared/data/roof-image/res_building}
@@ -31,6 +33,7 @@ while read -r n; do
   for mode in photos given-cameras; do
     extra=()
     [ "$mode" = given-cameras ] && extra=(--cameras "$views/cameras.json")
+    [ "$mode" = photos ] && [ -n "${POSES_FROM:-}" ] && extra=(--cameras "$POSES_FROM/recon-photos/$n/cameras.json")
     rm -rf "$out/recon-$mode/$n"
     code=0
     "$bin/reconstruct/lc2wf-reconstruct" "$out/photos/$n" --weights "$weights" -o "$out/recon-$mode/$n" \

@@ -1,8 +1,7 @@
 // lc2wf-reconstruct end to end on one held-out Roof-Image building: Blender renders with the SfM
 // textures, cameras thrown away, COLMAP poses, LSD, triangulation, the metric frame from the cameras'
 // up vectors and the typical-height scale estimate. Checked against the cameras Blender used: views
-// registered, the recovered scale, and the cloud's distance to the GT edges after the camera
-// similarity. Tiny random networks: the wireframe itself is measured by bench/reconstruct (README).
+// registered, the recovered scale, and the GT edges the cloud covers after the camera similarity. Tiny random networks: the wireframe itself is measured by bench/reconstruct (README).
 // Skipped when blender, colmap or the Roof-Image data are missing.
 #include <gtest/gtest.h>
 
@@ -88,16 +87,23 @@ TEST(ReconstructBuilding, PhotosOfAHeldOutBuildingGiveAMetricCloudOnItsEdges) {
   // Every Roof-Image building is 7.25 m tall, so the typical-height estimate is nearly exact here.
   EXPECT_NEAR(rep["reference"]["scale_to_reference"].get<double>(), 1.0, 0.1);
   EXPECT_LT(rep["reference"]["rotation_error_deg_median"].get<double>(), 1.0);
-  // The cloud, put into the building's frame by the camera similarity, lies on the GT edges.
+  // The cloud, put into the building's frame by the camera similarity, covers the GT edges: a GT edge
+  // counts when some segment has both endpoints within 0.15 m of it (photo-like textures also give many
+  // clutter lines, so a median over all lines says little).
   const Similarity to_ref = similarity_from_json(rep["reference"]["to_reference"]);
   const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
-  std::vector<double> d;
-  for (const Segment3& s : cloud.segments) {
-    d.push_back(distance_to_edges(to_ref.apply(s.a), building.wireframe));
-    d.push_back(distance_to_edges(to_ref.apply(s.b), building.wireframe));
+  int covered = 0;
+  for (size_t e = 0; e < building.wireframe.edges.size(); ++e) {
+    Wireframe one;
+    one.junctions = building.wireframe.junctions;
+    one.edges = {building.wireframe.edges[e]};
+    for (const Segment3& s : cloud.segments)
+      if (distance_to_edges(to_ref.apply(s.a), one) < 0.15 && distance_to_edges(to_ref.apply(s.b), one) < 0.15 && s.length() > 0) {
+        ++covered;
+        break;
+      }
   }
-  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-  EXPECT_LT(d[d.size() / 2], 0.25) << "median endpoint distance to the GT edges, metres";
+  EXPECT_GE(covered, 0.6 * building.wireframe.edges.size()) << covered << " of " << building.wireframe.edges.size() << " GT edges covered";
   EXPECT_TRUE(fs::exists(o.out / "wireframe_aligned.obj"));
   if (!HasFailure()) fs::remove_all(dir);  // kept for inspection when something failed
 }
