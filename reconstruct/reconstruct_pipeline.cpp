@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <optional>
@@ -157,14 +158,21 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   log.start("frame");
   std::vector<Camera> registered;
   for (const auto& v : views) registered.push_back(v.camera);
-  // Lines confirmed by >= 3 other views only: texture clutter (most of a cloud from photo-like textures,
-  // with lines metres above the roof and below the ground) would bias the height, the up and the origin.
-  std::vector<Segment3> segments, all_segments;
-  for (const auto& l : lines) {
-    all_segments.push_back(l.line);
-    if (static_cast<int>(l.support.size()) >= o.frame_min_supports) segments.push_back(l.line);
+  // The best-supported lines only: texture clutter (most of a cloud from photo-like textures, with
+  // lines metres above the roof and below the ground) would bias the height, the up and the origin.
+  // Support counts grow with the number of views, so the threshold is the largest that keeps enough lines.
+  std::vector<Segment3> segments;
+  int min_supports = o.frame_max_supports;
+  for (; min_supports >= 3; --min_supports) {
+    segments.clear();
+    for (const auto& l : lines)
+      if (static_cast<int>(l.support.size()) >= min_supports) segments.push_back(l.line);
+    if (static_cast<int>(segments.size()) >= o.frame_min_lines) break;
   }
-  if (static_cast<int>(segments.size()) < o.frame_min_lines) segments = all_segments;
+  if (min_supports < 3) {
+    segments.clear();
+    for (const auto& l : lines) segments.push_back(l.line);
+  }
   MetricFrameOptions fo = o.frame;
   if (cams.metric_z_up && !o.up_given) fo.up = UpSource::kInputZ;  // the project's cameras are metric and z-up
   if (cams.metric_z_up && !o.scale_given) fo.scale = 1.0;
@@ -190,7 +198,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   report["frame"] = {{"to_metric", similarity_json(frame.to_metric)}, {"up_input", vec_json(frame.up_input)},
                      {"up_source", frame.up_source}, {"vertical_lines", frame.vertical_lines},
                      {"scale_source", frame.scale_source}, {"height_input_units", frame.height_input},
-                     {"lines_used", segments.size()},
+                     {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
                      {"height_m", frame.height_input * frame.to_metric.scale}};
   log.done(seconds, "up from " + frame.up_source + ", scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source + ")");
 

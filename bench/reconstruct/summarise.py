@@ -29,7 +29,7 @@ totals = {}
 for n in names:
     p = out / "recon-photos" / n / "report.json"
     if not p.exists():
-        print(f"| {n} | failed | | | | | | | | | | | |")
+        print(f"| {n} | not run or failed (see logs/) | | | | | | | | | | | |")
         continue
     r = json.load(open(p))
     sec = r["seconds"]
