@@ -6,7 +6,10 @@
 #include <vector>
 
 #include "dataset/errors.h"
+#include "dataset/limap_io.h"
+#include "dataset/line3dpp_io.h"
 #include "dataset/line_cloud_io.h"
+#include "dataset/line_obj_io.h"
 #include "dataset/release_json.h"
 
 namespace lc2wf {
@@ -17,15 +20,37 @@ CloudFormat parse_cloud_format(const std::string& text, const std::string& what)
   if (text == "auto") return CloudFormat::kAuto;
   if (text == "lc2wf") return CloudFormat::kLc2wf;
   if (text == "release") return CloudFormat::kRelease;
-  throw std::invalid_argument(what + " must be \"auto\", \"lc2wf\" or \"release\", got \"" + text + "\"");
+  if (text == "line3dpp") return CloudFormat::kLine3dpp;
+  if (text == "limap") return CloudFormat::kLimap;
+  if (text == "obj") return CloudFormat::kLineObj;
+  throw std::invalid_argument(what + " must be auto, lc2wf, release, line3dpp, limap or obj, got \"" + text + "\"");
 }
 
+namespace {
+
+// Clouds made by other programs: frame and units as in the file, no supports, no ground truth.
+LineCloud load_external_cloud(const fs::path& path, CloudFormat format) {
+  if (format == CloudFormat::kAuto)
+    format = fs::is_directory(path) ? CloudFormat::kLimap : path.extension() == ".obj" ? CloudFormat::kLineObj : CloudFormat::kLine3dpp;
+  const ExternalLineMap map = format == CloudFormat::kLimap      ? read_limap_tracks(path)
+                              : format == CloudFormat::kLineObj ? read_line_obj(path)
+                                                                : read_line3dpp_txt(path);
+  return to_line_cloud(map, path.stem().string(), path.string());
+}
+
+}  // namespace
+
 LineCloud load_line_cloud(const fs::path& path, CloudFormat format, double raw_per_metre) {
+  const bool external = format == CloudFormat::kLine3dpp || format == CloudFormat::kLimap || format == CloudFormat::kLineObj;
+  if (external || (format == CloudFormat::kAuto && (fs::is_directory(path) || path.extension() == ".obj")))
+    return load_external_cloud(path, format);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path.string(), "cannot open line cloud");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string bytes = ss.str();
+  if (format == CloudFormat::kAuto && looks_like_line3dpp_txt(bytes))
+    return to_line_cloud(parse_line3dpp_txt(bytes, path.string()), path.stem().string(), path.string());
   if (format == CloudFormat::kAuto) {
     // Both formats may start with '{'; only the release's JSON has `junc3DList` without our format tag.
     const bool release = bytes.find("\"junc3DList\"") != std::string::npos &&
@@ -48,7 +73,7 @@ fs::path find_cloud_file(const fs::path& dir, const std::string& name) {
   std::vector<fs::path> hits;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec))
-    if (entry.is_regular_file() && entry.path().stem() == name) hits.push_back(entry.path());
+    if ((entry.is_regular_file() || is_limap_tracks_dir(entry.path())) && entry.path().stem() == name) hits.push_back(entry.path());
   if (ec) throw DataError(dir.string(), "cannot list folder: " + ec.message());
   if (hits.empty()) throw DataError(dir.string(), "no line-cloud file for building '" + name + "'");
   if (hits.size() > 1)

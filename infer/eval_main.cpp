@@ -3,6 +3,7 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,8 +40,12 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --release-quirks  with --weights: the release's post-processing instead of the sound rules
   --no-junction-refine  with --weights: keep the regressed junction positions (see lc2wf-infer --help)
   --previews      with --weights: also write OUT/previews/<name>.png
+  --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
+                  line3dpp (Line3D++ .txt), limap (finaltracks/ folder) or obj (line OBJ); clouds
+                  without ground truth (Line3D++, LIMAP, OBJ) need --gt
   --gt DIR        ground truth <name>.obj ('v' + 'f'/'l') or <name>.polyshape (Roof-Image mesh)
-  --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth
+  --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth;
+                  with --weights and --gt, only the clouds to run on
   --split FILE    building names, one per line (default: every ground-truth building in the folder)
   --out DIR       writes metrics.md, metrics.json and per_building.csv there
   --units U       metres (default) or raw: units of the .obj files; raw coordinates are mapped to metres
@@ -66,6 +71,7 @@ the outputs. Exit codes: 0 success, 1 bad or missing input data / I/O error, 2 b
 struct Args {
   fs::path pred, gt, data, split, out, weights;
   bool release_quirks = false, previews = false, no_junction_refine = false;
+  std::string format = "auto";
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kListOrder;
@@ -84,6 +90,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--release-quirks") a.release_quirks = true;
     else if (f == "--no-junction-refine") a.no_junction_refine = true;
     else if (f == "--previews") a.previews = true;
+    else if (f == "--format") a.format = value(i);
     else if (f == "--gt") a.gt = value(i);
     else if (f == "--data") a.data = value(i);
     else if (f == "--split") a.split = value(i);
@@ -113,21 +120,30 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty()) throw UsageError("--weights needs lc2wf built with the nn module");
 #endif
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
-  if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine))
-    throw UsageError("--release-quirks, --no-junction-refine and --previews only apply with --weights");
+  if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine || a.format != "auto"))
+    throw UsageError("--release-quirks, --no-junction-refine, --previews and --format only apply with --weights");
   if (!a.weights.empty()) {
     if (!fs::is_directory(a.weights)) throw UsageError("'" + a.weights.string() + "' is not a folder");
     if (a.out.empty()) throw UsageError("--out DIR is required");
     a.pred = a.out / "predictions";
     fs::create_directories(a.pred);
   }
-  if (a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
+#if LC2WF_EVAL_WITH_WEIGHTS
+  try {
+    parse_cloud_format(a.format, "--format");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+#endif
+  // With --weights, --data holds the clouds and --gt (optional) the ground truth.
+  if (a.weights.empty() && a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
+  if (a.gt.empty() && a.data.empty()) throw UsageError("give --gt DIR or --data DIR");
   if (!a.html_compare.empty() && !a.html) throw UsageError("--html-compare only applies with --html");
   for (const fs::path& d : a.html_compare)
     if (!fs::is_regular_file(d / "metrics.json"))
       throw UsageError("--html-compare: '" + (d / "metrics.json").string() + "' does not exist");
   if (a.out.empty()) throw UsageError("--out DIR is required");
-  for (const fs::path& d : {a.pred, a.gt.empty() ? a.data : a.gt})
+  for (const fs::path& d : {a.pred, a.gt.empty() ? a.data : a.gt, a.data.empty() ? a.gt : a.data})
     if (!fs::is_directory(d)) throw UsageError("'" + d.string() + "' is not a folder");
   if (!a.split.empty() && !fs::is_regular_file(a.split))
     throw UsageError("split file '" + a.split.string() + "' does not exist");
@@ -161,6 +177,7 @@ int run(const Args& a) {
     if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
     if (a.no_junction_refine) inference.post.selection.refine.radius = 0.0;
     inference.quiet = a.quiet;
+    inference.format = parse_cloud_format(a.format, "--format");
     if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
     const BatchInferenceSummary s = infer_clouds(WireframePredictor(a.weights), clouds, a.pred, inference);
     if (s.failed > 0) {

@@ -33,7 +33,10 @@ wireframe and a note, never a failure.
                       refinement); default: sound rules
   --no-junction-refine  keep the regressed junction positions (default: each selected junction moves
                       to the meeting point of the cloud's segments ending within 0.5 m of it)
-  --format F          auto (default), lc2wf or release (LineCloud JSON)
+  --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
+                      limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
+                      the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in
+                      their own frame as metres, z up (dataset/README.md)
   --threads N         compute threads (default: all)
   --quiet             no progress output
   -h, --help          this text

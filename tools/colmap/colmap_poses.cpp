@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -15,6 +14,7 @@
 
 #include "dataset/errors.h"
 #include "dataset/line_meeting_point.h"
+#include "tools/process/run_process.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;
@@ -186,6 +186,8 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
   pc.registered = static_cast<int>(ids.size());
   pc.inliers = static_cast<int>(inliers.size());
   pc.scale = sim.s;
+  pc.rotation = sim.R;
+  pc.translation = sim.t;
   pc.camera_distance = camera_distance;
   pc.centre_error.assign(reference.size(), std::nan(""));
   pc.rotation_deg.assign(reference.size(), std::nan(""));
@@ -221,17 +223,29 @@ void ColmapOptions::Check() const {
 
 namespace {
 
-std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
-
-// Runs one COLMAP command, appending its output to the log; returns its wall time in seconds.
-double run_step(const std::string& cmd, const fs::path& log, const std::string& step) {
-  const auto start = std::chrono::steady_clock::now();
-  const int status = std::system((cmd + " >> " + quote(log) + " 2>&1").c_str());
-  if (status != 0) throw std::runtime_error("COLMAP " + step + " failed (status " + std::to_string(status) + "); see " + log.string());
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+// Runs one COLMAP command (argument vector, no shell), appending its output to the log; returns its wall time.
+double run_step(const std::vector<std::string>& argv, const fs::path& log, const std::string& step) {
+  const ProcessResult r = run_process(argv, log);
+  if (r.exit_code != 0) {
+    const std::string how = r.signal ? "killed by signal " + std::to_string(r.signal)
+                            : r.exit_code < 0 ? "could not start '" + argv[0] + "'"
+                                              : "exit code " + std::to_string(r.exit_code);
+    throw std::runtime_error("COLMAP " + step + " failed (" + how + "); see " + log.string());
+  }
+  return r.seconds;
 }
 
 }  // namespace
+
+std::vector<ColmapImage> read_colmap_model(const fs::path& dir, const fs::path& scratch, const std::string& colmap_executable) {
+  if (fs::exists(dir / "cameras.txt")) return read_colmap_text_model(dir);
+  if (!fs::exists(dir / "cameras.bin") || !fs::exists(dir / "images.bin"))
+    throw DataError(dir.string(), "not a COLMAP model (no cameras.txt/images.txt or cameras.bin/images.bin)");
+  fs::create_directories(scratch);
+  run_step({colmap_executable, "model_converter", "--input_path", dir.string(), "--output_path", scratch.string(), "--output_type", "TXT"},
+           scratch / "model_converter.log", "model_converter (binary model to text)");
+  return read_colmap_text_model(scratch);
+}
 
 ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
                                      const ColmapOptions& o) {
@@ -245,7 +259,6 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
     names.push_back(p.filename().string());
   }
   const fs::path db = workspace / "database.db", log = workspace / "colmap.log", image_dir = workspace / "images";
-  const std::string exe = quote(o.executable);
   const std::string threads = std::to_string(o.threads > 0 ? o.threads : -1);
   std::ostringstream params;
   params.precision(17);
@@ -253,21 +266,22 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
   ColmapRun run;
   run.step_seconds.emplace_back(
       "feature_extractor",
-      run_step(exe + " feature_extractor --database_path " + quote(db) + " --image_path " + quote(image_dir) +
-                   " --ImageReader.camera_model PINHOLE --ImageReader.single_camera 1 --ImageReader.camera_params " + params.str() +
-                   " --SiftExtraction.use_gpu 0 --SiftExtraction.num_threads " + threads +
-                   " --SiftExtraction.max_num_features " + std::to_string(o.max_features),
+      run_step({o.executable, "feature_extractor", "--database_path", db.string(), "--image_path", image_dir.string(),
+                "--ImageReader.camera_model", "PINHOLE", "--ImageReader.single_camera", "1", "--ImageReader.camera_params",
+                params.str(), "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads,
+                "--SiftExtraction.max_num_features", std::to_string(o.max_features)},
                log, "feature_extractor"));
   const std::string matcher = o.matcher + "_matcher";
-  std::string match_cmd = exe + " " + matcher + " --database_path " + quote(db) + " --SiftMatching.use_gpu 0 --SiftMatching.num_threads " + threads;
-  if (o.matcher == "sequential") match_cmd += " --SequentialMatching.overlap " + std::to_string(o.sequential_overlap);
+  std::vector<std::string> match_cmd = {o.executable, matcher, "--database_path", db.string(), "--SiftMatching.use_gpu", "0",
+                                        "--SiftMatching.num_threads", threads};
+  if (o.matcher == "sequential") match_cmd.insert(match_cmd.end(), {"--SequentialMatching.overlap", std::to_string(o.sequential_overlap)});
   run.step_seconds.emplace_back(matcher, run_step(match_cmd, log, matcher));
   fs::create_directories(workspace / "sparse");
-  const std::string mapper_cmd = exe + " mapper --database_path " + quote(db) + " --image_path " + quote(image_dir) +
-                                 " --output_path " + quote(workspace / "sparse") + " --Mapper.num_threads " + threads +
-                                 " --Mapper.init_min_num_inliers " + std::to_string(o.init_min_inliers) +
-                                 " --Mapper.abs_pose_min_num_inliers " + std::to_string(o.abs_pose_min_inliers) +
-                                 " --Mapper.ba_refine_focal_length 0 --Mapper.ba_refine_principal_point 0 --Mapper.ba_refine_extra_params 0";
+  const std::vector<std::string> mapper_cmd = {
+      o.executable, "mapper", "--database_path", db.string(), "--image_path", image_dir.string(), "--output_path",
+      (workspace / "sparse").string(), "--Mapper.num_threads", threads, "--Mapper.init_min_num_inliers",
+      std::to_string(o.init_min_inliers), "--Mapper.abs_pose_min_num_inliers", std::to_string(o.abs_pose_min_inliers),
+      "--Mapper.ba_refine_focal_length", "0", "--Mapper.ba_refine_principal_point", "0", "--Mapper.ba_refine_extra_params", "0"};
   try {
     run.step_seconds.emplace_back("mapper", run_step(mapper_cmd, log, "mapper"));
   } catch (const std::runtime_error&) {
@@ -285,8 +299,8 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
   for (int m = 0; fs::exists(workspace / "sparse" / std::to_string(m)); ++m) {
     const fs::path txt = workspace / ("model_txt_" + std::to_string(m));
     fs::create_directories(txt);
-    convert_seconds += run_step(exe + " model_converter --input_path " + quote(workspace / "sparse" / std::to_string(m)) +
-                                    " --output_path " + quote(txt) + " --output_type TXT",
+    convert_seconds += run_step({o.executable, "model_converter", "--input_path", (workspace / "sparse" / std::to_string(m)).string(),
+                                 "--output_path", txt.string(), "--output_type", "TXT"},
                                 log, "model_converter");
     auto model = read_colmap_text_model(txt);
     if (model.size() > best.size()) best = std::move(model);

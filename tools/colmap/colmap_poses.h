@@ -21,6 +21,11 @@ struct ColmapImage {
   Camera camera;
 };
 
+// Reads a COLMAP model folder: text (cameras.txt, images.txt) as below, or binary (cameras.bin,
+// images.bin), converted to text in `scratch` with `colmap model_converter` first.
+std::vector<ColmapImage> read_colmap_model(const std::filesystem::path& dir, const std::filesystem::path& scratch,
+                                           const std::string& colmap_executable = "colmap");
+
 // Reads cameras.txt and images.txt of a COLMAP text model (PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL and
 // RADIAL are accepted; distortion must be zero). Throws DataError naming the file and line.
 std::vector<ColmapImage> read_colmap_text_model(const std::filesystem::path& dir);
@@ -29,7 +34,9 @@ struct PoseComparison {
   int reference = 0;       // views in the reference
   int registered = 0;      // views COLMAP placed
   int inliers = 0;         // registered views the final similarity was fitted to
-  double scale = 1.0;      // similarity that maps the estimated centres onto the reference ones
+  double scale = 1.0;      // similarity X_ref = scale * rotation * X_est + translation that maps the estimated
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  // centres onto the reference ones
+  Vec3 translation = Vec3::Zero();
   double median_centre_error = 0, max_centre_error = 0;  // reference units, after alignment
   double median_rotation_deg = 0, max_rotation_deg = 0;
   double camera_distance = 0;  // median distance from a reference camera to the point its axes aim at

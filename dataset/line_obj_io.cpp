@@ -1,0 +1,38 @@
+#include "dataset/line_obj_io.h"
+
+#include <cstdio>
+
+#include "dataset/atomic_file.h"
+#include "dataset/errors.h"
+#include "dataset/mesh_io.h"
+
+namespace lc2wf {
+
+ExternalLineMap read_line_obj(const std::filesystem::path& path) {
+  const ObjData obj = read_obj(path);
+  if (!obj.mesh.faces.empty()) throw DataError(path.string(), "has faces ('f'): a line-cloud OBJ holds 'v' and 'l' only");
+  if (obj.lines.empty()) throw DataError(path.string(), "no 'l' segment: not a line-cloud OBJ");
+  ExternalLineMap map;
+  map.lines.reserve(obj.lines.size());
+  for (const auto& [i, j] : obj.lines) {
+    ExternalLine line;
+    line.segments.push_back({obj.mesh.vertices[i], obj.mesh.vertices[j]});
+    map.lines.push_back(std::move(line));
+  }
+  return map;
+}
+
+std::string line_obj_string(const LineCloud& cloud) {
+  std::string s = "# lc2wf line cloud '" + cloud.name + "': " + std::to_string(cloud.segments.size()) + " segments (metres)\n";
+  char buf[128];
+  for (const Segment3& l : cloud.segments) {
+    std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\nv %.9g %.9g %.9g\n", l.a.x(), l.a.y(), l.a.z(), l.b.x(), l.b.y(), l.b.z());
+    s += buf;
+  }
+  for (size_t k = 0; k < cloud.segments.size(); ++k) s += "l " + std::to_string(2 * k + 1) + " " + std::to_string(2 * k + 2) + "\n";
+  return s;
+}
+
+void write_line_obj(const std::filesystem::path& path, const LineCloud& cloud) { write_file_atomic(path, line_obj_string(cloud)); }
+
+}  // namespace lc2wf

@@ -1,0 +1,163 @@
+// lc2wf-reconstruct: a folder of photos -> a 3D wireframe (cameras, LSD, triangulation, metric frame,
+// inference, post-processing), with the line cloud, a preview and a JSON report.
+#include <algorithm>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+
+#include "core/util/cli.h"
+#include "dataset/errors.h"
+#include "reconstruct/reconstruct_pipeline.h"
+#include "reconstruct/stage_error.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace lc2wf;
+
+const char* kUsage = R"(Usage: lc2wf-reconstruct IMAGES_DIR --weights DIR -o OUT [options]
+
+Photos of one building -> 3D wireframe. Stages (progress on stderr): weights, images (*.png, *.jpg of
+IMAGES_DIR in name order, one camera), cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments),
+triangulation (our multi-view line triangulation), frame (scale, up, ground), inference (junction and
+edge models), outputs. OUT receives, only when every stage succeeded:
+  wireframe.obj + wireframe.json   the wireframe (metres, z up) and its scores
+  cloud.lcloud, cloud.obj          the line cloud (our format; OBJ for MeshLab)
+  cameras.json                     the cameras in the output frame (null = not registered)
+  preview.png                      cloud (grey) and wireframe (red)
+  report.json                      images registered, segments, 3D lines, junctions, edges, the frame
+                                   and the seconds of every stage
+
+Frame. COLMAP's frame has no metric scale and an arbitrary up axis; the networks expect metres, z up,
+ground at z = 0:
+  up      the mean of the cameras' up vectors (photos are taken upright), refined by the dominant
+          direction of the 3D lines within 15 deg of it (vertical wall corners) when >= 10 such lines
+          exist; --up z keeps the input z axis, --up X,Y,Z gives it
+  scale   --scale F (metres per COLMAP unit), or --known-distance A,B,D (the camera centres of images
+          A and B are D metres apart), else an estimate: the cloud's height above its ground is set
+          to 7.25 m (every Roof-Image building is that tall; for real buildings give a scale;
+          height = 99th - 1st percentile of the endpoint heights)
+  origin  x/y at the median segment midpoint, z = 0 at the 1st percentile of endpoint heights
+Up, height and origin are measured on the best-supported lines (>= k supporting 2D segments, k the
+largest up to 8 that leaves >= 100 lines), so texture clutter above the roof and below the ground does
+not bias them.
+With --cameras FILE.json (the project's cameras: metres, z up) the frame is kept: up z, scale 1.
+
+Options:
+  --weights DIR          junction.safetensors + edge.safetensors written by lc2wf-train (required)
+  -o, --out OUT          output folder (created; other files in it are left alone)
+  --cameras PATH         known cameras instead of COLMAP: a COLMAP model folder (cameras/images .txt
+                         or .bin, matched by image name) or a cameras JSON (one entry or null per image)
+  --intrinsics fx,fy,cx,cy  COLMAP intrinsics (OpenCV convention: pixel (0,0) = centre of top-left pixel)
+  --focal-35mm F         else fx = fy = F / 36 x width (EXIF FocalLengthIn35mmFilm; default 35)
+  --max-features N       SIFT features per image (default 2000)
+  --matcher M            exhaustive (default) or sequential (photos taken in order)
+  --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
+                         the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two
+                         confirming views)
+  --up U                 auto (default), cameras (no line refinement), z, or X,Y,Z
+  --scale F              metres per input unit
+  --known-distance A,B,D camera centres of images A and B (file names) are D metres apart
+  --reference-cameras F  evaluation: also write wireframe_aligned.obj in the frame of these cameras
+                         (cameras JSON, one per image; similarity fitted on the camera centres)
+  --release-quirks       post-process as the paper's release (see lc2wf-infer --help)
+  --workspace DIR        intermediate files there (must be new or empty; never deleted)
+  --keep                 keep the private temporary workspace (its path is printed)
+  -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)
+  -q, --quiet            no progress output
+  -h, --help             this text
+
+Exit codes: 0 done; 1 done, but some images were unreadable or not registered, or the wireframe is
+empty (see "warnings" in report.json); 2 bad command line; 3 data or I/O error (too few images,
+too few registered, no 2D or 3D lines, unreadable weights or cameras; the message names the stage and
+the files, and nothing is written to OUT).
+)";
+
+Vec3 parse_vector(const std::string& flag, const std::string& value) {
+  double x, y, z;
+  char tail;
+  if (std::sscanf(value.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3) throw UsageError(flag + " expects X,Y,Z, got '" + value + "'");
+  return Vec3(x, y, z);
+}
+
+ReconstructOptions parse_args(int argc, char** argv) {
+  ReconstructOptions o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    auto value = [&] { return flag_value(argc, argv, i); };
+    if (f == "--weights") o.weights = value();
+    else if (f == "-o" || f == "--out") o.out = value();
+    else if (f == "--cameras") o.cameras = value();
+    else if (f == "--reference-cameras") o.reference_cameras = value();
+    else if (f == "--workspace") o.workspace = value();
+    else if (f == "--keep") o.keep = true;
+    else if (f == "-q" || f == "--quiet") o.quiet = true;
+    else if (f == "-j" || f == "--threads") o.threads = static_cast<int>(std::min<long long>(parse_count_flag(f, value()), 4096));
+    else if (f == "--release-quirks") o.post = PostProcessOptions::release_quirks();
+    else if (f == "--focal-35mm") o.focal_35mm = number_flag(f, value());
+    else if (f == "--max-features") o.colmap.max_features = int_flag(f, value());
+    else if (f == "--matcher") o.colmap.matcher = value();
+    else if (f == "--min-score") o.triangulator.min_best_score = number_flag(f, value());
+    else if (f == "--scale") {
+      o.frame.scale = number_flag(f, value());
+      if (!(o.frame.scale > 0)) throw UsageError("--scale must be > 0");
+      o.scale_given = true;
+    } else if (f == "--intrinsics") {
+      double fx, fy, cx, cy;
+      char tail;
+      const std::string v = value();
+      if (std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &fx, &fy, &cx, &cy, &tail) != 4) throw UsageError("--intrinsics expects fx,fy,cx,cy, got '" + v + "'");
+      o.intrinsics = Eigen::Vector4d(fx, fy, cx, cy);
+    } else if (f == "--known-distance") {
+      const std::string v = value();
+      const size_t c1 = v.find(','), c2 = v.rfind(',');
+      if (c1 == std::string::npos || c2 == c1) throw UsageError("--known-distance expects IMAGE_A,IMAGE_B,METRES, got '" + v + "'");
+      o.known_image_a = v.substr(0, c1);
+      o.known_image_b = v.substr(c1 + 1, c2 - c1 - 1);
+      o.frame.known_distance_m = number_flag(f, v.substr(c2 + 1));
+      if (!(o.frame.known_distance_m > 0)) throw UsageError("--known-distance: the distance must be > 0");
+      o.scale_given = true;
+    } else if (f == "--up") {
+      const std::string v = value();
+      o.up_given = true;
+      if (v == "auto") o.frame.up = UpSource::kAuto;
+      else if (v == "cameras") o.frame.up = UpSource::kCameras;
+      else if (v == "z") o.frame.up = UpSource::kInputZ;
+      else o.frame.up = UpSource::kGiven, o.frame.given_up = parse_vector(f, v);
+    } else if (!f.empty() && f[0] == '-') {
+      throw UsageError("unknown option '" + f + "'");
+    } else if (o.images.empty()) {
+      o.images = f;
+    } else {
+      throw UsageError("one image folder only, got '" + f + "' too");
+    }
+  }
+  if (o.images.empty()) throw UsageError("IMAGES_DIR is required");
+  if (!fs::is_directory(o.images)) throw UsageError("'" + o.images.string() + "' is not a folder");
+  if (o.weights.empty()) throw UsageError("--weights DIR is required");
+  if (o.out.empty()) throw UsageError("-o OUT is required");
+  try {
+    o.Check();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+  return o;
+}
+
+int run(const ReconstructOptions& o) {
+  try {
+    const ReconstructResult r = reconstruct(o);
+    for (const auto& w : r.warnings) std::fprintf(stderr, "lc2wf-reconstruct: warning: %s\n", w.c_str());
+    return r.exit_code;
+  } catch (const std::exception& e) {
+    // StageError names its stage; other failures here are I/O (workspace, outputs).
+    const bool staged = dynamic_cast<const StageError*>(&e) != nullptr;
+    std::fprintf(stderr, "lc2wf-reconstruct: error: %s%s\nnothing was written to %s\n", staged ? "" : "I/O: ", e.what(), o.out.string().c_str());
+    return kReconstructDataError;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return cli_main("lc2wf-reconstruct", kUsage, argc, argv, parse_args, run); }

@@ -1,0 +1,109 @@
+// Fixing an SfM frame's scale, up axis and ground (dataset/metric_frame.h): a synthetic building seen by
+// a ring of upright cameras is moved into a random similarity frame and brought back.
+#include <gtest/gtest.h>
+
+#include "dataset/metric_frame.h"
+#include "dataset/synthetic_building.h"
+#include "dataset/synthetic_line_cloud.h"
+
+namespace lc2wf {
+namespace {
+
+struct Scene {
+  Building building = make_rect_building("box", RectBuildingSpec{});
+  std::vector<Camera> cameras;
+  std::vector<Segment3> segments;  // the GT edges: vertical wall corners, base outline at z = 0
+  double height = 0;
+};
+
+Scene scene_in(const Similarity& sfm) {
+  Scene s;
+  CameraRingOptions ring;
+  ring.num_views = 12;
+  for (const Camera& c : make_camera_ring(s.building, ring)) s.cameras.push_back(sfm.apply(c));
+  for (const auto& e : s.building.wireframe.edges)
+    s.segments.push_back(sfm.apply(Segment3{s.building.wireframe.junctions[e[0]], s.building.wireframe.junctions[e[1]]}));
+  for (const Vec3& j : s.building.wireframe.junctions) s.height = std::max(s.height, j.z());
+  return s;
+}
+
+Similarity random_sfm_frame() {
+  Similarity sfm;
+  sfm.scale = 0.137;
+  sfm.R = Eigen::AngleAxisd(0.7, Vec3(0.3, -0.8, 0.5).normalized()).toRotationMatrix();
+  sfm.t = Vec3(3.0, -1.5, 12.0);
+  return sfm;
+}
+
+TEST(MetricFrame, CamerasGiveUpAndTheCloudGivesGroundAndScale) {
+  const Similarity sfm = random_sfm_frame();
+  const Scene s = scene_in(sfm);
+  MetricFrameOptions o;
+  o.typical_height_m = s.height;  // the estimate assumes a known typical height
+  o.min_vertical_lines = 4;
+  const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
+  EXPECT_EQ(f.up_source, "cameras+lines");
+  EXPECT_EQ(f.scale_source, "estimate (typical height)");
+  EXPECT_NEAR(f.to_metric.scale * sfm.scale, 1.0, 1e-9);
+  // Back in metres: z is up again (up to a turn about z) and the ground is at 0.
+  const Eigen::Matrix3d back = f.to_metric.R * sfm.R;
+  EXPECT_NEAR((back * Vec3::UnitZ() - Vec3::UnitZ()).norm(), 0.0, 1e-9);
+  for (const Vec3& j : s.building.wireframe.junctions) {
+    const Vec3 p = f.to_metric.apply(sfm.apply(j));
+    EXPECT_NEAR(p.z(), j.z(), 1e-9);
+  }
+}
+
+TEST(MetricFrame, GivenScaleAndKnownDistanceWinOverTheEstimate) {
+  const Similarity sfm = random_sfm_frame();
+  const Scene s = scene_in(sfm);
+  MetricFrameOptions o;
+  o.scale = 2.5;
+  EXPECT_DOUBLE_EQ(estimate_metric_frame(s.cameras, s.segments, o).to_metric.scale, 2.5);
+  o.scale = 0;
+  o.known_view_a = 0, o.known_view_b = 5;
+  const Vec3 ca = sfm.inverse().apply(s.cameras[0].center()), cb = sfm.inverse().apply(s.cameras[5].center());
+  o.known_distance_m = (ca - cb).norm();  // metres in the building frame
+  const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
+  EXPECT_EQ(f.scale_source, "known distance");
+  EXPECT_NEAR(f.to_metric.scale * sfm.scale, 1.0, 1e-9);
+}
+
+TEST(MetricFrame, CameraUpWithoutLinesAndTiltedCamerasStayClose) {
+  Similarity sfm = random_sfm_frame();
+  Scene s = scene_in(sfm);
+  // Hand-held photos are not perfectly upright: 3 deg of roll on every other camera.
+  for (size_t k = 0; k < s.cameras.size(); k += 2) s.cameras[k].R = Eigen::AngleAxisd(0.05, Vec3::UnitZ()).toRotationMatrix() * s.cameras[k].R;
+  MetricFrameOptions o;
+  o.up = UpSource::kCameras;
+  const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
+  EXPECT_EQ(f.up_source, "cameras");
+  const Vec3 up_metres = (f.to_metric.R * sfm.R).transpose() * Vec3::UnitZ();
+  EXPECT_LT(std::acos(std::min(1.0, up_metres.dot(Vec3::UnitZ()))) * 180 / M_PI, 2.0);
+  // The vertical wall corners pull it back to the true up.
+  o.up = UpSource::kAuto;
+  o.min_vertical_lines = 4;
+  const MetricFrame g = estimate_metric_frame(s.cameras, s.segments, o);
+  const Vec3 refined = (g.to_metric.R * sfm.R).transpose() * Vec3::UnitZ();
+  EXPECT_LT(std::acos(std::min(1.0, refined.dot(Vec3::UnitZ()))) * 180 / M_PI, 1e-6);
+}
+
+TEST(MetricFrame, SimilarityMapsCamerasConsistently) {
+  const Similarity sfm = random_sfm_frame();
+  const Building b = make_rect_building("box", RectBuildingSpec{});
+  const Camera c = make_camera_ring(b).front();
+  const Camera moved = sfm.apply(c);
+  const Vec3 p(1.0, 2.0, 3.0);
+  EXPECT_LT((moved.project(sfm.apply(p)) - c.project(p)).norm(), 1e-9);
+  EXPECT_LT((sfm.inverse().apply(sfm.apply(p)) - p).norm(), 1e-12);
+}
+
+TEST(MetricFrame, BadInputIsRejected) {
+  MetricFrameOptions o;
+  EXPECT_THROW(estimate_metric_frame({}, {}, o), std::invalid_argument);
+  o.known_distance_m = 3;
+  EXPECT_THROW(o.Check(), std::invalid_argument);  // no views named
+}
+
+}  // namespace
+}  // namespace lc2wf

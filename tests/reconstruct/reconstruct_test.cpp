@@ -1,0 +1,237 @@
+// lc2wf-reconstruct's pipeline on raster renders of a synthetic building with known cameras (no COLMAP):
+// outputs, the metric frame from an arbitrary SfM frame, and every bad input the command must survive.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "dataset/atomic_file.h"
+#include "dataset/line_cloud_io.h"
+#include "reconstruct/reconstruct_pipeline.h"
+#include "reconstruct/stage_error.h"
+#include "test_scene.h"
+
+namespace lc2wf {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 d = b - a;
+  const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+  return (a + t * d - p).norm();
+}
+
+// Median distance of the cloud's endpoints (mapped by `to_gt`) to the nearest GT edge.
+double median_edge_distance(const LineCloud& cloud, const Wireframe& gt, const Similarity& to_gt) {
+  std::vector<double> d;
+  for (const Segment3& s : cloud.segments)
+    for (const Vec3& p : {to_gt.apply(s.a), to_gt.apply(s.b)}) {
+      double best = 1e9;
+      for (const auto& e : gt.edges) best = std::min(best, point_segment_distance(p, gt.junctions[e[0]], gt.junctions[e[1]]));
+      d.push_back(best);
+    }
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+Similarity similarity_from_json(const Json& j) {
+  Similarity s;
+  s.scale = j["scale"].get<double>();
+  for (int k = 0; k < 9; ++k) s.R(k / 3, k % 3) = j["R"][k].get<double>();
+  for (int k = 0; k < 3; ++k) s.t[k] = j["t"][k].get<double>();
+  return s;
+}
+
+class Reconstruct : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test::scratch("suite"));
+    scene_ = new test::RenderedFolder(test::render_synthetic_folder(*dir_ / "scene", 12));
+    test::write_tiny_weights(*dir_ / "weights");
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete scene_;
+    delete dir_;
+  }
+  ReconstructOptions options(const std::string& out) const {
+    ReconstructOptions o;
+    o.images = scene_->images;
+    o.weights = *dir_ / "weights";
+    o.out = *dir_ / out;
+    o.quiet = true;
+    o.threads = 2;
+    return o;
+  }
+  static fs::path* dir_;
+  static test::RenderedFolder* scene_;
+};
+fs::path* Reconstruct::dir_ = nullptr;
+test::RenderedFolder* Reconstruct::scene_ = nullptr;
+
+TEST_F(Reconstruct, KnownCamerasGiveEveryOutputInTheirFrame) {
+  ReconstructOptions o = options("known");
+  o.cameras = scene_->cameras_json;
+  const ReconstructResult r = reconstruct(o);
+  EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1);  // random weights may give an empty wireframe
+  for (const char* f : {"wireframe.obj", "wireframe.json", "cloud.lcloud", "cloud.obj", "cameras.json", "preview.png", "report.json"})
+    EXPECT_TRUE(fs::exists(o.out / f)) << f;
+  const Json report = Json::parse(read_file(o.out / "report.json"));
+  EXPECT_EQ(report["cameras"]["registered"], 12);
+  EXPECT_GT(report["lines_3d"].get<int>(), 50);
+  EXPECT_EQ(report["frame"]["up_source"], "input z");
+  EXPECT_EQ(report["frame"]["scale_source"], "given");
+  for (const char* stage : {"weights", "images", "cameras", "lsd", "triangulation", "frame", "inference", "outputs", "total"})
+    EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
+  // The cloud, taken back to the building frame, lies on the building's edges.
+  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
+  const Similarity to_gt = similarity_from_json(report["frame"]["to_metric"]).inverse();
+  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
+  EXPECT_TRUE(r.workspace.empty());  // the private workspace is gone
+}
+
+TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
+  // The known cameras written as a COLMAP text model in an arbitrary similarity frame (scale 0.2).
+  Similarity sfm;
+  sfm.scale = 0.2;
+  sfm.R = Eigen::AngleAxisd(1.1, Vec3(0.6, 0.2, -0.7).normalized()).toRotationMatrix();
+  sfm.t = Vec3(-4, 2, 9);
+  const fs::path model = *dir_ / "colmap_model";
+  fs::create_directories(model);
+  const Camera& c0 = scene_->cameras[0];
+  std::ofstream(model / "cameras.txt") << "# camera\n1 PINHOLE " << c0.width << " " << c0.height << " " << c0.K(0, 0) << " " << c0.K(1, 1)
+                                       << " " << c0.K(0, 2) + 0.5 << " " << c0.K(1, 2) + 0.5 << "\n";
+  std::ofstream images(model / "images.txt");
+  images.precision(17);
+  for (size_t v = 0; v < scene_->cameras.size(); ++v) {
+    const Camera c = sfm.apply(scene_->cameras[v]);
+    const Eigen::Vector4d q = rotation_to_quaternion(c.R);
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03zu.png", v);
+    images << v + 1 << " " << q(0) << " " << q(1) << " " << q(2) << " " << q(3) << " " << c.t.x() << " " << c.t.y() << " " << c.t.z()
+           << " 1 " << name << "\n\n";
+  }
+  images.close();
+  double height = 0;
+  for (const Vec3& j : scene_->building.wireframe.junctions) height = std::max(height, j.z());
+
+  ReconstructOptions o = options("sfm_frame");
+  o.cameras = model;
+  o.frame.typical_height_m = height;  // the scale estimate's prior, here the building's true height
+  const ReconstructResult r = reconstruct(o);
+  const Json& f = r.report["frame"];
+  EXPECT_EQ(f["scale_source"], "estimate (typical height)");
+  const Similarity to_metric = similarity_from_json(f["to_metric"]);
+  EXPECT_NEAR(to_metric.scale * sfm.scale, 1.0, 0.05);
+  const Vec3 up = (to_metric.R * sfm.R).transpose() * Vec3::UnitZ();  // metric up seen in the building frame
+  EXPECT_LT(std::acos(std::min(1.0, up.z())) * 180 / M_PI, 1.0);
+
+  // A known distance between two camera centres fixes the scale exactly.
+  ReconstructOptions k = options("known_distance");
+  k.cameras = model;
+  k.known_image_a = "view_000.png", k.known_image_b = "view_006.png";
+  k.frame.known_distance_m = (scene_->cameras[0].center() - scene_->cameras[6].center()).norm();
+  k.scale_given = true;
+  const ReconstructResult rk = reconstruct(k);
+  const Json& g = rk.report["frame"];
+  EXPECT_EQ(g["scale_source"], "known distance");
+  EXPECT_NEAR(g["to_metric"]["scale"].get<double>() * sfm.scale, 1.0, 1e-6);
+}
+
+void expect_stage_error(const ReconstructOptions& o, const std::string& stage, const std::string& text) {
+  try {
+    reconstruct(o);
+    ADD_FAILURE() << "no error";
+  } catch (const StageError& e) {
+    EXPECT_EQ(e.stage(), stage) << e.what();
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(o.out)) << "nothing may be written to OUT";
+}
+
+TEST_F(Reconstruct, TooFewImages) {
+  const fs::path images = *dir_ / "two_images";
+  fs::create_directories(images);
+  for (const char* n : {"view_000.png", "view_001.png"}) fs::copy_file(scene_->images / n, images / n);
+  std::ofstream(images / "notes.txt") << "not an image";
+  ReconstructOptions o = options("too_few");
+  o.images = images;
+  expect_stage_error(o, "images", "2 readable image(s) in " + images.string() + ", at least 3 needed");
+}
+
+TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
+  const fs::path images = *dir_ / "with_broken";
+  fs::create_directories(images);
+  Json cams = Json::parse(read_file(scene_->cameras_json));
+  for (const auto& e : fs::directory_iterator(scene_->images)) fs::copy_file(e.path(), images / e.path().filename());
+  std::ofstream(images / "view_005b.png") << "\x89PNG but not really";
+  cams.insert(cams.begin() + 6, nullptr);  // one entry per image file, in name order
+  write_file_atomic(*dir_ / "cams_broken.json", cams.dump());
+  ReconstructOptions o = options("broken");
+  o.images = images;
+  o.cameras = *dir_ / "cams_broken.json";
+  const ReconstructResult r = reconstruct(o);
+  EXPECT_EQ(r.exit_code, 1);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_EQ(r.warnings[0], "unreadable image skipped: view_005b.png");
+  EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png"}));
+}
+
+TEST_F(Reconstruct, ImagesWithoutLines) {
+  const fs::path images = *dir_ / "blank";
+  fs::create_directories(images);
+  for (int v = 0; v < 12; ++v) cv::imwrite((images / ("view_" + std::string(v < 10 ? "00" : "0") + std::to_string(v) + ".png")).string(), cv::Mat(480, 640, CV_8UC1, cv::Scalar(128)));
+  ReconstructOptions o = options("blank_out");
+  o.images = images;
+  o.cameras = scene_->cameras_json;
+  expect_stage_error(o, "lsd", "no 2D line segment in any of the 12 registered images");
+}
+
+TEST_F(Reconstruct, TooFewRegisteredImages) {
+  Json cams = Json::parse(read_file(scene_->cameras_json));
+  for (size_t i = 2; i < cams.size(); ++i) cams[i] = nullptr;
+  write_file_atomic(*dir_ / "cams_two.json", cams.dump());
+  ReconstructOptions o = options("unregistered");
+  o.cameras = *dir_ / "cams_two.json";
+  expect_stage_error(o, "cameras", "2 of 12 images registered (cameras json), at least 3 needed; unregistered: [\"view_002.png\"");
+}
+
+TEST_F(Reconstruct, CamerasFileOfTheWrongSize) {
+  write_file_atomic(*dir_ / "cams_short.json", "[null]");
+  ReconstructOptions o = options("short");
+  o.cameras = *dir_ / "cams_short.json";
+  expect_stage_error(o, "cameras", "cams_short.json has 1 cameras for 12 images");
+}
+
+TEST_F(Reconstruct, NamedWorkspaceIsNeverCleared) {
+  const fs::path ws = *dir_ / "my_workspace";
+  fs::create_directories(ws);
+  std::ofstream(ws / "precious.txt") << "mine";
+  ReconstructOptions o = options("ws_out");
+  o.cameras = scene_->cameras_json;
+  o.workspace = ws;
+  EXPECT_THROW(reconstruct(o), std::runtime_error);
+  EXPECT_TRUE(fs::exists(ws / "precious.txt"));
+  EXPECT_FALSE(fs::exists(o.out));
+
+  o.workspace = *dir_ / "new_workspace";
+  const ReconstructResult r = reconstruct(o);
+  EXPECT_EQ(r.workspace, o.workspace.string());
+  EXPECT_TRUE(fs::exists(o.workspace / "out" / "report.json"));  // kept: the user named it
+}
+
+TEST_F(Reconstruct, KeepKeepsThePrivateWorkspace) {
+  ReconstructOptions o = options("keep_out");
+  o.cameras = scene_->cameras_json;
+  o.keep = true;
+  const ReconstructResult r = reconstruct(o);
+  ASSERT_FALSE(r.workspace.empty());
+  EXPECT_TRUE(fs::exists(fs::path(r.workspace) / "out" / "cloud.lcloud"));
+  fs::remove_all(r.workspace);
+}
+
+}  // namespace
+}  // namespace lc2wf

@@ -1,0 +1,82 @@
+#include "test_scene.h"
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "dataset/atomic_file.h"
+#include "dataset/camera_json.h"
+#include "dataset/synthetic_building.h"
+#include "nn/checkpoint.h"
+#include "nn/edge_net.h"
+#include "nn/junction_net.h"
+#include "tools/render/camera_ring.h"
+#include "tools/render/raster_renderer.h"
+
+namespace lc2wf::test {
+
+namespace fs = std::filesystem;
+
+RenderedFolder render_synthetic_folder(const fs::path& dir, int views) {
+  RenderedFolder f;
+  f.building = make_l_building("l", LBuildingSpec{});
+  CameraRingOptions ring;
+  ring.views = views;
+  ring.seed = 4;
+  f.cameras = make_camera_ring(f.building.mesh.vertices, ring);
+  RasterOptions raster;
+  raster.seed = 9;
+  const RasterRenderer renderer(f.building.mesh, raster);
+  f.images = dir / "images";
+  fs::create_directories(f.images);
+  nlohmann::json cams = nlohmann::json::array();
+  for (int v = 0; v < views; ++v) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03d.png", v);
+    cv::imwrite((f.images / name).string(), renderer.render(f.cameras[v], v).image);
+    cams.push_back(camera_to_json(f.cameras[v]));
+  }
+  f.cameras_json = dir / "cameras.json";
+  write_file_atomic(f.cameras_json, cams.dump());
+  return f;
+}
+
+namespace {
+
+LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features) {
+  LptConfig c;
+  c.input_dim = features;
+  c.patches = patches;
+  c.lines_per_patch = lines;
+  c.mlp_dims = {8, 16};
+  c.hidden_dim = 16;
+  c.num_heads = 2;
+  c.ffn_dim = 16;
+  return c;
+}
+
+}  // namespace
+
+void write_tiny_weights(const fs::path& dir) {
+  fs::create_directories(dir);
+  JunctionNetConfig jc;
+  jc.lpt = tiny_lpt(32, 8, 7);
+  jc.head.dims = {8};
+  EdgeNetConfig ec;
+  ec.lpt = tiny_lpt(16, 16, 6);
+  ec.head.dims = {8};
+  JunctionNet j(jc, 3);
+  EdgeNet e(ec, 4);
+  save_checkpoint(dir / "junction.safetensors", j, {{"stage", "junction"}, {"net", jc.to_json()}}, j.dropout_rng(), nullptr, {});
+  save_checkpoint(dir / "edge.safetensors", e, {{"stage", "edge"}, {"net", ec.to_json()}}, e.dropout_rng(), nullptr, {});
+}
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("lc2wf_reconstruct_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+}  // namespace lc2wf::test

@@ -1,0 +1,29 @@
+// Shared scenes for the reconstruct tests: a folder of raster renders of a synthetic building with its
+// cameras.json, and tiny randomly initialised networks (the pipeline runs; the wireframe is not judged).
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "dataset/building.h"
+
+namespace lc2wf::test {
+
+struct RenderedFolder {
+  std::filesystem::path images;  // view_XXX.png
+  std::filesystem::path cameras_json;
+  std::vector<Camera> cameras;
+  Building building;
+};
+
+// `views` raster renders (640x480, paper textures) of an L-shaped building into dir/images, the cameras
+// into dir/cameras.json (kept outside the image folder).
+RenderedFolder render_synthetic_folder(const std::filesystem::path& dir, int views);
+
+// junction.safetensors + edge.safetensors of tiny random networks in `dir`.
+void write_tiny_weights(const std::filesystem::path& dir);
+
+// A fresh scratch folder per test and process.
+std::filesystem::path scratch(const std::string& name);
+
+}  // namespace lc2wf::test
