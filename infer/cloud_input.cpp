@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "dataset/atomic_file.h"
 #include "dataset/errors.h"
 #include "dataset/line_cloud_io.h"
 #include "dataset/release_json.h"
@@ -21,11 +22,7 @@ CloudFormat parse_cloud_format(const std::string& text, const std::string& what)
 }
 
 LineCloud load_line_cloud(const fs::path& path, CloudFormat format, double raw_per_metre) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(path.string(), "cannot open line cloud");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string bytes = ss.str();
+  const std::string bytes = read_file(path);  // regular files only: a FIFO or /dev/zero never ends
   if (format == CloudFormat::kAuto) {
     // Both formats may start with '{'; only the release's JSON has `junc3DList` without our format tag.
     const bool release = bytes.find("\"junc3DList\"") != std::string::npos &&
