@@ -196,7 +196,7 @@ LineCloud line_cloud_from_bytes(const std::string& bytes, const std::string& src
   LineCloud c;
   try {
     if (h.value("format", "") != "lc2wf-linecloud") throw DataError(src, "'format' is not lc2wf-linecloud");
-    if (h.value("version", 0) != kVersion) throw DataError(src, "unsupported version");
+    if (!h.contains("version") || json_exact<int64_t>(h.at("version"), "version") != kVersion) throw DataError(src, "unsupported version");
     c.name = h.value("name", "");
     const auto& u = h.at("units");
     c.units.raw_per_metre = u.at("raw_per_metre").get<double>();
