@@ -9,6 +9,7 @@
 namespace lc2wf {
 
 std::string read_file(const std::filesystem::path& path) {
+  if (const std::string problem = input_file_problem(path); !problem.empty()) throw DataError(path.string(), problem);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw DataError(path.string(), "cannot open file");
   std::ostringstream ss;

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "core/util/json_number.h"
 #include "dataset/errors.h"
 
 namespace lc2wf {
@@ -19,17 +20,19 @@ nlohmann::json camera_to_json(const Camera& camera) {
 
 Camera camera_from_json(const nlohmann::json& j, const std::string& source) {
   try {
-    const auto K = j.at("K").get<std::vector<double>>(), R = j.at("R").get<std::vector<double>>();
-    const auto t = j.at("t").get<std::vector<double>>();
+    const auto K = json_exact_array<double>(j.at("K"), "camera K"), R = json_exact_array<double>(j.at("R"), "camera R");
+    const auto t = json_exact_array<double>(j.at("t"), "camera t");
     if (K.size() != 9 || R.size() != 9 || t.size() != 3) throw DataError(source, "camera needs K[9], R[9], t[3]");
     Camera c;
     c.K = Eigen::Map<const RowMajor3>(K.data());
     c.R = Eigen::Map<const RowMajor3>(R.data());
     c.t = Vec3(t[0], t[1], t[2]);
-    c.width = j.at("width").get<int>();
-    c.height = j.at("height").get<int>();
+    c.width = json_exact<int>(j.at("width"), "camera width");  // 2^32 + 640 must not become 640
+    c.height = json_exact<int>(j.at("height"), "camera height");
     return c;
   } catch (const nlohmann::json::exception& e) {
+    throw DataError(source, std::string("malformed camera: ") + e.what());
+  } catch (const std::invalid_argument& e) {
     throw DataError(source, std::string("malformed camera: ") + e.what());
   }
 }

@@ -14,6 +14,11 @@ namespace lc2wf {
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 
+// Largest coordinate magnitude the readers accept (metres or raw units alike): far beyond any building or
+// geo-referenced frame, small enough that differences, squared distances and projections never overflow.
+constexpr double kMaxCoordinate = 1e9;
+inline bool within_coordinate_limit(const Vec3& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
+
 // Pinhole camera in the OpenCV convention: x_cam = R * X_world + t, pixel = K * x_cam / z, with pixel
 // (0,0) at the *centre* of the top-left pixel, x right, y down, z forward.
 struct Camera {

@@ -45,7 +45,8 @@ void validate_line_cloud(const LineCloud& c, const std::string& src) {
   const int nv = static_cast<int>(c.wireframe.junctions.size());
   for (size_t i = 0; i < n; ++i) {
     const auto& s = c.segments[i];
-    if (!finite(s.a) || !finite(s.b)) throw DataError(src, "segment " + std::to_string(i) + " has a non-finite coordinate");
+    if (!within_coordinate_limit(s.a) || !within_coordinate_limit(s.b))
+      throw DataError(src, "segment " + std::to_string(i) + " has a non-finite coordinate or one beyond +-1e9");
     if (s.length() <= 0) throw DataError(src, "segment " + std::to_string(i) + " has zero length");
   }
   for (size_t v = 0; v < c.cameras.size(); ++v) {
@@ -55,7 +56,8 @@ void validate_line_cloud(const LineCloud& c, const std::string& src) {
     if (!(std::abs(cam.R.determinant() - 1.0) < 1e-3)) throw DataError(src, "camera " + std::to_string(v) + " R is not a rotation");
   }
   for (size_t j = 0; j < c.wireframe.junctions.size(); ++j) {
-    if (!finite(c.wireframe.junctions[j])) throw DataError(src, "GT junction " + std::to_string(j) + " is not finite");
+    if (!within_coordinate_limit(c.wireframe.junctions[j]))
+      throw DataError(src, "GT junction " + std::to_string(j) + " is not finite or beyond +-1e9");
   }
   for (size_t e = 0; e < c.wireframe.edges.size(); ++e) {
     const auto& ed = c.wireframe.edges[e];

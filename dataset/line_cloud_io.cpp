@@ -5,6 +5,7 @@
 #include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "core/util/json_number.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "dataset/errors.h"
@@ -69,22 +70,25 @@ class BlockReader {
     if (!b.is_object() || b.value("dtype", "") != dtype_name<T>()) {
       throw DataError(src_, "array '" + name + "' must have dtype " + dtype_name<T>());
     }
-    const auto shape = b.at("shape").get<std::vector<int64_t>>();
+    const auto shape = json_exact_array<int64_t>(b.at("shape"), "arrays." + name + ".shape");
     const std::vector<int64_t> want = cols > 0 ? std::vector<int64_t>{rows, cols} : std::vector<int64_t>{rows};
     if (shape != want) throw DataError(src_, "array '" + name + "' has the wrong shape");
-    const size_t count = static_cast<size_t>(rows) * static_cast<size_t>(cols > 0 ? cols : 1);
-    std::vector<T> out(count);
+    // Sizes are checked against what the file holds before anything is allocated: a header may claim 10^8 rows.
+    if (rows < 0 || (cols > 0 && rows > INT64_MAX / cols)) throw DataError(src_, "array '" + name + "' has an impossible size");
+    const uint64_t count = static_cast<uint64_t>(rows) * static_cast<uint64_t>(cols > 0 ? cols : 1);
     if (b.contains("data")) {
-      out = b.at("data").get<std::vector<T>>();
-      if (out.size() != count) throw DataError(src_, "array '" + name + "' has " + std::to_string(out.size()) + " values, shape says " + std::to_string(count));
-    } else {
-      const auto offset = b.at("offset").get<uint64_t>();
-      const auto bytes = b.at("bytes").get<uint64_t>();
-      if (bytes != count * sizeof(T) || offset > blob_.size() || bytes > blob_.size() - offset) {
-        throw DataError(src_, "array '" + name + "' lies outside the binary block (file truncated?)");
-      }
-      if (count) std::memcpy(out.data(), blob_.data() + offset, bytes);
+      const Json& data = b.at("data");
+      if (!data.is_array() || data.size() != count)
+        throw DataError(src_, "array '" + name + "' has " + std::to_string(data.is_array() ? data.size() : 0) + " values, shape says " + std::to_string(count));
+      return json_exact_array<T>(data, "arrays." + name + ".data");
     }
+    const auto offset = json_exact<uint64_t>(b.at("offset"), "arrays." + name + ".offset");
+    const auto bytes = json_exact<uint64_t>(b.at("bytes"), "arrays." + name + ".bytes");
+    if (count > blob_.size() / sizeof(T) || bytes != count * sizeof(T) || offset > blob_.size() || bytes > blob_.size() - offset) {
+      throw DataError(src_, "array '" + name + "' lies outside the binary block (file truncated?)");
+    }
+    std::vector<T> out(count);
+    if (count) std::memcpy(out.data(), blob_.data() + offset, bytes);
     return out;
   }
 
@@ -192,7 +196,7 @@ LineCloud line_cloud_from_bytes(const std::string& bytes, const std::string& src
   LineCloud c;
   try {
     if (h.value("format", "") != "lc2wf-linecloud") throw DataError(src, "'format' is not lc2wf-linecloud");
-    if (h.value("version", 0) != kVersion) throw DataError(src, "unsupported version");
+    if (!h.contains("version") || json_exact<int64_t>(h.at("version"), "version") != kVersion) throw DataError(src, "unsupported version");
     c.name = h.value("name", "");
     const auto& u = h.at("units");
     c.units.raw_per_metre = u.at("raw_per_metre").get<double>();
@@ -206,9 +210,14 @@ LineCloud line_cloud_from_bytes(const std::string& bytes, const std::string& src
       if (v.size() != 3) throw DataError(src, "wireframe junction needs 3 values");
       c.wireframe.junctions.emplace_back(v[0], v[1], v[2]);
     }
-    c.wireframe.edges = h.at("wireframe").at("edges").get<std::vector<std::array<int, 2>>>();
-    const auto n = h.at("num_segments").get<int64_t>();
-    if (n < 0) throw DataError(src, "num_segments is negative");
+    for (const auto& e : h.at("wireframe").at("edges")) {
+      const auto ids = json_exact_array<int>(e, "wireframe.edges");
+      if (ids.size() != 2) throw DataError(src, "wireframe edge needs 2 ids");
+      c.wireframe.edges.push_back({ids[0], ids[1]});
+    }
+    const auto n = json_exact<int64_t>(h.at("num_segments"), "num_segments");
+    // Every segment takes at least 6 numbers of the file: bounds the count before anything is allocated.
+    if (n < 0 || static_cast<uint64_t>(n) > bytes.size() / 6) throw DataError(src, "num_segments " + std::to_string(n) + " does not fit the file's size");
     const BlockReader r(h.at("arrays"), blob, src);
     const auto seg = r.get<double>("segments", n, 6);
     c.segments.resize(n);

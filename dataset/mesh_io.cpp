@@ -42,7 +42,6 @@ PolyMesh parse_polyshape(std::istream& in, const std::string& src) {
   const int nf = parse_header_count(line, "faces", src, line_no);
 
   PolyMesh mesh;
-  mesh.vertices.reserve(nv);
   for (int i = 0; i < nv; ++i) {
     next_line("a vertex line 'x,y,z'");
     const auto tok = split_tokens(line, ",");
@@ -53,10 +52,10 @@ PolyMesh parse_polyshape(std::istream& in, const std::string& src) {
       if (!d) throw DataError(src, line_no, "vertex coordinate '" + std::string(tok[k]) + "' is not a finite number");
       v[k] = *d;
     }
+    if (!within_coordinate_limit(v)) throw DataError(src, line_no, "vertex coordinate beyond +-1e9");
     mesh.vertices.push_back(v);
   }
-  mesh.faces.reserve(nf);
-  mesh.labels.reserve(nf);
+  // No reserve() from the header counts: a 100-byte file may claim 10^7 faces.
   for (int i = 0; i < nf; ++i) {
     next_line("a face line 'v1,...,vk,label'");
     const auto tok = split_tokens(line, ",");
@@ -85,6 +84,7 @@ PolyMesh parse_polyshape(std::istream& in, const std::string& src) {
 }
 
 PolyMesh read_polyshape(const std::filesystem::path& path) {
+  if (const std::string problem = input_file_problem(path); !problem.empty()) throw DataError(path.string(), problem);
   std::ifstream in(path);
   if (!in) throw DataError(path.string(), "cannot open file");
   return parse_polyshape(in, path.string());
@@ -120,6 +120,7 @@ ObjData parse_obj(std::istream& in, const std::string& src, const ObjReadOptions
         if (!d) throw DataError(src, line_no, "vertex coordinate '" + std::string(tok[k + 1]) + "' is not a finite number");
         v[k] = *d;
       }
+      if (!within_coordinate_limit(v)) throw DataError(src, line_no, "vertex coordinate beyond +-1e9");
       out.mesh.vertices.push_back(options.y_up ? Vec3(v.x(), -v.z(), v.y()) : v);
     } else if (tok[0] == "f") {
       if (tok.size() < 4) throw DataError(src, line_no, "'f' needs at least 3 vertices");
@@ -143,6 +144,7 @@ ObjData parse_obj(std::istream& in, const std::string& src, const ObjReadOptions
 }
 
 ObjData read_obj(const std::filesystem::path& path, const ObjReadOptions& options) {
+  if (const std::string problem = input_file_problem(path); !problem.empty()) throw DataError(path.string(), problem);
   std::ifstream in(path);
   if (!in) throw DataError(path.string(), "cannot open file");
   return parse_obj(in, path.string(), options);

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "core/util/json_number.h"
 #include "dataset/atomic_file.h"
 #include "dataset/errors.h"
 
@@ -26,7 +27,7 @@ std::vector<Vec3> read_points(const Json& j, const char* key, const std::string&
       if (!row[k].is_number()) throw DataError(src, std::string("'") + key + "'[" + std::to_string(i) + "] has a non-number");
       p[k] = row[k].get<double>();
     }
-    if (!p.allFinite()) throw DataError(src, std::string("'") + key + "'[" + std::to_string(i) + "] is not finite");
+    if (!within_coordinate_limit(p)) throw DataError(src, std::string("'") + key + "'[" + std::to_string(i) + "] is not finite or beyond +-1e9");
     out.push_back(p);
   }
   return out;
@@ -79,7 +80,7 @@ LineCloud parse_release_line_cloud(const std::string& text, const std::string& s
     if (!j.contains("line_idx")) throw DataError(src, "missing key 'line_idx'");
     for (const Json& e : j.at("line_idx")) {
       if (!e.is_array() || e.size() != 2) throw DataError(src, "'line_idx' rows must have 2 ids");
-      const int a = e[0].get<int>(), b = e[1].get<int>();
+      const int a = json_exact<int>(e[0], "line_idx"), b = json_exact<int>(e[1], "line_idx");  // 2^32 must not wrap to 0
       if (a < 0 || b < 0 || a >= nv || b >= nv || a == b) {
         throw DataError(src, "'line_idx' edge (" + std::to_string(a) + ", " + std::to_string(b) + ") out of range for " +
                                  std::to_string(nv) + " junctions");
@@ -106,6 +107,8 @@ LineCloud parse_release_line_cloud(const std::string& text, const std::string& s
     }
   } catch (const Json::exception& e) {
     throw DataError(src, std::string("bad field: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw DataError(src, e.what());
   }
   validate_line_cloud(c, src);
   return c;

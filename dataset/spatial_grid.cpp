@@ -17,14 +17,20 @@ SpatialGrid::SpatialGrid(const std::vector<Vec3>& points, double cell) : points_
   }
   origin_ = lo;
   // Enlarge cells when the grid would be much larger than the point set (sparse points over a wide extent).
+  // Cell counts stay in double until they fit an int: far-apart points or an extent that overflows must
+  // neither wrap the int nor loop; halves keep hi - lo finite and give the same quotient bit for bit.
   const double cell_budget = std::max(64.0, 4.0 * static_cast<double>(points.size()));
   for (;;) {
     double cells = 1;
+    Vec3 axis_cells;
     for (int k = 0; k < 3; ++k) {
-      dims_[k] = static_cast<int>(std::floor((hi[k] - lo[k]) / cell_)) + 1;
-      cells *= dims_[k];
+      axis_cells[k] = std::floor((hi[k] / 2 - lo[k] / 2) / (cell_ / 2)) + 1;
+      cells *= axis_cells[k];
     }
-    if (cells <= cell_budget) break;
+    if (cells <= cell_budget) {
+      for (int k = 0; k < 3; ++k) dims_[k] = static_cast<int>(axis_cells[k]);
+      break;
+    }
     cell_ *= std::max(1.1, std::cbrt(cells / cell_budget));
   }
   const int64_t cells = int64_t{dims_[0]} * dims_[1] * dims_[2];
@@ -43,7 +49,7 @@ SpatialGrid::SpatialGrid(const std::vector<Vec3>& points, double cell) : points_
 Eigen::Vector3i SpatialGrid::cell_of(const Vec3& p) const {
   Eigen::Vector3i c;
   for (int k = 0; k < 3; ++k) {
-    const double v = std::floor((p[k] - origin_[k]) / cell_);
+    const double v = std::floor((p[k] / 2 - origin_[k] / 2) / (cell_ / 2));  // overflow-safe, as in the constructor
     c[k] = static_cast<int>(std::clamp(v, 0.0, static_cast<double>(dims_[k] - 1)));
   }
   return c;

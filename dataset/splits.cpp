@@ -48,8 +48,8 @@ Splits make_splits(const std::vector<std::string>& names, const SplitRule& rule)
   return s;
 }
 
-std::vector<std::string> read_name_list(const std::filesystem::path& path) {
-  std::istringstream in(read_file(path));
+std::vector<std::string> parse_name_list(const std::string& text, const std::string& src) {
+  std::istringstream in(text);
   std::vector<std::string> out;
   std::set<std::string> seen;
   std::string line;
@@ -58,15 +58,19 @@ std::vector<std::string> read_name_list(const std::filesystem::path& path) {
     ++line_no;
     const std::string_view t = trim(line);
     if (t.empty() || t.front() == '#') continue;
-    if (t.find_first_of(" \t") != std::string_view::npos) throw DataError(path.string(), line_no, "a name must not contain whitespace");
+    if (t.find_first_of(" \t") != std::string_view::npos) throw DataError(src, line_no, "a name must not contain whitespace");
     if (t.find_first_of("/\\") != std::string_view::npos)
-      throw DataError(path.string(), line_no, "'" + std::string(t) + "' is a path; expected a building name");
+      throw DataError(src, line_no, "'" + std::string(t) + "' is a path; expected a building name");
+    if (t == "." || t == ".." || t.find('\0') != std::string_view::npos)  // would name a folder or a cut-off path
+      throw DataError(src, line_no, "'" + std::string(t.substr(0, t.find('\0'))) + "' is not a building name");
     if (!seen.insert(std::string(t)).second)
-      throw DataError(path.string(), line_no, "duplicate building name '" + std::string(t) + "'");
+      throw DataError(src, line_no, "duplicate building name '" + std::string(t) + "'");
     out.emplace_back(t);
   }
   return out;
 }
+
+std::vector<std::string> read_name_list(const std::filesystem::path& path) { return parse_name_list(read_file(path), path.string()); }
 
 void write_name_list(const std::filesystem::path& path, const std::vector<std::string>& names) {
   std::string s;

@@ -30,6 +30,8 @@ Splits make_splits(const std::vector<std::string>& names, const SplitRule& rule 
 // One name per line; blank lines and '#' comments ignored, spaces trimmed. Throws DataError naming file
 // and line on names with whitespace or path separators, and on duplicates.
 std::vector<std::string> read_name_list(const std::filesystem::path& path);
+// The same from the file's text; `src` names the source in errors.
+std::vector<std::string> parse_name_list(const std::string& text, const std::string& src);
 void write_name_list(const std::filesystem::path& path, const std::vector<std::string>& names);
 
 }  // namespace lc2wf

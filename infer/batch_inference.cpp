@@ -17,16 +17,19 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
   std::unique_ptr<Progress> bar;
   if (!o.quiet) bar = std::make_unique<Progress>("inferring", static_cast<int64_t>(clouds.size()));
   for (const auto& path : clouds) {
+    // Outputs are named after the file stem, never the name stored inside the file ("../x", "/etc/y", ".").
+    const std::string name = path.stem().string();
     LineCloud cloud;
+    InferenceResult r;
     try {
       cloud = load_line_cloud(path, o.format, o.raw_per_metre);
-    } catch (const std::exception& e) {
+      r = predictor.predict(cloud, o.post);
+    } catch (const std::exception& e) {  // one bad cloud must not end the batch
       std::fprintf(stderr, "%slc2wf: skipping %s: %s\n", bar ? "\n" : "", path.string().c_str(), e.what());
       ++s.failed;
       if (bar) bar->step();
       continue;
     }
-    const InferenceResult r = predictor.predict(cloud, o.post);
     const double seconds = r.junction_seconds + r.edge_seconds + r.post_seconds;
     s.total_seconds += seconds;
     s.max_seconds = std::max(s.max_seconds, seconds);
@@ -35,17 +38,17 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     s.post_seconds += r.post_seconds;
     ++s.buildings;
     if (r.wireframe.wireframe.edges.empty()) ++s.empty;
-    s.names.push_back(cloud.name);
-    write_prediction(out_dir, cloud.name, r.wireframe, r.notes, o.raw_units ? &cloud.units : nullptr);
+    s.names.push_back(name);
+    write_prediction(out_dir, name, r.wireframe, r.notes, o.raw_units ? &cloud.units : nullptr);
     if (o.preview_path)
-      write_preview(o.preview_path(cloud.name), cloud, r.wireframe.wireframe,
+      write_preview(o.preview_path(name), cloud, r.wireframe.wireframe,
                     cloud.wireframe.junctions.empty() ? nullptr : &cloud.wireframe);
     if (!o.quiet && r.wireframe.wireframe.edges.empty()) {  // notes are in the JSON either way
       std::string text;
       for (const auto& n : r.notes) text += (text.empty() ? "" : "; ") + n;
-      std::fprintf(stderr, "%s%s: %s\n", bar ? "\n" : "", cloud.name.c_str(), text.c_str());
+      std::fprintf(stderr, "%s%s: %s\n", bar ? "\n" : "", name.c_str(), text.c_str());
     }
-    if (bar) bar->step(1, cloud.name);
+    if (bar) bar->step(1, name);
   }
   return s;
 }

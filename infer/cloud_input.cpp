@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "dataset/atomic_file.h"
 #include "dataset/errors.h"
 #include "dataset/limap_io.h"
 #include "dataset/line3dpp_io.h"
@@ -44,11 +45,7 @@ LineCloud load_line_cloud(const fs::path& path, CloudFormat format, double raw_p
   const bool external = format == CloudFormat::kLine3dpp || format == CloudFormat::kLimap || format == CloudFormat::kLineObj;
   if (external || (format == CloudFormat::kAuto && (fs::is_directory(path) || path.extension() == ".obj")))
     return load_external_cloud(path, format);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DataError(path.string(), "cannot open line cloud");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string bytes = ss.str();
+  const std::string bytes = read_file(path);  // regular files only: a FIFO or /dev/zero never ends
   if (format == CloudFormat::kAuto && looks_like_line3dpp_txt(bytes))
     return to_line_cloud(parse_line3dpp_txt(bytes, path.string()), path.stem().string(), path.string());
   if (format == CloudFormat::kAuto) {

@@ -18,7 +18,7 @@ const char* kUsage = R"(Usage: lc2wf-infer --weights DIR CLOUD... -o OUT [option
 Predicts a 3D wireframe for each line cloud: junction sampling -> junction model -> junction NMS and
 confidence threshold -> all pairs -> edge model -> post-processing (identical-pair pruning, candidate
 edges, isolated-edge removal, Hamming junction merge, line NMS, dangling-edge removal).
-Writes OUT/<name>.obj ('v' + 'l', metres) and OUT/<name>.json (junction confidences, edge
+Writes OUT/<name>.obj (<name> = the cloud file's stem; 'v' + 'l', metres) and OUT/<name>.json (junction confidences, edge
 probabilities and notes on degenerate inputs). A cloud with no usable junction or edge gives an empty
 wireframe and a note, never a failure.
 

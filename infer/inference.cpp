@@ -37,6 +37,16 @@ nlohmann::json stored_net_config(const std::filesystem::path& path, const std::s
   return info.config.at("net");
 }
 
+// Check() names the field; the checkpoint's path makes the error findable.
+template <class Config>
+void check_stored(const Config& config, const std::filesystem::path& path) {
+  try {
+    config.Check();
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(path.string() + ": net: " + e.what());
+  }
+}
+
 // Row-wise softmax of P x C logits, rounded to float as the probabilities are reported.
 std::vector<float> softmax_rows(const std::vector<double>& logits, size_t C) {
   std::vector<float> probs(logits.size());
@@ -158,7 +168,7 @@ InferenceResult WireframePredictor::predict_from_junctions(const LineCloud& clou
 
 std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path) {
   const JunctionNetConfig config = JunctionNetConfig::from_json(stored_net_config(path, "junction"), path.string() + ": net");
-  config.Check();
+  check_stored(config, path);
   auto net = std::make_unique<JunctionNet>(config);
   load_checkpoint(path, *net, nullptr, nullptr);
   net->eval();
@@ -167,7 +177,7 @@ std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path
 
 std::unique_ptr<EdgeNet> load_edge_net(const std::filesystem::path& path) {
   const EdgeNetConfig config = EdgeNetConfig::from_json(stored_net_config(path, "edge"), path.string() + ": net");
-  config.Check();
+  check_stored(config, path);
   auto net = std::make_unique<EdgeNet>(config);
   load_checkpoint(path, *net, nullptr, nullptr);
   net->eval();

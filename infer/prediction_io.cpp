@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "dataset/atomic_file.h"
 #include "dataset/errors.h"
@@ -103,6 +104,9 @@ ScoredWireframe read_prediction(const std::filesystem::path& obj_path, const Uni
 void write_prediction(const std::filesystem::path& dir, const std::string& name, const ScoredWireframe& prediction,
                       const std::vector<std::string>& notes, const UnitTransform* raw_units) {
   prediction.check("prediction " + name);
+  // A plain file name: anything else would write outside `dir` or over another file.
+  if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos)
+    throw std::invalid_argument("prediction name '" + name + "' is not a plain file name");
   std::filesystem::create_directories(dir);
   write_obj_wireframe(dir / (name + ".obj"), prediction.wireframe, raw_units);
   write_file_atomic(dir / (name + ".json"), scores_json_string(prediction, notes));

@@ -10,7 +10,7 @@
 namespace lc2wf {
 namespace {
 
-// Nearest GT vertex per predicted junction (first index on ties) and its distance.
+// Nearest GT vertex per predicted junction (first index on ties) and its distance. Needs a non-empty GT.
 void map_to_nearest(const Wireframe& pred, const Wireframe& gt, std::vector<int>& nearest, std::vector<double>& dist) {
   nearest.assign(pred.junctions.size(), -1);
   dist.assign(pred.junctions.size(), 0.0);
@@ -18,7 +18,8 @@ void map_to_nearest(const Wireframe& pred, const Wireframe& gt, std::vector<int>
     double best = std::numeric_limits<double>::infinity();
     for (size_t j = 0; j < gt.junctions.size(); ++j) {
       const double d = (pred.junctions[i] - gt.junctions[j]).norm();
-      if (d < best) best = d, nearest[i] = static_cast<int>(j);
+      // The first GT vertex is taken even when every distance overflows to inf, so the index is always valid.
+      if (j == 0 || d < best) best = d, nearest[i] = static_cast<int>(j);
     }
     dist[i] = best;
   }

@@ -50,6 +50,7 @@ CheckpointInfo parse_info(const std::map<std::string, std::string>& m, const std
   }
   info.position.epoch = meta_number<int64_t>(m, "epoch", file);
   info.position.step = meta_number<int64_t>(m, "step", file);
+  if (m.count("epoch_loss_sum")) info.position.epoch_loss_sum = meta_number<double>(m, "epoch_loss_sum", file);
   info.rng_seed = meta_number<uint64_t>(m, "dropout_rng_seed", file);
   info.rng_counter = meta_number<uint64_t>(m, "dropout_rng_counter", file);
   info.has_optimizer = meta(m, "optimizer", file) == "1";
@@ -78,6 +79,7 @@ void save_checkpoint(const std::filesystem::path& path, const Module& model, con
                      {"config", config.dump()},
                      {"epoch", std::to_string(position.epoch)},
                      {"step", step},
+                     {"epoch_loss_sum", exact(position.epoch_loss_sum)},
                      {"dropout_rng_seed", std::to_string(dropout_rng.seed())},
                      {"dropout_rng_counter", std::to_string(dropout_rng.counter())},
                      {"optimizer", optimizer ? "1" : "0"}});

@@ -19,6 +19,8 @@ namespace lc2wf {
 struct TrainingPosition {
   int64_t epoch = 0;  // completed epochs
   int64_t step = 0;   // completed optimiser steps
+  // Sum of the step losses of the current epoch so far, so a mid-epoch resume logs the epoch's exact mean.
+  double epoch_loss_sum = 0.0;
 };
 
 struct CheckpointInfo {

@@ -12,28 +12,32 @@ namespace {
 void require(bool ok, const std::string& field, const std::string& rule) {
   if (!ok) throw std::invalid_argument(field + " " + rule);
 }
+// Upper bounds far above the paper's networks (N 32/64, G 256/512, width 256, 1 layer): a config, or the
+// one inside a checkpoint's metadata, must not make the program allocate gigabytes before it can fail.
+constexpr int64_t kMaxWidth = 4096, kMaxLinesPerPatch = 1024, kMaxPatches = 8192, kMaxLayers = 32, kMaxDepth = 32;
 void require_dims(const std::vector<int64_t>& dims, const std::string& field) {
-  require(!dims.empty(), field, "must not be empty");
-  for (int64_t d : dims) require(d > 0, field, "entries must be > 0");
+  require(!dims.empty() && static_cast<int64_t>(dims.size()) <= kMaxDepth, field, "must have 1 to " + std::to_string(kMaxDepth) + " entries");
+  for (int64_t d : dims) require(d > 0 && d <= kMaxWidth, field, "entries must be in [1, " + std::to_string(kMaxWidth) + "]");
 }
+std::string range(int64_t hi) { return "must be in [1, " + std::to_string(hi) + "]"; }
 bool is_probability(double p) { return p >= 0.0 && p < 1.0; }
 }  // namespace
 
 // ------------------------------------------------------------------------------------------ LptConfig
 void LptConfig::Check() const {
-  require(input_dim > 0, "lpt.input_dim", "must be > 0");
-  require(lines_per_patch > 0, "lpt.lines_per_patch", "must be > 0");
-  require(patches > 0, "lpt.patches", "must be > 0");
+  require(input_dim > 0 && input_dim <= kMaxWidth, "lpt.input_dim", range(kMaxWidth));
+  require(lines_per_patch > 0 && lines_per_patch <= kMaxLinesPerPatch, "lpt.lines_per_patch", range(kMaxLinesPerPatch));
+  require(patches > 0 && patches <= kMaxPatches, "lpt.patches", range(kMaxPatches));
   require_dims(mlp_dims, "lpt.mlp_dims");
-  require(hidden_dim > 0, "lpt.hidden_dim", "must be > 0");
+  require(hidden_dim > 0 && hidden_dim <= kMaxWidth, "lpt.hidden_dim", range(kMaxWidth));
   require(mlp_dims.back() == hidden_dim, "lpt.mlp_dims",
           "must end with hidden_dim (" + std::to_string(hidden_dim) + ")");
   require(num_heads > 0 && hidden_dim % num_heads == 0, "lpt.num_heads", "must divide hidden_dim");
-  require(ffn_dim > 0, "lpt.ffn_dim", "must be > 0");
+  require(ffn_dim > 0 && ffn_dim <= 4 * kMaxWidth, "lpt.ffn_dim", range(4 * kMaxWidth));
   require(is_probability(dropout), "lpt.dropout", "must be in [0, 1)");
   require(is_probability(attn_dropout), "lpt.attn_dropout", "must be in [0, 1)");
-  require(line_layers >= 1, "lpt.line_layers", "must be >= 1");
-  require(patch_layers >= 1, "lpt.patch_layers", "must be >= 1");
+  require(line_layers >= 1 && line_layers <= kMaxLayers, "lpt.line_layers", range(kMaxLayers));
+  require(patch_layers >= 1 && patch_layers <= kMaxLayers, "lpt.patch_layers", range(kMaxLayers));
   require(pool == "mean_all" || pool == "mean_valid", "lpt.pool", "must be \"mean_all\" or \"mean_valid\"");
 }
 
@@ -85,7 +89,7 @@ LptConfig EdgeNetConfig::edge_lpt_defaults() {
 void EdgeNetConfig::Check() const {
   lpt.Check();
   head.Check();
-  require(num_classes >= 2, "edge_net.num_classes", "must be >= 2");
+  require(num_classes >= 2 && num_classes <= kMaxWidth, "edge_net.num_classes", "must be in [2, " + std::to_string(kMaxWidth) + "]");
 }
 
 nlohmann::json EdgeNetConfig::to_json() const { return fields_to_json(*this); }

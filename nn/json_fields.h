@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/util/json_number.h"
+
 namespace lc2wf {
 
 class JsonFields {
@@ -55,15 +57,8 @@ class JsonFields {
 
   template <class T>
   static T convert(const nlohmann::json& v, const std::string& name) {
-    if constexpr (std::is_same_v<T, bool>) {
-      if (!v.is_boolean()) throw std::invalid_argument(name + ": expected true or false");
-      return v.get<bool>();
-    } else if constexpr (std::is_integral_v<T>) {
-      if (!v.is_number_integer()) throw std::invalid_argument(name + ": expected an integer");
-      return v.get<T>();
-    } else if constexpr (std::is_floating_point_v<T>) {
-      if (!v.is_number()) throw std::invalid_argument(name + ": expected a number");
-      return v.get<T>();
+    if constexpr (std::is_arithmetic_v<T>) {
+      return json_exact<T>(v, name);  // no silent narrowing (4294967298 -> 2 in an int)
     } else if constexpr (std::is_same_v<T, std::string>) {
       if (!v.is_string()) throw std::invalid_argument(name + ": expected a string");
       return v.get<std::string>();

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/atomic_file.h"
+#include "core/util/input_file.h"
 
 namespace lc2wf {
 
@@ -97,9 +98,14 @@ void write_safetensors(const std::filesystem::path& path, const NamedTensors& te
 
 SafetensorsFile read_safetensors(const std::filesystem::path& path) {
   const std::string where = path.string();
+  if (const std::string problem = input_file_problem(path); !problem.empty()) throw std::runtime_error(where + ": " + problem);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(where + ": cannot open for reading");
-  std::vector<char> file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_safetensors(file, where);
+}
+
+SafetensorsFile parse_safetensors(std::string_view file, const std::string& where) {
   if (file.size() < 8) throw std::runtime_error(where + ": too short for a safetensors file (" + std::to_string(file.size()) + " bytes)");
   uint64_t header_len = 0;
   std::memcpy(&header_len, file.data(), 8);
@@ -138,10 +144,15 @@ SafetensorsFile read_safetensors(const std::filesystem::path& path) {
     const nlohmann::json& js = entry["shape"];
     if (!js.is_array()) throw std::runtime_error(what + " has a non-array shape");
     Shape shape;
+    // Dimensions are bounded by the data section, so numel * dtype size cannot wrap (or go negative).
+    uint64_t numel = 1;
     for (const auto& d : js) {
-      if (!d.is_number_unsigned()) throw std::runtime_error(what + " has an invalid shape " + js.dump());
-      shape.push_back(d.get<int64_t>());
+      if (!d.is_number_unsigned() || d.get<uint64_t>() > buffer_size) throw std::runtime_error(what + " has an invalid shape " + js.dump());
+      const uint64_t n = d.get<uint64_t>();
+      numel = n == 0 || numel == 0 ? 0 : (numel > buffer_size / n ? buffer_size + 1 : numel * n);
+      shape.push_back(static_cast<int64_t>(n));
     }
+    if (numel > buffer_size) throw std::runtime_error(what + " has a shape " + js.dump() + " larger than the data section");
     const nlohmann::json& jo = entry["data_offsets"];
     if (!jo.is_array() || jo.size() != 2 || !jo[0].is_number_unsigned() || !jo[1].is_number_unsigned())
       throw std::runtime_error(what + " has invalid data_offsets " + jo.dump());

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 
 #include "core/tensor.h"
 #include "nn/module.h"
@@ -23,5 +24,7 @@ void write_safetensors(const std::filesystem::path& path, const NamedTensors& te
 
 // Throws std::runtime_error naming the file and the problem for any malformed or truncated file.
 SafetensorsFile read_safetensors(const std::filesystem::path& path);
+// The same from the file's bytes; `where` names the source in errors (tests, fuzzing).
+SafetensorsFile parse_safetensors(std::string_view bytes, const std::string& where);
 
 }  // namespace lc2wf

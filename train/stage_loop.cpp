@@ -132,8 +132,9 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       bar = std::make_unique<Progress>(stage + " epoch " + std::to_string(epoch + 1) + "/" + std::to_string(o.schedule.epochs),
                                        spe - first);
     const auto epoch_start = Clock::now();
-    double epoch_loss = 0.0;
-    int64_t epoch_steps = 0, epoch_buildings = 0;
+    // A mid-epoch resume carries on the checkpoint's sum (same additions, same order): the logged mean is exact.
+    double epoch_loss = first > 0 ? pos.epoch_loss_sum : 0.0;
+    int64_t epoch_steps = first, epoch_buildings = 0;
     for (;;) {
       const auto t0 = Clock::now();
       std::optional<StageStep> s = cb.train_step();
@@ -164,12 +165,14 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       const bool epoch_end = pos.step == (epoch + 1) * spe;
       if (o.schedule.checkpoint_every_steps > 0 && pos.step % o.schedule.checkpoint_every_steps == 0 && !epoch_end) {
         pos.epoch = epoch;
+        pos.epoch_loss_sum = epoch_loss;
         save_last();
       }
     }
     if (bar) bar->finish();
     const double epoch_seconds = std::chrono::duration<double>(Clock::now() - epoch_start).count();
     pos.epoch = epoch + 1;
+    pos.epoch_loss_sum = 0.0;
 
     if ((epoch + 1) % o.schedule.val_every == 0 || epoch + 1 == o.schedule.epochs) {
       const auto v0 = Clock::now();

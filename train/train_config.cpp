@@ -6,10 +6,13 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/util/input_file.h"
 #include "nn/json_fields.h"
 
 namespace lc2wf {
 namespace {
+
+constexpr std::uintmax_t kMaxConfigBytes = std::uintmax_t{64} << 20;  // configs are a few KB
 
 void require(bool ok, const std::string& field, const std::string& rule) {
   if (!ok) throw std::invalid_argument(field + " " + rule);
@@ -124,6 +127,8 @@ TrainConfig TrainConfig::from_json(const nlohmann::json& j) {
 }
 
 TrainConfig TrainConfig::from_file(const std::filesystem::path& path) {
+  if (const std::string problem = input_file_problem(path, kMaxConfigBytes); !problem.empty())
+    throw std::runtime_error(path.string() + ": " + problem);
   std::ifstream in(path);
   if (!in) throw std::runtime_error(path.string() + ": cannot open config");
   std::stringstream ss;
@@ -136,7 +141,7 @@ TrainConfig TrainConfig::from_file(const std::filesystem::path& path) {
   }
   try {
     return from_json(j);
-  } catch (const std::invalid_argument& e) {
+  } catch (const std::exception& e) {  // any field error, named with the file
     throw std::runtime_error(path.string() + ": " + e.what());
   }
 }

@@ -22,7 +22,9 @@ inline void write_file_atomically(const std::filesystem::path& path,
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
   // Unique per process and call, so threads writing different files never share a temporary name.
   static std::atomic<unsigned> counter{0};
-  const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  // The target's name is cut so the temporary name stays within the 255-byte NAME_MAX of a long target name.
+  const std::string suffix = ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter++);
+  const fs::path tmp = path.parent_path() / (path.filename().string().substr(0, 255 - 1 - suffix.size()) + suffix);
   {
     std::ofstream out(tmp, mode | std::ios::out | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot open " + tmp.string() + " for writing");

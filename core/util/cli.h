@@ -1,7 +1,9 @@
 // The shared shape of lc2wf's command-line programs: --help anywhere prints the usage and exits 0, a
-// UsageError exits 2 with a pointer to --help, any other exception exits 1 naming the program.
+// UsageError exits 2 with a pointer to --help, any other exception (while parsing or running) exits 1
+// naming the program.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
@@ -47,6 +49,8 @@ inline int int_flag(const std::string& flag, const std::string& value) {
 inline double number_flag(const std::string& flag, const std::string& value) {
   const auto x = parse_whole(value, [](const std::string& t, size_t* used) { return std::stod(t, used); });
   if (!x) throw UsageError(flag + " expects a number, got '" + value + "'");
+  // NaN and inf would slip through every range check downstream (NaN compares false).
+  if (!std::isfinite(*x)) throw UsageError(flag + " expects a finite number, got '" + value + "'");
   return *x;
 }
 
@@ -76,6 +80,9 @@ int cli_main(const char* program, const char* usage, int argc, char** argv, Pars
   } catch (const UsageError& e) {
     std::fprintf(stderr, "%s: %s\nRun '%s --help' for usage.\n", program, e.what(), program);
     return kExitUsage;
+  } catch (const std::exception& e) {  // e.g. an output folder that cannot be created: not a usage error
+    std::fprintf(stderr, "%s: error: %s\n", program, e.what());
+    return kExitFailure;
   }
   try {
     return run(args);

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "dataset/atomic_file.h"
 #include "dataset/errors.h"
@@ -166,6 +167,44 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
   const double nan = std::nan("");
   std::memcpy(&nan_bin[first_line + 1 + header_len], &nan, sizeof nan);
   expect_error(nan_bin, "segment 0 has a non-finite coordinate");
+}
+
+// Regression: header counts are checked against the file size before allocating (a 224 KB file claiming
+// 10^8 segments reached 4.5 GB), and JSON numbers are exact (0.7 -> 0, true -> 1, 300 -> 44 in a byte).
+TEST(LineCloudIo, HostileHeadersAreRejectedBeforeAllocating) {
+  LineCloud c;
+  c.name = "t";
+  c.wireframe.junctions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
+  c.wireframe.edges = {{0, 1}};
+  c.segments = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};
+  c.labels = {make_edge_label(c.segments[0], c.wireframe, 0, 1)};
+  LineCloudWriteOptions text;
+  text.binary = false;
+  const nlohmann::json good = nlohmann::json::parse(line_cloud_to_bytes(c, text));
+  auto with = [&](const nlohmann::json::json_pointer& at, const nlohmann::json& value) {
+    nlohmann::json j = good;
+    j[at] = value;
+    return j.dump();
+  };
+  using ptr = nlohmann::json::json_pointer;
+  expect_error(with(ptr("/num_segments"), 100000000), "num_segments 100000000 does not fit");
+  expect_error(with(ptr("/num_segments"), 0.7), "num_segments: expected an integer");
+  expect_error(with(ptr("/arrays/label_f/data/0"), 300), "label_f.data[0]: 300 is out of range");
+  expect_error(with(ptr("/arrays/label_f/data/0"), true), "label_f.data[0]: expected an integer");
+  expect_error(with(ptr("/arrays/label_junctions/data/0"), 4294967296), "out of range");
+  expect_error(with(ptr("/wireframe/edges/0/1"), 4294967297), "wireframe.edges[1]: 4294967297 is out of range");
+  expect_error(with(ptr("/wireframe/junctions/1/0"), 1e155), "GT junction 1 is not finite or beyond +-1e9");
+
+  // Binary: the same claim in a rebuilt header.
+  const std::string bin = line_cloud_to_bytes(c);
+  const size_t eol = bin.find('\n');
+  const size_t header_len = std::stoul(bin.substr(bin.rfind(' ', eol) + 1, eol));
+  nlohmann::json h = nlohmann::json::parse(bin.substr(eol + 1, header_len));
+  h["num_segments"] = 100000000;
+  h["arrays"]["segments"]["shape"] = {100000000, 6};
+  const std::string header = h.dump();
+  expect_error("LC2WF-LINECLOUD 1 " + std::to_string(header.size()) + "\n" + header + bin.substr(eol + 1 + header_len),
+               "does not fit the file's size");
 }
 
 TEST(LineCloudIo, MissingFileIsNamed) {

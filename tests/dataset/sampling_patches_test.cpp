@@ -78,6 +78,25 @@ TEST(SpatialGrid, MatchesBruteForceIncludingSparseExtents) {
   EXPECT_THROW(SpatialGrid({Vec3(0, 0, std::nan(""))}, 1.0), std::invalid_argument);
 }
 
+// Regression: a point 6e8 m away wrapped the int cell count (vector larger than max_size()), and an extent
+// that overflows to inf (finite +-1.7e308 coordinates) looped forever enlarging cells.
+TEST(SpatialGrid, FarAndOverflowingExtentsStayBoundedAndExact) {
+  for (const double far : {6e8, 1.7e308}) {
+    std::vector<Vec3> p = {Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(far, -far, far), Vec3(-far, far, -far)};
+    const SpatialGrid grid(p, 0.01);
+    std::vector<int> got;
+    grid.query(p[0], 0.2, got);
+    std::sort(got.begin(), got.end());
+    EXPECT_EQ(got, (std::vector<int>{0, 1})) << far;
+    grid.query(p[2], 1.0, got);
+    EXPECT_EQ(got, (std::vector<int>{2})) << far;
+    int outer = 0, inner = 0;
+    grid.count_within(p[1], 0.2, 0.05, outer, inner);
+    EXPECT_EQ(outer, 2) << far;
+    EXPECT_EQ(inner, 1) << far;
+  }
+}
+
 TEST(PointNms, SuppressorRuleOnAChainKeepsOnlyTheTop) {
   const std::vector<Vec3> p = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(10, 0, 0)};
   const std::vector<double> s = {0.9, 0.8, 0.7, 0.1};

@@ -74,6 +74,9 @@ TEST(Splits, NameListErrors) {
     EXPECT_NE(std::string(e.what()).find("bad.txt:3:"), std::string::npos) << e.what();
   }
   EXPECT_THROW(read_name_list(dir / "missing.txt"), DataError);
+  // Names that would address a folder or a path cut at NUL are refused with the line.
+  for (const std::string& bad : std::vector<std::string>{"..", ".", std::string("a\0b", 3)})
+    EXPECT_THROW(parse_name_list("ok\n" + bad + "\n", "s.txt"), DataError) << bad;
 }
 
 }  // namespace

@@ -39,6 +39,16 @@ TEST(PredictionIo, RoundTripInMetresAndRawUnits) {
   expect_near(read_prediction(dir.path() / "r.obj", &raw), triangle());
 }
 
+// Regression: a cloud's `name` field named the output files, so "../x", an absolute path or NUL wrote
+// outside the output folder. The writer now takes plain file names only.
+TEST(PredictionIo, NamesThatLeaveTheFolderAreRefused) {
+  testing::ScratchDir dir("pred_names");
+  for (const std::string& name : std::vector<std::string>{"../x", "/tmp/x", ".", "..", "", std::string("a\0b", 3), "a/b"})
+    EXPECT_THROW(write_prediction(dir.path() / "out", name, triangle(), {}), std::invalid_argument) << name;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "x.obj"));
+  EXPECT_NO_THROW(write_prediction(dir.path() / "out", ".hidden name", triangle(), {}));
+}
+
 TEST(PredictionIo, WithoutSidecarEveryScoreIsOne) {
   testing::ScratchDir dir("pred_nosidecar");
   testing::write_text(dir.path() / "a.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nl 1 2 3\n");

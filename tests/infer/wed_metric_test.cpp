@@ -71,6 +71,18 @@ TEST(WedMetric, EmptyPredictionAddsEverything) {
   }
 }
 
+// Regression: a vertex whose distance to every GT vertex overflows to inf kept nearest index -1 (heap corruption).
+TEST(WedMetric, VertexInfinitelyFarFromEveryGtVertexMapsToTheFirst) {
+  Wireframe p;
+  p.junctions = {{1e155, 1e155, 1e155}, {2, 0, 0}};
+  p.edges = {{0, 1}};
+  for (const WedResult& r : {wed_release(p, square()), wed_strict(p, square())}) {
+    EXPECT_EQ(r.add_vertex, 2);  // GT vertices 2 and 3 unclaimed
+    EXPECT_TRUE(std::isinf(r.move));
+    EXPECT_EQ(r.add_edge, 3);  // edge 0-1 is hit through the far vertex's fallback to GT vertex 0
+  }
+}
+
 TEST(WedMetric, EmptyGroundTruth) {
   Wireframe p;
   p.junctions = {{0, 0, 0}, {3, 4, 0}};

@@ -85,6 +85,32 @@ TEST(Config, UnknownKeysAndWrongTypesNameTheField) {
             std::string::npos);
 }
 
+// Regression: integers were narrowed without a word (patches 4294967298 trained with 2 patches; -1 in an
+// unsigned field) and absurd sizes in a checkpoint's config allocated gigabytes before failing.
+TEST(Config, IntegersAreExactAndSizesBounded) {
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 4294967298})")).Check(); })
+                .find("lpt.patches must be in [1, 8192]"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 18446744073709551615})")); })
+                .find("lpt.patches: 18446744073709551615 is out of range"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 0.7})")); })
+                .find("lpt.patches: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"hidden_dim": true})")); })
+                .find("lpt.hidden_dim: expected an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"lines_per_patch": 100000})")).Check(); })
+                .find("lpt.lines_per_patch must be in [1, 1024]"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"line_layers": 1000000})")).Check(); })
+                .find("lpt.line_layers must be in [1, 32]"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"mlp_dims": [64, 100000]})")).Check(); })
+                .find("lpt.mlp_dims"),
+            std::string::npos);
+}
+
 TEST(Config, CheckNamesTheBadField) {
   LptConfig l;
   l.num_heads = 7;

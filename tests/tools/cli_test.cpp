@@ -1,10 +1,12 @@
 // lc2wf-dataset and lc2wf-colmap-poses as a user runs them: help, argument errors, exit codes.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "tests/common/run_cli.h"
 
@@ -52,6 +54,40 @@ TEST(DatasetCli, FailedBuildingGivesExitCodeOneAndASummary) {
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_NE(r.out.find("\"failed\""), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(dir / "out" / "status" / "bad.json"));
+}
+
+// Regression: one hostile mesh aborted the whole run (and every re-run): a name that is not UTF-8 made the
+// status writer throw inside a worker, a 245-byte name overflowed the temporary file name, a FIFO blocked
+// forever and 1e155 coordinates crashed the renderer. Each is now one failed building with a status.
+TEST(DatasetCli, HostileMeshesFailAloneWithAStatus) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_hostile_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  const std::string bad = "# Number of verts: 2\n0,0,0\n";
+  const std::string far = "# Number of verts: 3\n# Number of faces: 1\n0,0,0\n1e155,0,0\n0,1e155,0\n1,2,3,1\n";
+  const std::vector<std::string> names = {"bad\xff", std::string(245, 'n'), "far", "fifo"};
+  std::ofstream(dir / "meshes" / (names[0] + ".polyshape")) << bad;
+  std::ofstream(dir / "meshes" / (names[1] + ".polyshape")) << bad;
+  std::ofstream(dir / "meshes" / (names[2] + ".polyshape")) << far;
+  ASSERT_EQ(::mkfifo((dir / "meshes" / "fifo.polyshape").c_str(), 0600), 0);
+  const std::string cmd = kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " --no-progress -j 2";
+  for (int pass = 0; pass < 2; ++pass) {  // a re-run redoes the failed buildings and fails the same way
+    const CliResult r = run(cmd);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find("\"failed\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("not a regular file"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("beyond +-1e9"), std::string::npos) << r.out;
+    for (const std::string& n : names) EXPECT_TRUE(fs::exists(dir / "out" / "status" / (n + ".json"))) << n;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(DatasetCli, FloatFlagsRefuseNaN) {
+  for (const char* v : {"nan", "inf", "-nan"}) {
+    const CliResult r = run(kDataset + " --meshes m --out o --blur " + v);
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("--blur expects a finite number"), std::string::npos) << r.out;
+  }
 }
 
 TEST(ColmapPosesCli, HelpAndMissingInputs) {

@@ -4,6 +4,7 @@
 // inference survives degenerate clouds.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -59,6 +60,13 @@ std::vector<nlohmann::json> log_lines(const fs::path& p, const std::string& type
 std::vector<std::tuple<std::string, int64_t, double>> step_losses(const fs::path& log) {
   std::vector<std::tuple<std::string, int64_t, double>> out;
   for (const auto& j : log_lines(log, "step")) out.emplace_back(j["stage"], j["step"], j["loss"]);
+  return out;
+}
+
+// (stage, epoch, train_loss) of every "epoch" line: a mid-epoch resume must log the same means.
+std::vector<std::tuple<std::string, int64_t, double>> epoch_losses(const fs::path& log) {
+  std::vector<std::tuple<std::string, int64_t, double>> out;
+  for (const auto& j : log_lines(log, "epoch")) out.emplace_back(j["stage"], j["epoch"], j["train_loss"]);
   return out;
 }
 
@@ -164,6 +172,7 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_TRUE(kill_when("edge", 3, true)) << "training finished before it could be killed";
   ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0) << command_output();
   EXPECT_EQ(step_losses(resumed / "log.jsonl"), straight_losses);
+  EXPECT_EQ(epoch_losses(resumed / "log.jsonl"), epoch_losses(straight / "log.jsonl"));  // killed at an odd junction step
   // A completed run resumed again does nothing and keeps its log.
   ASSERT_EQ(run(train_cmd(resumed) + " --resume"), 0) << command_output();
   EXPECT_EQ(step_losses(resumed / "log.jsonl"), straight_losses);
@@ -205,6 +214,36 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   }
   EXPECT_DOUBLE_EQ(metrics["vertex_avg"]["ap"].get<double>(), best["vAP_mean"].get<double>());
   EXPECT_GT(metrics["per_building"][0]["pred_edges"].get<int>(), 0) << "an empty wireframe would make this check vacuous";
+
+  // Hostile clouds (regressions): outputs are named after the file stem, never the `name` inside the cloud
+  // ("../escape" wrote outside -o); a point 6e8 m away no longer ends the batch; a FIFO fails alone.
+  const fs::path hostile = dir_ / "hostile";
+  fs::create_directories(hostile / "in");
+  LineCloud named = read_line_cloud(dir_ / "clouds" / "ell.lcloud");
+  named.name = "../escape";
+  write_line_cloud(hostile / "in" / "named.lcloud", named);
+  LineCloud far = read_line_cloud(dir_ / "clouds" / "ell.lcloud");
+  far.segments.push_back({Vec3(6e8, 0, 0), Vec3(6e8 + 1, 0, 0)});
+  if (!far.labels.empty()) far.labels.push_back(SegmentLabel{});
+  if (!far.support.empty()) far.support.emplace_back();
+  write_line_cloud(hostile / "in" / "far.lcloud", far);
+  ASSERT_EQ(::mkfifo((hostile / "in" / "fifo.lcloud").c_str(), 0600), 0);
+  const testing::CliResult r = testing::run_cli(std::string(LC2WF_INFER_BIN) + " --quiet --weights " + quote(straight) + " " +
+                                                quote(hostile / "in" / "named.lcloud") + " " + quote(hostile / "in" / "fifo.lcloud") +
+                                                " " + quote(hostile / "in" / "far.lcloud") + " -o " + quote(hostile / "out"));
+  EXPECT_EQ(r.code, 1) << r.err;  // the FIFO could not be read
+  EXPECT_NE(r.err.find("fifo.lcloud: is not a regular file"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(hostile / "out" / "named.obj"));
+  EXPECT_TRUE(fs::exists(hostile / "out" / "far.obj")) << r.err;
+  EXPECT_FALSE(fs::exists(hostile / "escape.obj"));
+  EXPECT_FALSE(fs::exists(hostile / "out" / "escape.obj"));
+
+  // An --out that cannot be created is an error naming it, not an abort.
+  const testing::CliResult e = testing::run_cli(std::string(LC2WF_EVAL_BIN) + " --quiet --weights " + quote(straight) + " --data " +
+                                                quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " +
+                                                quote(dir_ / "tiny.json" / "eval"));
+  EXPECT_EQ(e.code, 1) << e.err;
+  EXPECT_NE(e.err.find("tiny.json"), std::string::npos) << e.err;
 }
 
 TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {

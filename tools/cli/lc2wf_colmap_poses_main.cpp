@@ -122,7 +122,13 @@ int run(const Args& a) {
     std::vector<lc2wf::Camera> reference;
     const fs::path cameras = a.views / "cameras.json";
     if (fs::exists(cameras)) {
-      for (const Json& j : Json::parse(lc2wf::read_file(cameras))) reference.push_back(lc2wf::camera_from_json(j, cameras.string()));
+      Json list;
+      try {
+        list = Json::parse(lc2wf::read_file(cameras));
+      } catch (const Json::exception& e) {  // e.g. "number overflow parsing '1e400'": name the file
+        throw std::runtime_error(cameras.string() + ": not valid JSON: " + e.what());
+      }
+      for (const Json& j : list) reference.push_back(lc2wf::camera_from_json(j, cameras.string()));
       if (reference.size() != images.size())
         throw std::runtime_error(a.views.string() + ": cameras.json has " + std::to_string(reference.size()) + " cameras for " +
                                  std::to_string(images.size()) + " images");

@@ -147,7 +147,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
 int run(const lc2wf::DatasetRunOptions& o) {
   try {
     const auto summary = lc2wf::run_dataset(o);
-    std::cout << summary.dump(2) << std::endl;
+    std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // names need not be UTF-8
     return summary["failed"].empty() ? 0 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lc2wf-dataset: %s\n", e.what());

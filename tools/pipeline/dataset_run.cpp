@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -33,6 +34,10 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 const std::vector<double> kLengthBins = {0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0};
 
 fs::path cloud_path(const fs::path& out, const std::string& name) { return out / "clouds" / (name + ".lcloud"); }
+// Mesh names and error texts may hold bytes that are not UTF-8: replaced, since a throwing dump() inside
+// a worker would abort the whole run (and every re-run).
+std::string json_text(const Json& j, int indent) { return j.dump(indent, ' ', false, Json::error_handler_t::replace); }
+
 fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
 
 bool is_done(const fs::path& out, const std::string& name) {
@@ -201,7 +206,13 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
   }
   if (o.renderer == RendererKind::Blender && !o.keep_views) fs::remove_all(o.out / "views" / job.name);
   job.views.clear();
-  write_file_atomic(status_path(o.out, job.name), job.status.dump(1));
+  try {
+    write_file_atomic(status_path(o.out, job.name), json_text(job.status, 1));
+  } catch (const std::exception& e) {
+    // An exception leaving an OpenMP worker aborts the process: count the building as failed (redone next run).
+    job.failed = true;
+    std::fprintf(stderr, "lc2wf-dataset: %s: cannot write its status: %s\n", job.name.c_str(), e.what());
+  }
 }
 
 double median(std::vector<double> v) {
@@ -405,7 +416,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["wall_seconds_this_run"] = since(start);
   const std::string file = o.shard_count == 1 ? "summary.json"
                                               : "summary-shard-" + std::to_string(o.shard_index) + "-of-" + std::to_string(o.shard_count) + ".json";
-  write_file_atomic(o.out / file, summary.dump(2));
+  write_file_atomic(o.out / file, json_text(summary, 2));
   return summary;
 }
 

@@ -36,10 +36,13 @@ void scan_triangle(const Vec2& p0, const Vec2& p1, const Vec2& p2, int w, int h,
   const double area = (p1 - p0).x() * (p2 - p0).y() - (p1 - p0).y() * (p2 - p0).x();
   if (std::abs(area) < 1e-12) return;
   const double sgn = area > 0 ? 1.0 : -1.0;
-  const int x0 = std::max(0, static_cast<int>(std::ceil(std::min({p0.x(), p1.x(), p2.x()}))));
-  const int x1 = std::min(w - 1, static_cast<int>(std::floor(std::max({p0.x(), p1.x(), p2.x()}))));
-  const int y0 = std::max(0, static_cast<int>(std::ceil(std::min({p0.y(), p1.y(), p2.y()}))));
-  const int y1 = std::min(h - 1, static_cast<int>(std::floor(std::max({p0.y(), p1.y(), p2.y()}))));
+  // Clamped in double before the int cast: casting a far-off or NaN coordinate to int is undefined.
+  const auto pixel = [](double v, int n) { return static_cast<int>(std::clamp(v, -1.0, static_cast<double>(n))); };
+  const double lo_x = std::ceil(std::min({p0.x(), p1.x(), p2.x()})), hi_x = std::floor(std::max({p0.x(), p1.x(), p2.x()}));
+  const double lo_y = std::ceil(std::min({p0.y(), p1.y(), p2.y()})), hi_y = std::floor(std::max({p0.y(), p1.y(), p2.y()}));
+  if (!(lo_x <= hi_x && lo_y <= hi_y)) return;  // also NaN
+  const int x0 = std::max(0, pixel(lo_x, w)), x1 = std::min(w - 1, pixel(hi_x, w));
+  const int y0 = std::max(0, pixel(lo_y, h)), y1 = std::min(h - 1, pixel(hi_y, h));
   if (x0 > x1 || y0 > y1) return;
   auto edge = [sgn](const Vec2& a, const Vec2& b) {
     // e(x,y) = A x + B y + C, non-negative inside.
@@ -157,9 +160,11 @@ void RasterRenderer::build_shadow_map() {
 
 bool RasterRenderer::in_shadow(const Vec3& X) const {
   if (shadow_height_.empty()) return false;
-  const int x = static_cast<int>(std::lround((X.dot(sun_a_) - shadow_min_a_) / shadow_texel_ - 0.5));
-  const int y = static_cast<int>(std::lround((X.dot(sun_b_) - shadow_min_b_) / shadow_texel_ - 0.5));
-  if (x < 0 || y < 0 || x >= shadow_height_.cols || y >= shadow_height_.rows) return false;
+  const double fx = std::round((X.dot(sun_a_) - shadow_min_a_) / shadow_texel_ - 0.5);
+  const double fy = std::round((X.dot(sun_b_) - shadow_min_b_) / shadow_texel_ - 0.5);
+  // Range-checked in double (false for NaN) before the int cast.
+  if (!(fx >= 0 && fy >= 0 && fx < shadow_height_.cols && fy < shadow_height_.rows)) return false;
+  const int x = static_cast<int>(fx), y = static_cast<int>(fy);
   // Bias covers the texel quantisation of tilted faces.
   return shadow_height_.at<float>(y, x) > X.dot(sun_) + 0.04 + 2.0 * shadow_texel_;
 }
