@@ -9,11 +9,12 @@
 #include "infer/patch_tensors.h"
 #include "nn/checkpoint.h"
 
+#include "core/util/seconds_since.h"
+
 namespace lc2wf {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Puts a module in eval mode for a scope and restores its previous mode.
 class EvalScope {

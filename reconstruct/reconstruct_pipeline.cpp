@@ -21,6 +21,8 @@
 #include "reconstruct/stage_error.h"
 #include "reconstruct/workspace.h"
 
+#include "core/util/seconds_since.h"
+
 namespace lc2wf {
 
 namespace fs = std::filesystem;
@@ -30,7 +32,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 class StageLog {
  public:
@@ -42,7 +43,7 @@ class StageLog {
   }
   // Records the stage's seconds in the report and prints what it produced.
   void done(Json& seconds, const std::string& detail) {
-    const double s = since(t_);
+    const double s = seconds_since(t_);
     seconds[stage_] = s;
     if (!quiet_) std::fprintf(stderr, "lc2wf-reconstruct: %s: %s (%.2f s)\n", stage_.c_str(), detail.c_str(), s);
   }
@@ -243,7 +244,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
                            {"centre_error_median", pc.median_centre_error}, {"camera_distance", pc.camera_distance}};
   }
   log.done(seconds, "staged in " + stage.string());
-  seconds["total"] = since(t_total);
+  seconds["total"] = seconds_since(t_total);
   report["seconds"] = seconds;
   result.exit_code = result.warnings.empty() ? kReconstructDone : kReconstructPartly;
   report["warnings"] = result.warnings;

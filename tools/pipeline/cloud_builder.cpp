@@ -2,16 +2,10 @@
 
 #include <chrono>
 
+#include "core/util/seconds_since.h"
 #include "dataset/errors.h"
 
 namespace lc2wf {
-namespace {
-
-double since(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-}
-
-}  // namespace
 
 void CloudBuilderOptions::Check() const {
   lsd.Check();
@@ -36,7 +30,7 @@ LineCloud build_line_cloud(const Building& building, const std::vector<RenderedV
     st.segments_per_view[v] = static_cast<int>(tv[v].segments.size());
     total_segments += st.segments_per_view[v];
   }
-  st.seconds_lsd = since(t);
+  st.seconds_lsd = seconds_since(t);
   if (total_segments == 0) throw DataError(building.name, "LSD found no 2D segment in any of " + std::to_string(views.size()) + " views");
 
   t = std::chrono::steady_clock::now();
@@ -46,7 +40,7 @@ LineCloud build_line_cloud(const Building& building, const std::vector<RenderedV
     hi = hi.cwiseMax(p);
   }
   const auto lines = triangulate_lines(tv, options.triangulator, Vec3(0.5 * (lo + hi)), &st.triangulation);
-  st.seconds_triangulation = since(t);
+  st.seconds_triangulation = seconds_since(t);
   if (lines.empty()) throw DataError(building.name, "triangulation produced no 3D line");
 
   t = std::chrono::steady_clock::now();
@@ -62,7 +56,7 @@ LineCloud build_line_cloud(const Building& building, const std::vector<RenderedV
     cloud.support.push_back(std::move(obs));
   }
   cloud.labels = label_by_support(cloud, building.mesh, options.labels);
-  st.seconds_labelling = since(t);
+  st.seconds_labelling = seconds_since(t);
   return cloud;
 }
 

@@ -21,6 +21,8 @@
 #include "dataset/line_cloud_io.h"
 #include "dataset/visibility.h"
 
+#include "core/util/seconds_since.h"
+
 namespace lc2wf {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
@@ -28,7 +30,6 @@ using Json = nlohmann::json;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // Upper bin edges of the length histogram, in units of the building's mean GT edge length.
 const std::vector<double> kLengthBins = {0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0};
@@ -165,7 +166,7 @@ void load_job(Job& job, const DatasetRunOptions& o) {
   } catch (const std::exception& e) {
     fail(job, std::string("load: ") + e.what());
   }
-  job.status["seconds"]["load"] = since(t);
+  job.status["seconds"]["load"] = seconds_since(t);
 }
 
 void render_raster(Job& job, const DatasetRunOptions& o) {
@@ -178,7 +179,7 @@ void render_raster(Job& job, const DatasetRunOptions& o) {
   } catch (const std::exception& e) {
     fail(job, std::string("render: ") + e.what());
   }
-  job.status["seconds"]["render"] = since(t);
+  job.status["seconds"]["render"] = seconds_since(t);
 }
 
 void finish_job(Job& job, const DatasetRunOptions& o) {
@@ -189,7 +190,7 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
       const LineCloud cloud = build_line_cloud(job.building, job.views, o.cloud, &cs);
       const auto t = Clock::now();
       write_line_cloud(cloud_path(o.out, job.name), cloud);
-      job.status["seconds"]["write"] = since(t);
+      job.status["seconds"]["write"] = seconds_since(t);
       job.status["seconds"]["lsd"] = cs.seconds_lsd;
       job.status["seconds"]["triangulation"] = cs.seconds_triangulation;
       job.status["seconds"]["labelling"] = cs.seconds_labelling;
@@ -375,7 +376,7 @@ Json run_dataset(const DatasetRunOptions& o) {
         if (bo.threads == 0 && o.threads > 0) bo.threads = o.threads;
         bo.gt_views = o.keep_views;  // the GT projection is only read by people looking at kept views
         const auto results = render_with_blender(batch, bo, o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
-        const double per_building = since(t) / std::max<size_t>(1, batch.size());
+        const double per_building = seconds_since(t) / std::max<size_t>(1, batch.size());
         for (size_t k = 0; k < index.size(); ++k) {
           Job& job = jobs[index[k]];
           job.status["seconds"]["render"] = per_building;
@@ -413,7 +414,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["commit"] = lc2wf_git_commit();
   summary["processed_this_run"] = todo.size();
   summary["skipped_already_done"] = names.size() - todo.size();
-  summary["wall_seconds_this_run"] = since(start);
+  summary["wall_seconds_this_run"] = seconds_since(start);
   const std::string file = o.shard_count == 1 ? "summary.json"
                                               : "summary-shard-" + std::to_string(o.shard_index) + "-of-" + std::to_string(o.shard_count) + ".json";
   write_file_atomic(o.out / file, json_text(summary, 2));
