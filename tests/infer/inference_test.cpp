@@ -2,6 +2,8 @@
 // clouds (no segments, one segment, nothing above threshold) giving valid empty results with notes,
 // checkpoint loading errors, and the preview PNG.
 #include <gtest/gtest.h>
+
+#include "tests/common/tiny_weights.h"
 #include <unistd.h>
 
 #include <filesystem>
@@ -18,34 +20,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features) {
-  LptConfig c;
-  c.input_dim = features;
-  c.patches = patches;
-  c.lines_per_patch = lines;
-  c.mlp_dims = {8, 16};
-  c.hidden_dim = 16;
-  c.num_heads = 2;
-  c.ffn_dim = 16;
-  return c;
-}
 
 class Inference : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() / ("lc2wf_inference_test_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-    JunctionNetConfig jc;
-    jc.lpt = tiny_lpt(32, 8, 7);
-    jc.head.dims = {8};
-    EdgeNetConfig ec;
-    ec.lpt = tiny_lpt(16, 16, 6);
-    ec.head.dims = {8};
-    JunctionNet j(jc, 3);
-    EdgeNet e(ec, 4);
-    save_checkpoint(dir_ / "junction.safetensors", j, {{"stage", "junction"}, {"net", jc.to_json()}}, j.dropout_rng(),
-                    nullptr, {});
-    save_checkpoint(dir_ / "edge.safetensors", e, {{"stage", "edge"}, {"net", ec.to_json()}}, e.dropout_rng(), nullptr, {});
+    test::write_tiny_weights(dir_);
     cloud_ = make_synthetic_line_cloud(make_rect_building("rect", RectBuildingSpec{}), 5);
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -42,35 +42,7 @@ RenderedFolder render_synthetic_folder(const fs::path& dir, int views) {
   return f;
 }
 
-namespace {
 
-LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features) {
-  LptConfig c;
-  c.input_dim = features;
-  c.patches = patches;
-  c.lines_per_patch = lines;
-  c.mlp_dims = {8, 16};
-  c.hidden_dim = 16;
-  c.num_heads = 2;
-  c.ffn_dim = 16;
-  return c;
-}
-
-}  // namespace
-
-void write_tiny_weights(const fs::path& dir) {
-  fs::create_directories(dir);
-  JunctionNetConfig jc;
-  jc.lpt = tiny_lpt(32, 8, 7);
-  jc.head.dims = {8};
-  EdgeNetConfig ec;
-  ec.lpt = tiny_lpt(16, 16, 6);
-  ec.head.dims = {8};
-  JunctionNet j(jc, 3);
-  EdgeNet e(ec, 4);
-  save_checkpoint(dir / "junction.safetensors", j, {{"stage", "junction"}, {"net", jc.to_json()}}, j.dropout_rng(), nullptr, {});
-  save_checkpoint(dir / "edge.safetensors", e, {{"stage", "edge"}, {"net", ec.to_json()}}, e.dropout_rng(), nullptr, {});
-}
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("lc2wf_reconstruct_test_" + name + "_" + std::to_string(::getpid()));

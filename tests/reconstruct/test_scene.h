@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dataset/building.h"
+#include "tests/common/tiny_weights.h"  // write_tiny_weights
 
 namespace lc2wf::test {
 
@@ -19,9 +20,6 @@ struct RenderedFolder {
 // `views` raster renders (640x480, paper textures) of an L-shaped building into dir/images, the cameras
 // into dir/cameras.json (kept outside the image folder).
 RenderedFolder render_synthetic_folder(const std::filesystem::path& dir, int views);
-
-// junction.safetensors + edge.safetensors of tiny random networks in `dir`.
-void write_tiny_weights(const std::filesystem::path& dir);
 
 // A fresh scratch folder per test and process.
 std::filesystem::path scratch(const std::string& name);

@@ -1,0 +1,40 @@
+// A junction + edge model pair with tiny random networks, saved as lc2wf-train would: the weights folder
+// the inference and reconstruction tests run on.
+#pragma once
+
+#include <filesystem>
+
+#include "nn/checkpoint.h"
+#include "nn/edge_net.h"
+#include "nn/junction_net.h"
+
+namespace lc2wf::test {
+
+inline LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features) {
+  LptConfig c;
+  c.input_dim = features;
+  c.patches = patches;
+  c.lines_per_patch = lines;
+  c.mlp_dims = {8, 16};
+  c.hidden_dim = 16;
+  c.num_heads = 2;
+  c.ffn_dim = 16;
+  return c;
+}
+
+// <dir>/junction.safetensors (32 samples of 8 lines) and <dir>/edge.safetensors (pairs of 2 x 8 lines).
+inline void write_tiny_weights(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  JunctionNetConfig jc;
+  jc.lpt = tiny_lpt(32, 8, 7);
+  jc.head.dims = {8};
+  EdgeNetConfig ec;
+  ec.lpt = tiny_lpt(16, 16, 6);
+  ec.head.dims = {8};
+  JunctionNet j(jc, 3);
+  EdgeNet e(ec, 4);
+  save_checkpoint(dir / "junction.safetensors", j, {{"stage", "junction"}, {"net", jc.to_json()}}, j.dropout_rng(), nullptr, {});
+  save_checkpoint(dir / "edge.safetensors", e, {{"stage", "edge"}, {"net", ec.to_json()}}, e.dropout_rng(), nullptr, {});
+}
+
+}  // namespace lc2wf::test
