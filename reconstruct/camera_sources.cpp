@@ -37,15 +37,13 @@ CameraSet from_json(const fs::path& path, const std::vector<std::string>& all_na
 
 }  // namespace
 
-CameraSet cameras_from_file(const fs::path& path, const std::vector<std::string>& all_names, const std::vector<fs::path>& images,
-                            const fs::path& scratch,
-                            const std::string& colmap_executable) {
+CameraSet cameras_from_file(const fs::path& path, const std::vector<std::string>& all_names, const std::vector<fs::path>& images) {
   try {
     if (!fs::is_directory(path)) return from_json(path, all_names, images);
     CameraSet set;
     set.source = "colmap model";
     set.cameras.resize(images.size());
-    for (const ColmapImage& im : read_colmap_model(path, scratch, colmap_executable))
+    for (const ColmapImage& im : read_colmap_model(path))
       for (size_t i = 0; i < images.size(); ++i)
         if (images[i].filename() == fs::path(im.name).filename()) set.cameras[i] = im.camera;
     return set;

@@ -25,8 +25,7 @@ struct CameraSet {
 // the file when it cannot be read or its count does not match the images.
 // `all_names`: every image file of the folder (the JSON's entries), `images`: the readable ones.
 CameraSet cameras_from_file(const std::filesystem::path& path, const std::vector<std::string>& all_names,
-                            const std::vector<std::filesystem::path>& images,
-                            const std::filesystem::path& scratch, const std::string& colmap_executable);
+                            const std::vector<std::filesystem::path>& images);
 
 // Runs COLMAP with fixed pinhole intrinsics K in `workspace` (created; must be ours to delete).
 // Throws StageError("cameras", ...) with COLMAP's failing step and log.

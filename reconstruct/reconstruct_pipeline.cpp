@@ -117,7 +117,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   if (o.threads > 0) colmap.threads = o.threads;
   const CameraSet cams = o.cameras.empty()
                              ? cameras_from_colmap(folder.paths, colmap_intrinsics(o, folder.width, folder.height), ws.root() / "colmap", colmap)
-                             : cameras_from_file(o.cameras, folder.all_names, folder.paths, ws.root() / "model_txt", colmap.executable);
+                             : cameras_from_file(o.cameras, folder.all_names, folder.paths);
   std::vector<int> image_of_view;  // registered images only
   Json unregistered = Json::array();
   for (size_t i = 0; i < cams.cameras.size(); ++i) {

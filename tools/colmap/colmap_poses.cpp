@@ -19,34 +19,7 @@
 namespace lc2wf {
 namespace fs = std::filesystem;
 
-Eigen::Matrix3d quaternion_to_rotation(double qw, double qx, double qy, double qz) {
-  return Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
-}
-
-Eigen::Vector4d rotation_to_quaternion(const Eigen::Matrix3d& R) {
-  Eigen::Quaterniond q(R);
-  q.normalize();
-  if (q.w() < 0) q.coeffs() *= -1.0;
-  return Eigen::Vector4d(q.w(), q.x(), q.y(), q.z());
-}
-
 namespace {
-
-// Non-comment, non-empty lines with their 1-based numbers.
-std::vector<std::pair<int, std::string>> data_lines(const fs::path& p, bool keep_empty) {
-  std::ifstream in(p);
-  if (!in) throw DataError(p.string(), "cannot open");
-  std::vector<std::pair<int, std::string>> out;
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    if (!line.empty() && line[0] == '#') continue;
-    if (line.empty() && !keep_empty) continue;
-    out.emplace_back(n, line);
-  }
-  return out;
-}
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0;
@@ -55,62 +28,6 @@ double median(std::vector<double> v) {
 }
 
 }  // namespace
-
-std::vector<ColmapImage> read_colmap_text_model(const fs::path& dir) {
-  struct Intr {
-    Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-    int w = 0, h = 0;
-  };
-  std::map<int, Intr> cams;
-  const fs::path cp = dir / "cameras.txt", ip = dir / "images.txt";
-  for (const auto& [n, line] : data_lines(cp, false)) {
-    std::istringstream ss(line);
-    int id = 0;
-    std::string model;
-    Intr c;
-    std::vector<double> p;
-    if (!(ss >> id >> model >> c.w >> c.h)) throw DataError(cp.string(), n, "expected CAMERA_ID MODEL WIDTH HEIGHT PARAMS...");
-    for (double x; ss >> x;) p.push_back(x);
-    double fx, fy, cx, cy;
-    if (model == "PINHOLE" && p.size() == 4) {
-      fx = p[0], fy = p[1], cx = p[2], cy = p[3];
-    } else if ((model == "SIMPLE_PINHOLE" && p.size() == 3) || (model == "SIMPLE_RADIAL" && p.size() == 4) ||
-               (model == "RADIAL" && p.size() == 5)) {
-      fx = fy = p[0], cx = p[1], cy = p[2];
-      for (size_t k = 3; k < p.size(); ++k)
-        if (std::abs(p[k]) > 1e-9) throw DataError(cp.string(), n, "lens distortion is not supported; undistort the images first");
-    } else {
-      throw DataError(cp.string(), n, "unsupported camera model or parameter count: " + model);
-    }
-    c.K << fx, 0, cx - 0.5, 0, fy, cy - 0.5, 0, 0, 1;  // COLMAP's pixel centres sit at +0.5
-    cams[id] = c;
-  }
-  std::vector<ColmapImage> out;
-  const auto lines = data_lines(ip, true);
-  // Each image takes two lines: the pose line, then its (possibly empty) 2D point line.
-  for (size_t k = 0; k < lines.size(); ++k) {
-    const auto& [n, line] = lines[k];
-    if (line.empty()) continue;
-    std::istringstream ss(line);
-    int id = 0, cam = 0;
-    double qw, qx, qy, qz, tx, ty, tz;
-    std::string name;
-    if (!(ss >> id >> qw >> qx >> qy >> qz >> tx >> ty >> tz >> cam >> name))
-      throw DataError(ip.string(), n, "expected IMAGE_ID QW QX QY QZ TX TY TZ CAMERA_ID NAME");
-    const auto it = cams.find(cam);
-    if (it == cams.end()) throw DataError(ip.string(), n, "unknown camera id " + std::to_string(cam));
-    ColmapImage im;
-    im.name = name;
-    im.camera.K = it->second.K;
-    im.camera.width = it->second.w;
-    im.camera.height = it->second.h;
-    im.camera.R = quaternion_to_rotation(qw, qx, qy, qz);
-    im.camera.t = Vec3(tx, ty, tz);
-    out.push_back(im);
-    ++k;  // skip the points line
-  }
-  return out;
-}
 
 Vec3 common_aim_point(const std::vector<Camera>& cameras) {
   LineMeetingPoint meeting;
@@ -236,16 +153,6 @@ double run_step(const std::vector<std::string>& argv, const fs::path& log, const
 }
 
 }  // namespace
-
-std::vector<ColmapImage> read_colmap_model(const fs::path& dir, const fs::path& scratch, const std::string& colmap_executable) {
-  if (fs::exists(dir / "cameras.txt")) return read_colmap_text_model(dir);
-  if (!fs::exists(dir / "cameras.bin") || !fs::exists(dir / "images.bin"))
-    throw DataError(dir.string(), "not a COLMAP model (no cameras.txt/images.txt or cameras.bin/images.bin)");
-  fs::create_directories(scratch);
-  run_step({colmap_executable, "model_converter", "--input_path", dir.string(), "--output_path", scratch.string(), "--output_type", "TXT"},
-           scratch / "model_converter.log", "model_converter (binary model to text)");
-  return read_colmap_text_model(scratch);
-}
 
 ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
                                      const ColmapOptions& o) {

@@ -1,7 +1,5 @@
 // Camera poses from images with COLMAP 3.8 (CPU SIFT, exhaustive matching, mapper with fixed known
-// intrinsics), for users with real photos. COLMAP's text model is converted to our cameras: its pixel
-// origin is the corner of the top-left pixel (cx_colmap = cx_opencv + 0.5) and its quaternions are
-// Hamilton (qw qx qy qz) world-to-camera rotations.
+// intrinsics), for users with real photos. Its models are read by tools/colmap/colmap_model.h.
 #pragma once
 
 #include <filesystem>
@@ -10,25 +8,9 @@
 #include <vector>
 
 #include "dataset/geometry.h"
+#include "tools/colmap/colmap_model.h"  // ColmapImage, read_colmap_model, quaternions
 
 namespace lc2wf {
-
-Eigen::Matrix3d quaternion_to_rotation(double qw, double qx, double qy, double qz);
-Eigen::Vector4d rotation_to_quaternion(const Eigen::Matrix3d& R);  // (qw, qx, qy, qz), qw >= 0
-
-struct ColmapImage {
-  std::string name;
-  Camera camera;
-};
-
-// Reads a COLMAP model folder: text (cameras.txt, images.txt) as below, or binary (cameras.bin,
-// images.bin), converted to text in `scratch` with `colmap model_converter` first.
-std::vector<ColmapImage> read_colmap_model(const std::filesystem::path& dir, const std::filesystem::path& scratch,
-                                           const std::string& colmap_executable = "colmap");
-
-// Reads cameras.txt and images.txt of a COLMAP text model (PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL and
-// RADIAL are accepted; distortion must be zero). Throws DataError naming the file and line.
-std::vector<ColmapImage> read_colmap_text_model(const std::filesystem::path& dir);
 
 struct PoseComparison {
   int reference = 0;       // views in the reference
