@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/json_number.h"
+#include "core/util/json_text.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "dataset/errors.h"
@@ -161,8 +162,8 @@ std::string line_cloud_to_bytes(const LineCloud& c, const LineCloudWriteOptions&
     w.add("label_distances", d, {n, 2});
   }
   h["arrays"] = std::move(w.blocks());
-  if (!options.binary) return h.dump(1) + "\n";
-  const std::string header = h.dump();
+  if (!options.binary) return json_text(h, 1) + "\n";
+  const std::string header = json_text(h);
   return std::string(kMagic) + " " + std::to_string(kVersion) + " " + std::to_string(header.size()) + "\n" + header + w.blob();
 }
 

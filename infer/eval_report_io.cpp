@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/util/atomic_file.h"
+#include "core/util/json_text.h"
 #include "core/util/number_format.h"
 
 namespace lc2wf {
@@ -181,7 +182,7 @@ void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& repo
     j["building3d"] = building3d_json(*building3d);
   }
   write_text_atomically(dir / "metrics.md", md);
-  write_text_atomically(dir / "metrics.json", j.dump(2) + "\n");
+  write_text_atomically(dir / "metrics.json", json_text(j, 2) + "\n");
   write_text_atomically(dir / "per_building.csv", eval_per_building_csv(report));
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/util/atomic_file.h"
+#include "core/util/json_text.h"
 #include "dataset/errors.h"
 #include "infer/eval_report_io.h"
 #include "infer/match_status.h"
@@ -131,7 +132,7 @@ std::string HtmlReport::html(const EvalReport& report, const std::string& method
   h += embedded::kReportCss;
   h += "</style>\n</head>\n<body>\n";
   h += embedded::kReportBody;
-  h += "<script type=\"application/json\" id=\"report-data\">" + script_safe(data.dump()) + "</script>\n";
+  h += "<script type=\"application/json\" id=\"report-data\">" + script_safe(json_text(data)) + "</script>\n";
   for (size_t k = 0; k < blocks_.size(); ++k)
     h += "<script type=\"text/plain\" id=\"g" + std::to_string(k) + "\">" + blocks_[k] + "</script>\n";
   h += "<script>/* three.js r111 (MIT), Debian libjs-three */\n" + three_js_ + "\n</script>\n";

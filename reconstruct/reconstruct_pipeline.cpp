@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/parallel.h"
+#include "core/util/json_text.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "dataset/errors.h"
@@ -130,9 +131,9 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   if (static_cast<int>(image_of_view.size()) < o.min_images)
     throw StageError("cameras", std::to_string(image_of_view.size()) + " of " + std::to_string(folder.paths.size()) +
                                     " images registered (" + cams.source + "), at least " + std::to_string(o.min_images) +
-                                    " needed; unregistered: " + unregistered.dump() +
+                                    " needed; unregistered: " + json_text(unregistered) +
                                     (o.cameras.empty() ? "; COLMAP log: " + (ws.root() / "colmap" / "colmap.log").string() : ""));
-  if (!unregistered.empty()) result.warnings.push_back(std::to_string(unregistered.size()) + " image(s) not registered: " + unregistered.dump());
+  if (!unregistered.empty()) result.warnings.push_back(std::to_string(unregistered.size()) + " image(s) not registered: " + json_text(unregistered));
   log.done(seconds, std::to_string(image_of_view.size()) + "/" + std::to_string(folder.paths.size()) + " registered (" + cams.source + ")");
 
   log.start("lsd");
@@ -249,7 +250,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   result.exit_code = result.warnings.empty() ? kReconstructDone : kReconstructPartly;
   report["warnings"] = result.warnings;
   report["exit_code"] = result.exit_code;
-  write_file_atomic(stage / "report.json", report.dump(2));
+  write_file_atomic(stage / "report.json", json_text(report, 2));
   result.written = ws.publish(o.out);
   if (!ws.removed_at_exit()) result.workspace = ws.root().string();
   if (!o.quiet)

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/util/atomic_file.h"
+#include "core/util/json_text.h"
 #include "core/util/progress.h"
 #include "infer/inference.h"
 #include "nn/checkpoint.h"
@@ -55,12 +56,12 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   }
   if (bar) bar->finish();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  write_text_atomically(manifest, nlohmann::json{{"format", "lc2wf-predicted-junctions-manifest"},
-                                                 {"junction_checkpoint", weights.string()},
-                                                 {"junction_step", step},
-                                                 {"version", kHandoffVersion},
-                                                 {"buildings", names}}
-                                      .dump(2) + "\n");
+  const nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
+                            {"junction_checkpoint", weights.string()},
+                            {"junction_step", step},
+                            {"version", kHandoffVersion},
+                            {"buildings", names}};
+  write_text_atomically(manifest, json_text(m, 2) + "\n");
   log.append({{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},
               {"seconds", seconds}, {"buildings_per_s", seconds > 0 ? clouds.size() / seconds : 0.0}});
   return dir;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/atomic_file.h"
+#include "core/util/json_text.h"
 #include "dataset/errors.h"
 
 namespace lc2wf {
@@ -21,7 +22,7 @@ void write_predicted_junctions(const fs::path& dir, const std::string& name, con
   for (const Vec3& v : p.positions) positions.push_back({v.x(), v.y(), v.z()});
   const nlohmann::json j = {{"format", kFormat}, {"version", 1},          {"name", name},
                             {"units", "metres"}, {"positions", positions}, {"confidences", p.confidence}};
-  write_text_atomically(predicted_junctions_path(dir, name), j.dump() + "\n");
+  write_text_atomically(predicted_junctions_path(dir, name), json_text(j) + "\n");
 }
 
 PredictedJunctions read_predicted_junctions(const fs::path& path) {

@@ -116,5 +116,22 @@ TEST(InputFiles, CoordinatesBeyondTheLimitNameFileAndLine) {
   fs::remove_all(dir);
 }
 
+// Building names come from file names, which need not be UTF-8: writing the cloud's JSON header threw.
+TEST(InputFiles, ACloudNamedInNonUtf8BytesIsWrittenAndReadBack) {
+  const fs::path dir = test::scratch_dir("non_utf8_name");
+  LineCloud cloud;
+  cloud.name = "caf\xff\xfe";
+  cloud.segments.push_back({Vec3(0, 0, 0), Vec3(1, 0, 0)});
+  for (const bool binary : {true, false}) {
+    LineCloudWriteOptions o;
+    o.binary = binary;
+    ASSERT_NO_THROW(write_line_cloud(dir / (cloud.name + ".lcloud"), cloud, o));
+    const LineCloud back = read_line_cloud(dir / (cloud.name + ".lcloud"));
+    EXPECT_EQ(back.name, "caf\xef\xbf\xbd\xef\xbf\xbd");  // U+FFFD twice
+    EXPECT_EQ(back.segments.size(), 1u);
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace lc2wf

@@ -82,6 +82,22 @@ TEST(DatasetCli, HostileMeshesFailAloneWithAStatus) {
   fs::remove_all(dir);
 }
 
+TEST(DatasetCli, AValidMeshWhoseNameIsNotUtf8IsProcessed) {
+  // The cloud's header holds the building name: writing it threw nlohmann's "invalid UTF-8" and failed the
+  // building with a message naming neither file nor field.
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_non_utf8_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  const std::string name = "caf\xff\xfe";
+  std::ifstream seed(std::string(LC2WF_SOURCE_DIR) + "/tests/fuzz/corpus/polyshape/gable_box.seed");
+  std::ofstream(dir / "meshes" / (name + ".polyshape")) << seed.rdbuf();
+  const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() +
+                          " --views 6 --size 128x96 -j 1 --no-progress");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_GT(fs::file_size(dir / "out" / "clouds" / (name + ".lcloud")), 0u);
+  fs::remove_all(dir);
+}
+
 TEST(DatasetCli, FloatFlagsRefuseNaN) {
   for (const char* v : {"nan", "inf", "-nan"}) {
     const CliResult r = run(kDataset + " --meshes m --out o --blur " + v);
