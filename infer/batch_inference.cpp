@@ -19,6 +19,13 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
   for (const auto& path : clouds) {
     // Outputs are named after the file stem, never the name stored inside the file ("../x", "/etc/y", ".").
     const std::string name = path.stem().string();
+    if (!is_plain_file_name(name)) {
+      std::fprintf(stderr, "%slc2wf: skipping %s: its stem '%s' cannot name an output file\n", bar ? "\n" : "", path.string().c_str(),
+                   name.c_str());
+      ++s.failed;
+      if (bar) bar->step();
+      continue;
+    }
     LineCloud cloud;
     InferenceResult r;
     try {

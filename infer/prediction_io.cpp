@@ -101,11 +101,15 @@ ScoredWireframe read_prediction(const std::filesystem::path& obj_path, const Uni
   return out;
 }
 
+bool is_plain_file_name(const std::string& name) {
+  // Anything else would write outside the folder or over another file.
+  return !name.empty() && name != "." && name != ".." && name.find_first_of(std::string("/\0", 2)) == std::string::npos;
+}
+
 void write_prediction(const std::filesystem::path& dir, const std::string& name, const ScoredWireframe& prediction,
                       const std::vector<std::string>& notes, const UnitTransform* raw_units) {
   prediction.check("prediction " + name);
-  // A plain file name: anything else would write outside `dir` or over another file.
-  if (name.empty() || name == "." || name == ".." || name.find_first_of(std::string("/\0", 2)) != std::string::npos)
+  if (!is_plain_file_name(name))
     throw std::invalid_argument("prediction name '" + name + "' is not a plain file name");
   std::filesystem::create_directories(dir);
   write_obj_wireframe(dir / (name + ".obj"), prediction.wireframe, raw_units);

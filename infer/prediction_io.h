@@ -33,8 +33,11 @@ std::filesystem::path scores_path_for(const std::filesystem::path& obj);
 // line up with edge_scores. Throws DataError naming the file.
 ScoredWireframe read_prediction(const std::filesystem::path& obj, const UnitTransform* raw_units = nullptr);
 
+// True for a name that stays inside the output folder as `<name>.obj`: not empty, `.` or `..`, no `/` or NUL.
+bool is_plain_file_name(const std::string& name);
+
 // Writes `<dir>/<name>.obj` and `<dir>/<name>.json` atomically (creating `dir`); `raw_units` writes raw
-// coordinates.
+// coordinates. Throws std::invalid_argument when `name` is not a plain file name.
 void write_prediction(const std::filesystem::path& dir, const std::string& name, const ScoredWireframe& prediction,
                       const std::vector<std::string>& notes = {}, const UnitTransform* raw_units = nullptr);
 

@@ -11,6 +11,8 @@
 
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
+#include "dataset/line_cloud_io.h"
+#include "infer/batch_inference.h"
 #include "infer/inference.h"
 #include "infer/preview.h"
 #include "nn/checkpoint.h"
@@ -98,6 +100,24 @@ TEST_F(Inference, DegenerateCloudsGiveEmptyWireframesWithNotes) {
   r = predictor.predict(cloud_, no_edges);
   EXPECT_TRUE(r.wireframe.wireframe.edges.empty());
   EXPECT_FALSE(r.notes.empty());
+}
+
+TEST_F(Inference, BatchSkipsACloudWhoseStemCannotNameAnOutput) {
+  // "..lcloud" has the stem "." and "...lcloud" the stem "..": the batch used to end on them, naming
+  // neither file; now they are skipped by name and the other clouds are written.
+  const fs::path in = dir_ / "clouds", out = dir_ / "out";
+  for (const char* name : {"..lcloud", "...lcloud", "ok.lcloud"}) write_line_cloud(in / name, cloud_);
+  BatchInferenceOptions o;
+  o.quiet = true;
+  ::testing::internal::CaptureStderr();
+  const BatchInferenceSummary s = infer_clouds(WireframePredictor(dir_), {in / "..lcloud", in / "...lcloud", in / "ok.lcloud"}, out, o);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(s.failed, 2);
+  EXPECT_EQ(s.buildings, 1);
+  EXPECT_NE(err.find((in / "..lcloud").string() + ": its stem '.' cannot name an output file"), std::string::npos) << err;
+  EXPECT_NE(err.find((in / "...lcloud").string() + ": its stem '..' cannot name an output file"), std::string::npos) << err;
+  EXPECT_TRUE(fs::exists(out / "ok.obj"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 2);  // ok.obj, ok.json
 }
 
 TEST_F(Inference, WrongOrMissingWeightsAreNamed) {
