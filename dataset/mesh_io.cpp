@@ -1,6 +1,8 @@
 #include "dataset/mesh_io.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -86,7 +88,7 @@ PolyMesh parse_polyshape(std::istream& in, const std::string& src) {
 PolyMesh read_polyshape(const std::filesystem::path& path) {
   if (const std::string problem = input_file_problem(path); !problem.empty()) throw DataError(path.string(), problem);
   std::ifstream in(path);
-  if (!in) throw DataError(path.string(), "cannot open file");
+  if (!in) throw DataError(path.string(), std::string("cannot open file: ") + std::strerror(errno));
   return parse_polyshape(in, path.string());
 }
 
@@ -146,7 +148,7 @@ ObjData parse_obj(std::istream& in, const std::string& src, const ObjReadOptions
 ObjData read_obj(const std::filesystem::path& path, const ObjReadOptions& options) {
   if (const std::string problem = input_file_problem(path); !problem.empty()) throw DataError(path.string(), problem);
   std::ifstream in(path);
-  if (!in) throw DataError(path.string(), "cannot open file");
+  if (!in) throw DataError(path.string(), std::string("cannot open file: ") + std::strerror(errno));
   return parse_obj(in, path.string(), options);
 }
 

@@ -14,11 +14,22 @@
 namespace lc2wf {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Any entry counts, not only regular files: a FIFO or folder under a building's name is then refused by
+// the reader, naming it, instead of the building being reported as missing.
+bool present(const fs::path& p) {
+  std::error_code ec;
+  return fs::exists(fs::symlink_status(p, ec));
+}
+
+}  // namespace
+
 std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const std::string& name) {
   if (source.kind == GroundTruthSource::Kind::kMeshDir) {
     const fs::path obj = source.dir / (name + ".obj");
     const fs::path poly = source.dir / (name + ".polyshape");
-    const bool has_obj = fs::is_regular_file(obj), has_poly = fs::is_regular_file(poly);
+    const bool has_obj = present(obj), has_poly = present(poly);
     if (has_obj && has_poly)
       throw DataError(source.dir.string(), "both " + obj.filename().string() + " and " + poly.filename().string() +
                                                " exist; keep one ground truth per building");
@@ -29,7 +40,7 @@ std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const
   // Line clouds: the dataset layer fixes the content, not the extension, so match on the stem.
   std::vector<fs::path> hits;
   for (const auto& entry : fs::directory_iterator(source.dir))
-    if (entry.is_regular_file() && entry.path().stem() == name) hits.push_back(entry.path());
+    if (!entry.is_directory() && entry.path().stem() == name) hits.push_back(entry.path());  // folders: LIMAP runs, plots
   if (hits.size() > 1) {
     std::sort(hits.begin(), hits.end());
     throw DataError(source.dir.string(), "several files named '" + name + "' (" + hits[0].filename().string() + ", " +
@@ -72,10 +83,11 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
 std::vector<std::string> list_ground_truth_names(const GroundTruthSource& source) {
   std::set<std::string> names;
   for (const auto& entry : fs::directory_iterator(source.dir)) {
-    if (!entry.is_regular_file()) continue;
     const fs::path& p = entry.path();
-    if (source.kind == GroundTruthSource::Kind::kLineCloudDir || p.extension() == ".obj" ||
-        p.extension() == ".polyshape")
+    // Mesh folders: every *.obj / *.polyshape entry (a FIFO among them fails by name); line-cloud folders
+    // may hold other things (plots, LIMAP runs), so only their regular files are buildings.
+    if (source.kind == GroundTruthSource::Kind::kLineCloudDir ? entry.is_regular_file()
+                                                              : p.extension() == ".obj" || p.extension() == ".polyshape")
       names.insert(p.stem().string());
   }
   return {names.begin(), names.end()};

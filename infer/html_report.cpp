@@ -8,6 +8,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/json_text.h"
+#include "dataset/atomic_file.h"
 #include "dataset/errors.h"
 #include "infer/eval_report_io.h"
 #include "infer/match_status.h"
@@ -150,13 +151,16 @@ std::filesystem::path write_html_report(const std::filesystem::path& out, const 
   std::vector<nlohmann::json> compare;
   for (const fs::path& dir : compare_dirs) {
     const fs::path file = dir / "metrics.json";
-    std::ifstream in(file);
-    if (!in) throw DataError(file.string(), "cannot read (is it an lc2wf-eval --out folder?)");
+    nlohmann::json j;
     try {
-      compare.push_back(nlohmann::json::parse(in));
+      j = nlohmann::json::parse(read_file(file));  // regular files only: a FIFO would block
     } catch (const nlohmann::json::exception& e) {
       throw DataError(file.string(), e.what());
     }
+    // The page drops these rows' per-building lists: anything but an object is not a metrics.json.
+    if (!j.is_object()) throw DataError(file.string(), "not an lc2wf-eval metrics.json: expected a JSON object");
+    if (j.contains("building3d") && !j["building3d"].is_object()) throw DataError(file.string(), "'building3d' is not an object");
+    compare.push_back(std::move(j));
   }
   std::vector<HtmlPlot> plots;
   for (const fs::path& dir : {out / "plots", weights.empty() ? fs::path() : weights / "plots"}) {

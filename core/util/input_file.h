@@ -2,7 +2,9 @@
 // /dev/zero or a device is read until memory runs out. Header-only, like atomic_file.h.
 #pragma once
 
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -34,7 +36,7 @@ inline std::string read_input_file(const std::filesystem::path& path, std::uintm
   if (const std::string problem = input_file_problem(path, max_bytes); !problem.empty())
     throw std::runtime_error(path.string() + ": " + problem);
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open file");
+  if (!in) throw std::runtime_error(path.string() + ": cannot open file: " + std::strerror(errno));
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();

@@ -50,7 +50,9 @@ TEST(InputFiles, FifoDeviceAndDirectoryAreRefusedWithoutBlocking) {
   }
   expect_refused(dir, read_bytes, "is a directory");
   expect_refused(dir, read_mesh, "is a directory");
-  EXPECT_EQ(input_file_problem(dir / "missing"), "");  // left to the open, which names it
+  EXPECT_EQ(input_file_problem(dir / "missing"), "");  // left to the open, which names it and says why
+  expect_refused(dir / "missing", read_bytes, "cannot open file: No such file or directory");
+  expect_refused(dir / "missing", read_mesh, "cannot open file: No such file or directory");
   EXPECT_NE(input_file_problem(fifo, 1).find("not a regular file"), std::string::npos);
   fs::remove_all(dir);
 }

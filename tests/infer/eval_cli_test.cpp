@@ -1,5 +1,6 @@
 // Runs the lc2wf-eval binary on small generated cases.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -127,6 +128,36 @@ TEST(EvalCli, BadInputsExitOneAndNameTheProblem) {
   EXPECT_EQ(no_gt.code, 1);
   EXPECT_NE(no_gt.err.find("ghost"), std::string::npos) << no_gt.err;
   EXPECT_FALSE(fs::exists(dir.path() / "o" / "metrics.json"));
+}
+
+TEST(EvalCli, SpecialFilesAreRefusedByNameWithoutBlocking) {
+  testing::ScratchDir dir("cli_special");
+  const fs::path gt = dir.path() / "gt", pred = dir.path() / "pred", out = dir.path() / "o";
+  fs::create_directories(gt);
+  testing::write_text(pred / "b1.obj", box_prediction_raw(0));
+  // A FIFO under a building's name in the GT folder: reported as "no buildings (folder is empty)" before.
+  ASSERT_EQ(::mkfifo((gt / "b1.polyshape").c_str(), 0600), 0);
+  const CliResult fifo = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --out " + out.string());
+  EXPECT_EQ(fifo.code, 1);
+  EXPECT_NE(fifo.err.find((gt / "b1.polyshape").string() + ": is not a regular file"), std::string::npos) << fifo.err;
+  fs::remove(gt / "b1.polyshape");
+  testing::write_text(gt / "b1.polyshape", testing::box_polyshape(0));
+  // --html-compare's metrics.json: a FIFO is refused with the command line, a JSON array escaped as a
+  // type error naming no file.
+  const fs::path other = dir.path() / "other";
+  fs::create_directories(other);
+  ASSERT_EQ(::mkfifo((other / "metrics.json").c_str(), 0600), 0);
+  const std::string html = "--pred " + pred.string() + " --gt " + gt.string() + " --units raw --out " + out.string() +
+                           " --quiet --html --html-compare " + other.string();
+  CliResult r = run_eval(dir.path(), html);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find((other / "metrics.json").string()), std::string::npos) << r.err;
+  fs::remove(other / "metrics.json");
+  testing::write_text(other / "metrics.json", "[1, 2]");
+  r = run_eval(dir.path(), html);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find((other / "metrics.json").string() + ": not an lc2wf-eval metrics.json: expected a JSON object"),
+            std::string::npos) << r.err;
 }
 
 fs::path shared_data_dir() {
