@@ -43,9 +43,15 @@ CameraSet cameras_from_file(const fs::path& path, const std::vector<std::string>
     CameraSet set;
     set.source = "colmap model";
     set.cameras.resize(images.size());
-    for (const ColmapImage& im : read_colmap_model(path))
+    const std::vector<ColmapImage> model = read_colmap_model(path);
+    int matched = 0;
+    for (const ColmapImage& im : model)
       for (size_t i = 0; i < images.size(); ++i)
-        if (images[i].filename() == fs::path(im.name).filename()) set.cameras[i] = im.camera;
+        if (images[i].filename() == fs::path(im.name).filename()) set.cameras[i] = im.camera, ++matched;
+    if (matched == 0 && !model.empty() && !images.empty())
+      throw StageError("cameras", path.string() + ": none of the model's " + std::to_string(model.size()) +
+                                      " image names matches an image of the folder (model: '" + model.front().name + "', folder: '" +
+                                      images.front().filename().string() + "', ...)");
     return set;
   } catch (const StageError&) {
     throw;

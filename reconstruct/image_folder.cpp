@@ -29,13 +29,18 @@ ImageFolder read_image_folder(const fs::path& dir, int min_images) {
   std::error_code ec;
   std::vector<fs::path> found;
   for (const auto& e : fs::directory_iterator(dir, ec))
-    if (e.is_regular_file() && is_image(e.path())) found.push_back(e.path());
+    if (is_image(e.path())) found.push_back(e.path());
   if (ec) throw StageError("images", "cannot list " + dir.string() + ": " + ec.message());
   std::sort(found.begin(), found.end());
   ImageFolder f;
   std::vector<std::string> odd_size;
   for (const fs::path& p : found) {
-    f.all_names.push_back(p.filename().string());
+    f.all_names.push_back(p.filename().string());  // a cameras JSON has one entry per name, readable or not
+    std::error_code type_ec;
+    if (!fs::is_regular_file(p, type_ec)) {  // a FIFO would block the decoder for ever
+      f.unreadable.push_back(p.filename().string() + " (not a regular file)");
+      continue;
+    }
     cv::Mat image = cv::imread(p.string(), cv::IMREAD_GRAYSCALE);
     if (image.empty()) {
       f.unreadable.push_back(p.filename().string());

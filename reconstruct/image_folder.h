@@ -15,7 +15,7 @@ struct ImageFolder {
   std::vector<std::string> all_names;        // every image file found, name order (readable or not)
   std::vector<std::filesystem::path> paths;  // readable images, name order
   std::vector<cv::Mat> images;               // 8-bit gray, one per path
-  std::vector<std::string> unreadable;       // file names that failed to decode
+  std::vector<std::string> unreadable;       // file names that failed to decode, or "NAME (not a regular file)"
   int width = 0, height = 0;
 };
 

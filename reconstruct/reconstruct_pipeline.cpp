@@ -130,7 +130,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   report["cameras"] = {{"source", cams.source}, {"registered", image_of_view.size()}, {"unregistered", unregistered}, {"colmap_seconds", steps}};
   if (static_cast<int>(image_of_view.size()) < o.min_images)
     throw StageError("cameras", std::to_string(image_of_view.size()) + " of " + std::to_string(folder.paths.size()) +
-                                    " images registered (" + cams.source + "), at least " + std::to_string(o.min_images) +
+                                    " images registered (" + cams.source + (o.cameras.empty() ? "" : " " + o.cameras.string()) + "), at least " + std::to_string(o.min_images) +
                                     " needed; unregistered: " + json_text(unregistered) +
                                     (o.cameras.empty() ? "; COLMAP log: " + (ws.root() / "colmap" / "colmap.log").string() : ""));
   if (!unregistered.empty()) result.warnings.push_back(std::to_string(unregistered.size()) + " image(s) not registered: " + json_text(unregistered));
@@ -225,7 +225,15 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   if (!o.reference_cameras.empty()) {
     // Evaluation only: the similarity that puts our cameras onto known ones, applied to the wireframe.
     std::vector<Camera> reference;
-    for (const Json& j : Json::parse(read_file(o.reference_cameras))) reference.push_back(camera_from_json(j, o.reference_cameras.string()));
+    const std::string source = o.reference_cameras.string();
+    Json list;
+    try {
+      list = Json::parse(read_file(o.reference_cameras));
+    } catch (const Json::exception& e) {
+      throw StageError("outputs", source + ": not JSON: " + e.what());
+    }
+    if (!list.is_array()) throw StageError("outputs", source + ": expected an array of cameras, one per image");
+    for (size_t i = 0; i < list.size(); ++i) reference.push_back(camera_from_json(list[i], source + " entry " + std::to_string(i)));
     if (reference.size() != cams.cameras.size())
       throw StageError("outputs", o.reference_cameras.string() + " has " + std::to_string(reference.size()) + " cameras for " +
                                       std::to_string(cams.cameras.size()) + " images");

@@ -1,6 +1,7 @@
 // lc2wf-reconstruct's pipeline on raster renders of a synthetic building with known cameras (no COLMAP):
 // outputs, the metric frame from an arbitrary SfM frame, and every bad input the command must survive.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -168,7 +169,8 @@ TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
   Json cams = Json::parse(read_file(scene_->cameras_json));
   for (const auto& e : fs::directory_iterator(scene_->images)) fs::copy_file(e.path(), images / e.path().filename());
   std::ofstream(images / "view_005b.png") << "\x89PNG but not really";
-  cams.insert(cams.begin() + 6, nullptr);  // one entry per image file, in name order
+  ASSERT_EQ(::mkfifo((images / "view_005c.png").c_str(), 0600), 0);  // never opened: the decoder would block
+  cams.insert(cams.begin() + 6, {nullptr, nullptr});  // one entry per image file, in name order
   write_file_atomic(*dir_ / "cams_broken.json", cams.dump());
   ReconstructOptions o = options("broken");
   o.images = images;
@@ -177,7 +179,25 @@ TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
   EXPECT_EQ(r.exit_code, 1);
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_EQ(r.warnings[0], "unreadable image skipped: view_005b.png");
-  EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png"}));
+  EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png", "view_005c.png (not a regular file)"}));
+}
+
+TEST_F(Reconstruct, HostileCameraFilesAreNamed) {
+  ReconstructOptions o = options("hostile_reference");
+  o.cameras = scene_->cameras_json;
+  write_file_atomic(*dir_ / "reference.json", "[{\"K\": [1,");
+  o.reference_cameras = *dir_ / "reference.json";
+  expect_stage_error(o, "outputs", (*dir_ / "reference.json").string() + ": not JSON: ");
+  write_file_atomic(*dir_ / "reference.json", "{\"K\": 1}");
+  expect_stage_error(o, "outputs", (*dir_ / "reference.json").string() + ": expected an array of cameras, one per image");
+  // A COLMAP model whose image names match none of the photos: every image looked unregistered.
+  const fs::path model = *dir_ / "foreign_model";
+  fs::create_directories(model);
+  write_file_atomic(model / "cameras.txt", "1 PINHOLE 640 480 500 500 320 240\n");
+  write_file_atomic(model / "images.txt", "1 1 0 0 0 0 0 5 1 IMG_0001.JPG\n\n2 1 0 0 0 1 0 5 1 IMG_0002.JPG\n\n");
+  ReconstructOptions m = options("foreign_model_out");
+  m.cameras = model;
+  expect_stage_error(m, "cameras", model.string() + ": none of the model's 2 image names matches an image of the folder");
 }
 
 TEST_F(Reconstruct, ImagesWithoutLines) {
@@ -196,7 +216,8 @@ TEST_F(Reconstruct, TooFewRegisteredImages) {
   write_file_atomic(*dir_ / "cams_two.json", cams.dump());
   ReconstructOptions o = options("unregistered");
   o.cameras = *dir_ / "cams_two.json";
-  expect_stage_error(o, "cameras", "2 of 12 images registered (cameras json), at least 3 needed; unregistered: [\"view_002.png\"");
+  expect_stage_error(o, "cameras", "2 of 12 images registered (cameras json " + o.cameras.string() +
+                                       "), at least 3 needed; unregistered: [\"view_002.png\"");
 }
 
 TEST_F(Reconstruct, CamerasFileOfTheWrongSize) {
