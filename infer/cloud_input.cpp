@@ -68,9 +68,10 @@ LineCloud load_line_cloud(const fs::path& path, CloudFormat format, double raw_p
 
 fs::path find_cloud_file(const fs::path& dir, const std::string& name) {
   std::vector<fs::path> hits;
-  std::error_code ec;
+  std::error_code ec, type_ec;
+  // Not only regular files: a FIFO or device under the name is then refused by the reader, naming it.
   for (const auto& entry : fs::directory_iterator(dir, ec))
-    if ((entry.is_regular_file() || is_limap_tracks_dir(entry.path())) && entry.path().stem() == name) hits.push_back(entry.path());
+    if ((!entry.is_directory(type_ec) || is_limap_tracks_dir(entry.path())) && entry.path().stem() == name) hits.push_back(entry.path());
   if (ec) throw DataError(dir.string(), "cannot list folder: " + ec.message());
   if (hits.empty()) throw DataError(dir.string(), "no line-cloud file for building '" + name + "'");
   if (hits.size() > 1)

@@ -18,9 +18,15 @@ BuildingSet load_building_set(const DataConfig& data, const std::filesystem::pat
   std::unique_ptr<Progress> progress;
   if (!quiet) progress = std::make_unique<Progress>("loading " + split_file.filename().string(), names.size());
   for (const std::string& name : names) {
-    LineCloud cloud = load_line_cloud(find_cloud_file(data.dir, name), format, data.raw_per_metre);
+    std::filesystem::path file;
+    try {
+      file = find_cloud_file(data.dir, name);
+    } catch (const DataError& e) {  // a typo in the split is found through the split file
+      throw DataError(split_file.string(), "lists '" + name + "', but " + e.what());
+    }
+    LineCloud cloud = load_line_cloud(file, format, data.raw_per_metre);
     cloud.name = name;
-    if (cloud.segments.empty()) throw DataError(name, "line cloud has no segments (cannot be trained on)");
+    if (cloud.segments.empty()) throw DataError(file.string(), "line cloud has no segments (cannot be trained on)");
     set.clouds.push_back(std::move(cloud));
     if (progress) progress->step();
   }

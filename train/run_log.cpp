@@ -34,15 +34,15 @@ void RunLog::rewind(const std::string& stage, int64_t step, const std::vector<st
   std::ifstream in(path_);
   std::string text, line;
   while (std::getline(in, line)) {
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(line);
-    } catch (const nlohmann::json::parse_error&) {
-      continue;  // a line torn by a kill
-    }
-    const long r = rank(j.value("stage", std::string()));
+    const nlohmann::json j = nlohmann::json::parse(line, nullptr, /*allow_exceptions=*/false);
+    // A line torn by a kill, or not one of ours ('5', a string "stage"), is dropped: value() would throw.
+    if (!j.is_object()) continue;
+    const auto stage_it = j.find("stage"), step_it = j.find("step");
+    const std::string stage_name = stage_it != j.end() && stage_it->is_string() ? stage_it->get<std::string>() : "";
+    const int64_t line_step = step_it != j.end() && step_it->is_number_integer() ? step_it->get<int64_t>() : 0;
+    const long r = rank(stage_name);
     if (r > current) continue;
-    if (r == current && j.value("step", int64_t{0}) > step) continue;
+    if (r == current && line_step > step) continue;
     if (r == current && step == 0) continue;
     text += line + "\n";
   }

@@ -53,6 +53,21 @@ TEST(RunLog, RewindKeepsOnlyWhatTheCheckpointCovers) {
   EXPECT_EQ(read_lines(s.dir / "log.jsonl").size(), 4u);
 }
 
+TEST(RunLog, RewindSurvivesLinesThatAreNotOurs) {
+  // A valid JSON line that is not an object, or has a non-string stage, ended --resume with a type error.
+  Scratch s;
+  RunLog log(s.dir / "log.jsonl");
+  log.append({{"stage", "junction"}, {"type", "step"}, {"step", 1}});
+  {
+    std::ofstream odd(s.dir / "log.jsonl", std::ios::app);
+    odd << "5\n[1]\n{\"stage\": 7, \"step\": \"x\"}\n\"junction\"\n";
+  }
+  EXPECT_NO_THROW(log.rewind("junction", 1, kOrder));
+  const auto lines = read_lines(s.dir / "log.jsonl");
+  ASSERT_EQ(lines.size(), 1u);  // an unknown stage ranks after every known one, so rewinding drops it
+  EXPECT_EQ(lines[0]["step"], 1);
+}
+
 TEST(RunLog, FreshStageDropsItsOldLinesAndLaterStages) {
   Scratch s;
   RunLog log(s.dir / "log.jsonl");
