@@ -77,7 +77,9 @@ the files, and nothing is written to OUT).
 Vec3 parse_vector(const std::string& flag, const std::string& value) {
   double x, y, z;
   char tail;
-  if (std::sscanf(value.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3) throw UsageError(flag + " expects X,Y,Z, got '" + value + "'");
+  // sscanf reads "nan" and "inf": refused here like every other number flag.
+  if (std::sscanf(value.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3 || !Vec3(x, y, z).allFinite())
+    throw UsageError(flag + " expects finite X,Y,Z, got '" + value + "'");
   return Vec3(x, y, z);
 }
 
@@ -107,7 +109,8 @@ ReconstructOptions parse_args(int argc, char** argv) {
       double fx, fy, cx, cy;
       char tail;
       const std::string v = value();
-      if (std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &fx, &fy, &cx, &cy, &tail) != 4) throw UsageError("--intrinsics expects fx,fy,cx,cy, got '" + v + "'");
+      if (std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &fx, &fy, &cx, &cy, &tail) != 4 || !Eigen::Vector4d(fx, fy, cx, cy).allFinite())
+        throw UsageError("--intrinsics expects finite fx,fy,cx,cy, got '" + v + "'");
       o.intrinsics = Eigen::Vector4d(fx, fy, cx, cy);
     } else if (f == "--known-distance") {
       const std::string v = value();

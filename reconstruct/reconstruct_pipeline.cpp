@@ -197,6 +197,10 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
     for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, views[s.ref.view].segments[s.ref.segment]});
     cloud.support.push_back(std::move(obs));
   }
+  for (const Segment3& s : cloud.segments)
+    if (!within_coordinate_limit(s.a) || !within_coordinate_limit(s.b))  // e.g. --scale 1e20
+      throw StageError("frame", "the scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source +
+                                    ") puts the cloud beyond +-1e9 m");
   report["frame"] = {{"to_metric", similarity_json(frame.to_metric)}, {"up_input", vec_json(frame.up_input)},
                      {"up_source", frame.up_source}, {"vertical_lines", frame.vertical_lines},
                      {"scale_source", frame.scale_source}, {"height_input_units", frame.height_input},

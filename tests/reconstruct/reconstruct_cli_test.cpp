@@ -22,6 +22,12 @@ TEST(ReconstructCli, HelpAndUsageErrors) {
   EXPECT_EQ(testing::run_cli(kBin + " /no/such/folder --weights w -o o").code, 2);
   EXPECT_EQ(testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --scale -1").code, 2);
   EXPECT_EQ(testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --known-distance a.png,3").code, 2);
+  // sscanf reads nan and inf: they passed as a vector/intrinsics ("given_up is zero" came much later).
+  for (const std::string flag : {"--up nan,0,1", "--up 0,inf,1", "--intrinsics 500,nan,320,240"}) {
+    const auto r = testing::run_cli(kBin + " " + dir.string() + " --weights w -o o " + flag);
+    EXPECT_EQ(r.code, 2) << flag;
+    EXPECT_NE(r.err.find(flag.substr(0, flag.find(' ')) + " expects finite"), std::string::npos) << r.err;
+  }
   fs::remove_all(dir);
 }
 

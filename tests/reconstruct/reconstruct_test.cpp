@@ -182,6 +182,15 @@ TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
   EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png", "view_005c.png (not a regular file)"}));
 }
 
+TEST_F(Reconstruct, AScaleThatLeavesTheCoordinateLimitIsAFrameError) {
+  // --scale 1e20 failed only when the cloud was written, as an I/O error naming a workspace file.
+  ReconstructOptions o = options("huge_scale");
+  o.cameras = scene_->cameras_json;
+  o.frame.scale = 1e20;
+  o.scale_given = true;
+  expect_stage_error(o, "frame", "m/unit (given) puts the cloud beyond +-1e9 m");
+}
+
 TEST_F(Reconstruct, HostileCameraFilesAreNamed) {
   ReconstructOptions o = options("hostile_reference");
   o.cameras = scene_->cameras_json;
