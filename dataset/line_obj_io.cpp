@@ -8,10 +8,11 @@
 
 namespace lc2wf {
 
-ExternalLineMap read_line_obj(const std::filesystem::path& path) {
-  const ObjData obj = read_obj(path);
-  if (!obj.mesh.faces.empty()) throw DataError(path.string(), "has faces ('f'): a line-cloud OBJ holds 'v' and 'l' only");
-  if (obj.lines.empty()) throw DataError(path.string(), "no 'l' segment: not a line-cloud OBJ");
+namespace {
+
+ExternalLineMap line_map(const ObjData& obj, const std::string& source) {
+  if (!obj.mesh.faces.empty()) throw DataError(source, "has faces ('f'): a line-cloud OBJ holds 'v' and 'l' only");
+  if (obj.lines.empty()) throw DataError(source, "no 'l' segment: not a line-cloud OBJ");
   ExternalLineMap map;
   map.lines.reserve(obj.lines.size());
   for (const auto& [i, j] : obj.lines) {
@@ -21,6 +22,12 @@ ExternalLineMap read_line_obj(const std::filesystem::path& path) {
   }
   return map;
 }
+
+}  // namespace
+
+ExternalLineMap parse_line_obj(std::istream& in, const std::string& source) { return line_map(parse_obj(in, source), source); }
+
+ExternalLineMap read_line_obj(const std::filesystem::path& path) { return line_map(read_obj(path), path.string()); }
 
 std::string line_obj_string(const LineCloud& cloud) {
   std::string s = "# lc2wf line cloud '" + cloud.name + "': " + std::to_string(cloud.segments.size()) + " segments (metres)\n";

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <istream>
 #include <string>
 
 #include "dataset/external_line_map.h"
@@ -11,6 +12,7 @@ namespace lc2wf {
 
 // Every `l` segment (a polyline gives its consecutive pairs) becomes one line with one segment, in file
 // order. Faces are rejected (a mesh is not a line cloud). Throws DataError naming the file and line.
+ExternalLineMap parse_line_obj(std::istream& in, const std::string& source);
 ExternalLineMap read_line_obj(const std::filesystem::path& path);
 
 // Metres, 9 significant digits; written atomically.
