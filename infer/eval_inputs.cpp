@@ -39,8 +39,9 @@ std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const
   }
   // Line clouds: the dataset layer fixes the content, not the extension, so match on the stem.
   std::vector<fs::path> hits;
+  std::error_code type_ec;  // a symlink loop is not a folder: its reader names it
   for (const auto& entry : fs::directory_iterator(source.dir))
-    if (!entry.is_directory() && entry.path().stem() == name) hits.push_back(entry.path());  // folders: LIMAP runs, plots
+    if (!entry.is_directory(type_ec) && entry.path().stem() == name) hits.push_back(entry.path());  // folders: LIMAP runs, plots
   if (hits.size() > 1) {
     std::sort(hits.begin(), hits.end());
     throw DataError(source.dir.string(), "several files named '" + name + "' (" + hits[0].filename().string() + ", " +
