@@ -8,10 +8,15 @@ packages=(
   libopencv-dev libopencv-contrib-dev
   python3-numpy
   libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
+  time                             # GNU time: peak memory of each command in tests/fuzz/adversarial
 )
 # Rendering and pose tools are only needed by the dataset generator (tools/), so they are opt-in.
 if [[ "${LC2WF_WITH_RENDER_TOOLS:-0}" == 1 ]]; then
   packages+=(blender colmap)
+fi
+# clang with libFuzzer and the ASan/UBSan runtimes for the sanitizer stage (tools/sanitize.sh).
+if [[ "${LC2WF_WITH_SANITIZERS:-0}" == 1 ]]; then
+  packages+=(clang)
 fi
 # Headless Chromium for the HTML report's browser test; tools/test.sh asks for it.
 if [[ "${LC2WF_WITH_BROWSER:-0}" == 1 ]]; then
