@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # The test command: installs missing dependencies (Blender too, for the end-to-end render test, and
-# Chromium for the HTML report's browser test), builds, and runs the default CTest suite.
+# Chromium for the HTML report's browser test), builds, and runs the default CTest suite, then the
+# sanitizer stage (tools/sanitize.sh: ASan/UBSan reader tests and a short run of every fuzz target;
+# LC2WF_SKIP_SANITIZE=1 skips it).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} LC2WF_WITH_BROWSER=${LC2WF_WITH_BROWSER:-1} \
@@ -8,3 +10,4 @@ LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} LC2WF_WITH_BROWSER=${LC2WF
 cd "${LC2WF_BUILD_DIR:-$root/build}"
 # Long runs carry the "slow" label and are opt-in: ctest -L slow
 ctest --output-on-failure -j "$(nproc)" -LE slow
+"$root/tools/sanitize.sh"

@@ -15,7 +15,6 @@
 
 #include "dataset/errors.h"
 #include "tools/colmap/colmap_model.h"
-#include "tools/render/camera_ring.h"
 
 namespace lc2wf {
 namespace {
@@ -37,13 +36,19 @@ void put(std::string& s, T v) {
   s.append(raw, sizeof(T));
 }
 
+// n cameras on a ring looking at the building (built here so the test needs only the reader).
 std::vector<Camera> ring(int n) {
-  Eigen::Matrix3d K;
-  K << 622.2, 0, 319.5, 0, 622.2, 239.5, 0, 0, 1;
   std::vector<Camera> cams;
   for (int i = 0; i < n; ++i) {
     const double a = 2 * M_PI * i / n;
-    cams.push_back(look_at(Vec3(25 * std::cos(a), 25 * std::sin(a), 8 + i % 3 * 4), Vec3(0, 0, 2), K, 640, 480));
+    const Vec3 eye(25 * std::cos(a), 25 * std::sin(a), 8 + i % 3 * 4);
+    const Vec3 z = (Vec3(0, 0, 2) - eye).normalized(), x = z.cross(Vec3(0, 0, 1)).normalized(), y = z.cross(x);
+    Camera c;
+    c.K << 622.2, 0, 319.5, 0, 622.2, 239.5, 0, 0, 1;
+    c.R.row(0) = x, c.R.row(1) = y, c.R.row(2) = z;
+    c.t = -c.R * eye;
+    c.width = 640, c.height = 480;
+    cams.push_back(c);
   }
   return cams;
 }
