@@ -25,6 +25,8 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
   train_options.pairs.max_static_pairs = static_cast<int>(c.max_static_pairs);
   train_options.patch = pair_patch_options(c.net);
   train_options.augment_enabled = c.schedule.augment;
+  train_options.cloud_augment_enabled = c.schedule.cloud_augment.enabled;
+  train_options.cloud_augment = c.schedule.cloud_augment.options;
   // Training pairs and validation wireframes select junctions as lc2wf-infer does (same NMS, refinement).
   const PostProcessOptions post = c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
   JunctionSelectionOptions selection = post.selection;

@@ -21,10 +21,13 @@ namespace {
 constexpr double kValNmsRadius = 0.15;
 const std::vector<double> kVertexThresholds{0.15, 0.25, 0.35};
 
-JunctionSampleOptions training_sample_options(const JunctionStageConfig& c, bool augment) {
+// Training batches get the schedule's augmentations and near-GT samples; validation gets none.
+JunctionSampleOptions stage_sample_options(const JunctionStageConfig& c, bool training) {
   JunctionSampleOptions o = junction_sample_options(c.net);
-  o.augment_enabled = augment;
-  o.sampling.near_gt_samples = augment ? static_cast<int>(c.near_gt_samples) : 0;
+  o.augment_enabled = training && c.schedule.augment;
+  o.cloud_augment_enabled = training && c.schedule.cloud_augment.enabled;
+  o.cloud_augment = c.schedule.cloud_augment.options;
+  o.sampling.near_gt_samples = o.augment_enabled ? static_cast<int>(c.near_gt_samples) : 0;
   if (c.endpoint_label_max_distance_m > 0) o.endpoint_label_max_distance_m = c.endpoint_label_max_distance_m;
   return o;
 }
@@ -35,8 +38,8 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
                           const StageRun& run) {
   const JunctionStageConfig& c = config.junction;
   JunctionNet net(c.net, config.seed);
-  const JunctionSampleOptions train_options = training_sample_options(c, c.schedule.augment);
-  const JunctionSampleOptions val_options = training_sample_options(c, false);
+  const JunctionSampleOptions train_options = stage_sample_options(c, true);
+  const JunctionSampleOptions val_options = stage_sample_options(c, false);
 
   PatchStreamOptions so;
   so.batch_size = c.schedule.batch_size;

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dataset/cloud_augmentation.h"
 #include "nn/config.h"
 
 namespace lc2wf {
@@ -34,6 +35,26 @@ struct DataConfig {
   static DataConfig from_json(const nlohmann::json& j, const std::string& where, DataConfig base);
 };
 
+// Training-time augmentation of the clouds' statistics (dataset/cloud_augmentation.h). Off by default:
+// the paper's configs do not use it; configs/robust.json does.
+struct CloudAugmentConfig {
+  bool enabled = false;
+  CloudAugmentOptions options;
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("enabled", s.enabled);
+    v("merge_prob_max", s.options.merge_prob_max);
+    v("split_prob_max", s.options.split_prob_max);
+    v("densify_prob_max", s.options.densify_prob_max);
+    v("drop_max", s.options.drop_max);
+    v("endpoint_noise_max_m", s.options.endpoint_noise_max_m);
+    v("min_length_m", s.options.min_length_m);
+  }
+  nlohmann::json to_json() const;
+  static CloudAugmentConfig from_json(const nlohmann::json& j, const std::string& where, CloudAugmentConfig base);
+};
+
 // Options shared by both stages' loops.
 struct StageSchedule {
   int64_t epochs = 41;
@@ -46,7 +67,7 @@ struct StageSchedule {
   // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the
   // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
   int64_t micro_batch = 0;          // 0 = the whole batch at once
-
+  CloudAugmentConfig cloud_augment;  // training batches only, never validation
   void Check(const std::string& where) const;
   // The schedule keys live directly in the stage object, so the stages list them through this.
   template <class S, class V>
@@ -59,6 +80,7 @@ struct StageSchedule {
     v("augment", s.augment);
     v("drop_last", s.drop_last);
     v("micro_batch", s.micro_batch);
+    v("cloud_augment", s.cloud_augment);
   }
 };
 

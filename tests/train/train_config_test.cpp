@@ -48,6 +48,8 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.junction.schedule.batch_size, 16);
   EXPECT_EQ(c.edge.schedule.batch_size, 32);
   EXPECT_EQ(c.edge.schedule.micro_batch, 4);  // same batch and steps; bounds the edge step's memory
+  EXPECT_FALSE(c.junction.schedule.cloud_augment.enabled);  // the paper has no cloud augmentation
+  EXPECT_FALSE(c.edge.schedule.cloud_augment.enabled);
   EXPECT_EQ(c.junction.schedule.epochs, 41);
   EXPECT_EQ(c.edge.schedule.epochs, 31);
   EXPECT_EQ(c.junction.optim.milestones, (std::vector<int64_t>{15, 30, 41}));
@@ -63,7 +65,7 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
 TEST(TrainConfig, EveryConfigHasTheSameKeys) {
   std::set<std::string> base_keys;
   collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
-  for (const char* name : {"small.json", "demo.json"}) {
+  for (const char* name : {"small.json", "demo.json", "reconstruct-quick.json"}) {
     std::set<std::string> keys;
     collect_keys(read_json(kConfigs / name), "", keys);
     EXPECT_EQ(keys, base_keys) << name;
@@ -100,6 +102,8 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"junction", "net", "lpt", "hidden_dim"}, "wide", "junction.net.lpt.hidden_dim"},
       {{"edge", "net", "lpt", "lines_per_patch"}, 63, "edge.net.lpt.lines_per_patch"},
       {{"junction", "net", "lpt", "input_dim"}, 6, "junction.net.lpt.input_dim"},
+      {{"edge", "cloud_augment", "drop_max"}, 1.5, "edge.cloud_augment.drop_max"},
+      {{"junction", "cloud_augment", "enabled"}, "yes", "junction.cloud_augment.enabled"},
   };
   for (const Case& c : cases) {
     nlohmann::json j = read_json(kConfigs / "base.json");
