@@ -103,6 +103,12 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       if (!o.quiet) std::fprintf(stderr, "%s: no checkpoint in %s, starting from scratch\n", stage.c_str(), (o.out / "checkpoints").string().c_str());
     }
   }
+  if (pos.step == 0 && !o.init_weights.empty()) {
+    if (read_checkpoint_info(o.init_weights).config.value("net", nlohmann::json()) != o.model_config.at("net"))
+      throw std::runtime_error("init_weights: " + o.init_weights.string() + " has another network config than " + stage + ".net");
+    load_checkpoint(o.init_weights, model, nullptr, nullptr);
+    if (!o.quiet) std::fprintf(stderr, "%s: starting from the weights of %s\n", stage.c_str(), o.init_weights.string().c_str());
+  }
   if (pos.epoch >= o.schedule.epochs) {  // complete: its log and the later stages' stay as they are
     if (!o.quiet) std::fprintf(stderr, "%s: already trained for %lld epochs\n", stage.c_str(), static_cast<long long>(pos.epoch));
     return 0;

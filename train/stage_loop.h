@@ -59,6 +59,9 @@ struct StageLoopOptions {
   std::filesystem::path out;
   bool resume = false;
   bool quiet = false;
+  // Fine-tuning: weights to start from (a best-weights file of an earlier run, same network config);
+  // the optimiser, schedule and dropout stream start fresh. A resumed checkpoint takes precedence.
+  std::filesystem::path init_weights;
 };
 
 // (first, count) ranges cutting a batch of `batch` buildings into micro-batches of at most `micro`

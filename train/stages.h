@@ -17,6 +17,7 @@ struct StageRun {
   std::filesystem::path out;
   bool resume = false;
   bool quiet = false;
+  std::filesystem::path init_weights;  // folder of <stage>.safetensors to fine-tune from (config "init_weights")
 };
 
 // What both stages hand to run_stage: their schedule and optimiser, the config stored in every
@@ -32,6 +33,7 @@ StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig&
   lo.out = run.out;
   lo.resume = run.resume;
   lo.quiet = run.quiet;
+  if (!run.init_weights.empty()) lo.init_weights = run.init_weights / (stage + ".safetensors");
   return lo;
 }
 

@@ -141,6 +141,7 @@ struct TrainConfig {
   int64_t threads = 2;         // compute threads (set_num_threads)
   int64_t loader_workers = 1;  // threads building batches ahead of the compute
   std::string out = "runs/base";
+  std::string init_weights;    // fine-tune: a trained model's folder (junction/edge.safetensors); "" = random init
   DataConfig data;
   JunctionStageConfig junction;
   EdgeStageConfig edge;
@@ -152,6 +153,7 @@ struct TrainConfig {
     v("threads", s.threads);
     v("loader_workers", s.loader_workers);
     v("out", s.out);
+    v("init_weights", s.init_weights);
     v("data", s.data);
     v("junction", s.junction);
     v("edge", s.edge);

@@ -76,7 +76,7 @@ int run(const Args& a) {
   TrainConfig config = TrainConfig::from_file(a.config);
   if (!a.out.empty()) config.out = a.out;
   set_num_threads(static_cast<int>(config.threads));
-  const StageRun run{config.out, a.resume, a.quiet};
+  const StageRun run{config.out, a.resume, a.quiet, config.init_weights};
   fs::create_directories(run.out);
   write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");

@@ -65,7 +65,7 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
 TEST(TrainConfig, EveryConfigHasTheSameKeys) {
   std::set<std::string> base_keys;
   collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
-  for (const char* name : {"small.json", "demo.json", "reconstruct-quick.json"}) {
+  for (const char* name : {"small.json", "demo.json", "reconstruct-quick.json", "robust.json"}) {
     std::set<std::string> keys;
     collect_keys(read_json(kConfigs / name), "", keys);
     EXPECT_EQ(keys, base_keys) << name;

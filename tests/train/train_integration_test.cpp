@@ -238,6 +238,24 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_FALSE(fs::exists(hostile / "escape.obj"));
   EXPECT_FALSE(fs::exists(hostile / "out" / "escape.obj"));
 
+  // Fine-tuning (config "init_weights"): both stages start from the trained weights, so their first
+  // step's loss is far below the first step from random weights; another network config is refused.
+  nlohmann::json finetune = config_;
+  finetune["init_weights"] = straight.string();
+  finetune["junction"]["epochs"] = 1;
+  finetune["edge"]["epochs"] = 1;
+  std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
+  const std::string finetune_cmd = std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "finetune.json") + " --quiet --out ";
+  ASSERT_EQ(run(finetune_cmd + quote(dir_ / "finetuned")), 0) << command_output();
+  const auto tuned_losses = step_losses(dir_ / "finetuned" / "log.jsonl");
+  ASSERT_EQ(tuned_losses.size(), 2u + 1u);
+  EXPECT_LT(std::get<2>(tuned_losses[0]), 0.5 * std::get<2>(straight_losses[0]));   // junction
+  EXPECT_LT(std::get<2>(tuned_losses[2]), 0.7 * std::get<2>(straight_losses[80]));  // edge (0.54 x measured)
+  finetune["junction"]["net"]["head"]["dims"] = {24};
+  std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
+  EXPECT_EQ(run(finetune_cmd + quote(dir_ / "mismatch")), 1);
+  EXPECT_NE(command_output().find("init_weights"), std::string::npos) << command_output();
+
   // An --out that cannot be created is an error naming it, not an abort.
   const testing::CliResult e = testing::run_cli(std::string(LC2WF_EVAL_BIN) + " --quiet --weights " + quote(straight) + " --data " +
                                                 quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " +
