@@ -17,6 +17,9 @@ struct StageRun {
   std::filesystem::path out;
   bool resume = false;
   bool quiet = false;
+  Communicator* comm = nullptr;  // the data-parallel job; null: one process
+
+  Communicator& communicator() const { return comm ? *comm : local_communicator(); }
 };
 
 // What both stages hand to run_stage: their schedule and optimiser, the config stored in every
@@ -32,6 +35,7 @@ StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig&
   lo.out = run.out;
   lo.resume = run.resume;
   lo.quiet = run.quiet;
+  lo.comm = run.comm;
   return lo;
 }
 

@@ -46,6 +46,9 @@ struct StageSchedule {
   // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the
   // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
   int64_t micro_batch = 0;          // 0 = the whole batch at once
+  // Data-parallel jobs (mpirun): BatchNorm statistics of each rank's own passes ("per_rank") or summed
+  // over the ranks' passes ("sync"). One process: no difference.
+  std::string batch_norm = "per_rank";
 
   void Check(const std::string& where) const;
   // The schedule keys live directly in the stage object, so the stages list them through this.
@@ -59,6 +62,7 @@ struct StageSchedule {
     v("augment", s.augment);
     v("drop_last", s.drop_last);
     v("micro_batch", s.micro_batch);
+    v("batch_norm", s.batch_norm);
   }
 };
 
