@@ -53,13 +53,17 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
       train.clouds.size(),
       [&](size_t b, uint64_t seed) { return make_junction_sample(train.clouds[b], train_options, seed); }, so);
 
-  // Validation patches do not change between epochs: build them once, this rank's share of the buildings.
-  const BatchShare val_share = batch_share(static_cast<int64_t>(val.clouds.size()), comm.rank(), comm.size());
-  const size_t val_begin = static_cast<size_t>(val_share.first), val_end = val_begin + static_cast<size_t>(val_share.count);
+  // Validation patches do not change between epochs: build them once. The batches are one process's
+  // (the loss is a mean per batch); a data-parallel rank takes its share of the batches.
+  const size_t val_batch = static_cast<size_t>(c.schedule.batch_size);
+  const BatchShare val_share =
+      batch_share(static_cast<int64_t>((val.clouds.size() + val_batch - 1) / val_batch), comm.rank(), comm.size());
+  const size_t val_begin = std::min(val.clouds.size(), static_cast<size_t>(val_share.first) * val_batch);
+  const size_t val_end = std::min(val.clouds.size(), static_cast<size_t>(val_share.first + val_share.count) * val_batch);
   std::vector<JunctionPatches> val_batches;
-  for (size_t first = val_begin; first < val_end; first += c.schedule.batch_size) {
+  for (size_t first = val_begin; first < val_end; first += val_batch) {
     std::vector<JunctionPatches> parts;
-    for (size_t k = first; k < std::min(val_end, first + static_cast<size_t>(c.schedule.batch_size)); ++k)
+    for (size_t k = first; k < std::min(val_end, first + val_batch); ++k)
       parts.push_back(make_junction_sample(val.clouds[k], val_options, 0));
     val_batches.push_back(stack(parts));
   }

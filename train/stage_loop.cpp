@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -47,6 +48,13 @@ struct Best {
     return b;
   }
 };
+
+// CPU time of the whole process (every thread): unlike wall time it hardly depends on the machine's load.
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 std::string hex(uint64_t v) {
   char text[17];
@@ -182,6 +190,7 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
     int64_t epoch_steps = first, epoch_buildings = 0;
     for (;;) {
       const auto t0 = Clock::now();
+      const double cpu0 = process_cpu_seconds();
       std::optional<StageStep> s = cb.train_step();
       if (!s) break;
       if (!std::isfinite(s->loss))
@@ -195,6 +204,7 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       nlohmann::json line = {{"stage", stage}, {"type", "step"}, {"epoch", epoch + 1}, {"step", pos.step},
                              {"loss", s->loss}, {"lr", lr}, {"seconds", seconds},
+                             {"cpu_seconds", process_cpu_seconds() - cpu0},
                              {"buildings_per_s", seconds > 0 ? s->buildings / seconds : 0.0}};
       for (auto it = s->terms.begin(); it != s->terms.end(); ++it) line[it.key()] = it.value();
       if (grad_norm >= 0) line["grad_norm"] = grad_norm;

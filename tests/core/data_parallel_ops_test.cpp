@@ -79,9 +79,10 @@ TEST(DataParallelOps, DropoutMasksDoNotDependOnBatchSlices) {
 }
 
 TEST(DataParallelOps, AttentionDropoutMasksDoNotDependOnBatchSlices) {
-  // (B, L, 3E) with L = 9 keys (odd row length) and with L = 16 (the fused kernel's vector rows).
-  for (int64_t L : {9, 16}) {
-    const Tensor qkv = rand32({4, L, 3 * 8}, 2 + static_cast<uint64_t>(L));
+  // (B, L, 3E), 2 heads: L = 9 keys and head size 4 (the reference kernel, odd rows), and L = 16 with head
+  // size 8 (the fused kernel's 8-lane masks).
+  for (const auto& [L, E] : {std::pair<int64_t, int64_t>{9, 8}, {16, 16}}) {
+    const Tensor qkv = rand32({4, L, 3 * E}, 2 + static_cast<uint64_t>(L));
     auto op = [](const Tensor& t, Rng& rng) { return packed_attention(t, 2, Tensor(), 0.3, true, rng); };
     expect_slices_match(qkv, {{0, 1}, {1, 2}, {3, 1}}, op);
   }

@@ -35,8 +35,9 @@ using Clock = std::chrono::steady_clock;
 
 // Summation order is the only difference from one process (synchronised BatchNorm in the junction
 // stage, per-rank BatchNorm on passes of one building in the edge stage: the same statistics as one
-// process's micro-batches), so the step losses agree to this relative tolerance over the whole run.
-constexpr double kLossTolerance = 1e-3;
+// process's micro-batches), so the step losses agree to this relative tolerance over the whole run
+// (measured: at most 3e-7 over 20 steps; per-rank statistics where they differ from one process's: 1e-2).
+constexpr double kLossTolerance = 1e-5;
 
 std::string read_text(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
