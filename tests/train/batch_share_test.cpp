@@ -26,7 +26,8 @@ TEST(BatchShare, SharesAreDisjointContiguousAndCoverTheBatch) {
     }
   }
   EXPECT_EQ(batch_share(16, 0, 1), (BatchShare{0, 16}));
-  EXPECT_EQ(batch_share(3, 1, 4), (BatchShare{0, 0}));  // fewer buildings than ranks: some have none
+  EXPECT_EQ(batch_share(3, 0, 4), (BatchShare{0, 0}));  // fewer buildings than ranks: some have none
+  EXPECT_EQ(batch_share(3, 1, 4), (BatchShare{0, 1}));
   EXPECT_THROW(batch_share(16, 2, 2), std::invalid_argument);
 }
 
