@@ -19,9 +19,9 @@ class DoneSum final : public Communicator::PendingSum {
   void wait() override {}
 };
 
-// The launcher's count of processes, or 0 when none is visible.
-int launcher_world_size() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_SIZE", "PMI_SIZE", "SLURM_NTASKS"}) {
+// The launcher's count of processes, or 0 when none is visible (only a build without MPI asks).
+[[maybe_unused]] int launcher_world_size() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
     if (const char* v = std::getenv(name)) {
       const int n = std::atoi(v);
       if (n > 0) return n;
