@@ -15,7 +15,7 @@ struct PatchStream<Patches>::Impl {
   PatchStreamOptions options;
   std::vector<size_t> order;
   int64_t epoch = 0, first = 0;
-  std::unique_ptr<BatchLoader<Patches>> loader;
+  std::unique_ptr<BatchLoader<StreamBatch<Patches>>> loader;
 };
 
 template <class Patches>
@@ -24,6 +24,8 @@ PatchStream<Patches>::PatchStream(size_t num_buildings, BuildFn build, PatchStre
   if (options.batch_size < 1) throw std::invalid_argument("PatchStreamOptions.batch_size must be >= 1");
   if (options.workers < 1) throw std::invalid_argument("PatchStreamOptions.workers must be >= 1");
   if (options.max_batches < 0) throw std::invalid_argument("PatchStreamOptions.max_batches must be >= 0");
+  if (options.ranks < 1 || options.rank < 0 || options.rank >= options.ranks)
+    throw std::invalid_argument("PatchStreamOptions.rank must be in [0, ranks)");
   impl_->num_buildings = num_buildings;
   impl_->build = std::move(build);
   impl_->options = options;
@@ -66,16 +68,22 @@ void PatchStream<Patches>::start(int64_t epoch, int64_t first_batch) {
     const uint64_t batch_seed = mix_seed(mix_seed(st.options.seed, static_cast<uint64_t>(st.epoch)), static_cast<uint64_t>(b));
     const size_t begin = static_cast<size_t>(b * st.options.batch_size);
     const size_t end = std::min(begin + static_cast<size_t>(st.options.batch_size), st.num_buildings);
+    StreamBatch<Patches> out;
+    out.batch = static_cast<int64_t>(end - begin);
+    out.share = batch_share(out.batch, st.options.rank, st.options.ranks);
     std::vector<Patches> parts;
-    for (size_t k = begin; k < end; ++k) parts.push_back(st.build(st.order[k], mix_seed(batch_seed, k - begin)));
-    return stack(parts);
+    const size_t first = begin + static_cast<size_t>(out.share.first);
+    for (size_t k = first; k < first + static_cast<size_t>(out.share.count); ++k)
+      parts.push_back(st.build(st.order[k], mix_seed(batch_seed, k - begin)));
+    if (!parts.empty()) out.patches = stack(parts);
+    return out;
   };
-  s.loader = std::make_unique<BatchLoader<Patches>>(static_cast<size_t>(remaining), build_batch, lo);
+  s.loader = std::make_unique<BatchLoader<StreamBatch<Patches>>>(static_cast<size_t>(remaining), build_batch, lo);
   s.loader->start_epoch(static_cast<int>(epoch));
 }
 
 template <class Patches>
-std::optional<Patches> PatchStream<Patches>::next() {
+std::optional<StreamBatch<Patches>> PatchStream<Patches>::next() {
   if (!impl_->loader) throw std::logic_error("PatchStream::next called before start");
   return impl_->loader->next();
 }

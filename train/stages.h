@@ -18,6 +18,9 @@ struct StageRun {
   bool resume = false;
   bool quiet = false;
   std::filesystem::path init_weights;  // folder of <stage>.safetensors to fine-tune from (config "init_weights")
+  Communicator* comm = nullptr;  // the data-parallel job; null: one process
+
+  Communicator& communicator() const { return comm ? *comm : local_communicator(); }
 };
 
 // What both stages hand to run_stage: their schedule and optimiser, the config stored in every
@@ -34,6 +37,7 @@ StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig&
   lo.resume = run.resume;
   lo.quiet = run.quiet;
   if (!run.init_weights.empty()) lo.init_weights = run.init_weights / (stage + ".safetensors");
+  lo.comm = run.comm;
   return lo;
 }
 

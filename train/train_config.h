@@ -68,6 +68,10 @@ struct StageSchedule {
   // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
   int64_t micro_batch = 0;          // 0 = the whole batch at once
   CloudAugmentConfig cloud_augment;  // training batches only, never validation
+  // Data-parallel jobs (mpirun): BatchNorm statistics of each rank's own passes ("per_rank") or summed
+  // over the ranks' passes ("sync"). One process: no difference.
+  std::string batch_norm = "per_rank";
+
   void Check(const std::string& where) const;
   // The schedule keys live directly in the stage object, so the stages list them through this.
   template <class S, class V>
@@ -81,6 +85,7 @@ struct StageSchedule {
     v("drop_last", s.drop_last);
     v("micro_batch", s.micro_batch);
     v("cloud_augment", s.cloud_augment);
+    v("batch_norm", s.batch_norm);
   }
 };
 

@@ -2,12 +2,14 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "core/parallel.h"
 #include "core/util/cli.h"
 #include "core/util/atomic_file.h"
 #include "train/building_set.h"
+#include "train/communicator.h"
 #include "train/run_log.h"
 #include "train/stages.h"
 #include "train/train_config.h"
@@ -17,7 +19,9 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
-const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [--stage junction|edge|all] [--resume] [--out DIR] [--quiet]
+const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [--stage junction|edge|all] [--resume] [--out DIR] [--threads N]
+                   [--comm-timeout S] [--quiet]
+       mpirun -np RANKS lc2wf-train CONFIG.json ...      (data-parallel, one process per rank)
 
 Trains LC2WF's two networks as the paper's release does, one after the other:
   1. junction  the junction model (best weights: OUT/junction.safetensors)
@@ -31,8 +35,17 @@ rate and throughput; OUT/checkpoints/ holds the last state of each stage for --r
   --resume    continue from OUT/checkpoints/ exactly where the last run stopped (same losses as an
               uninterrupted run); completed stages are skipped
   --out DIR   output folder (default: the config's "out")
+  --threads N compute threads of this process (default: the config's "threads")
+  --comm-timeout S
+              MPI jobs: a rank that waits S seconds for the others ends the job with a message
+              (default 1800)
   --quiet     no progress output
   -h, --help  this text
+
+Started by mpirun or srun, every rank computes its share of each global batch (the config's batch_size
+stays the global batch) and the gradients are summed over the ranks every step; rank 0 writes the log
+and the checkpoints. OUT and the data must be visible to every rank. --resume works with any number of
+ranks. See train/README.md, "Data-parallel training".
 
 Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR.
 Exit codes: 0 success, 1 bad config / data / I/O error, 2 bad command line.
@@ -43,6 +56,8 @@ struct Args {
   std::string stage = "all";
   bool resume = false, quiet = false;
   std::string out;
+  int threads = 0;  // 0: the config's
+  CommunicatorOptions comm;
 };
 
 Args parse_args(int argc, char** argv) {
@@ -60,6 +75,12 @@ Args parse_args(int argc, char** argv) {
       a.quiet = true;
     } else if (f == "--out") {
       a.out = value();
+    } else if (f == "--threads") {
+      a.threads = int_flag(f, value());
+      if (a.threads < 1) throw UsageError("--threads must be >= 1");
+    } else if (f == "--comm-timeout") {
+      a.comm.timeout_s = number_flag(f, value());
+      if (a.comm.timeout_s <= 0) throw UsageError("--comm-timeout must be > 0 seconds");
     } else if (!f.empty() && f[0] == '-') {
       throw UsageError("unknown option '" + f + "'");
     } else if (a.config.empty()) {
@@ -72,32 +93,49 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
-int run(const Args& a) {
+int train(const Args& a, Communicator& comm) {
+  const bool writer = comm.rank() == 0;
   TrainConfig config = TrainConfig::from_file(a.config);
   if (!a.out.empty()) config.out = a.out;
+  if (a.threads > 0) config.threads = a.threads;
   set_num_threads(static_cast<int>(config.threads));
-  const StageRun run{config.out, a.resume, a.quiet, config.init_weights};
+  const StageRun run{config.out, a.resume, a.quiet || !writer, config.init_weights, &comm};
   fs::create_directories(run.out);
-  write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
+  if (writer) write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");
 
-  const BuildingSet train = load_building_set(config.data, config.data.train_split, a.quiet);
-  const BuildingSet val = load_building_set(config.data, config.data.val_split, a.quiet);
-  if (!a.quiet)
-    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %lld threads, output %s\n",
-                 train.clouds.size(), val.clouds.size(), static_cast<long long>(config.threads), run.out.string().c_str());
+  const BuildingSet train = load_building_set(config.data, config.data.train_split, run.quiet);
+  const BuildingSet val = load_building_set(config.data, config.data.val_split, run.quiet);
+  if (!run.quiet)
+    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %d rank(s) x %lld threads, output %s\n",
+                 train.clouds.size(), val.clouds.size(), comm.size(), static_cast<long long>(config.threads),
+                 run.out.string().c_str());
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
   if (a.stage == "edge" || a.stage == "all") {
     const fs::path handoff = write_junction_handoff(train, val, log, run);
     train_edge_stage(config, train, val, handoff, log, run);
   }
-  if (!a.quiet) {
+  if (!run.quiet) {
     std::fprintf(stderr, "lc2wf-train: done. Log: %s\n", log.path().string().c_str());
     if (a.stage != "junction")
       std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors); run lc2wf-infer --weights %s ...\n",
                    run.out.string().c_str(), run.out.string().c_str());
   }
   return 0;
+}
+
+int run(const Args& a) {
+  const std::unique_ptr<Communicator> comm = open_communicator(nullptr, nullptr, a.comm);
+  try {
+    return train(a, *comm);
+  } catch (const std::exception& e) {
+    if (comm->size() == 1) throw;
+    // The other ranks would wait for this one forever: say why, then end the whole job.
+    std::fprintf(stderr, "\nlc2wf-train: rank %d of %d: error: %s\nlc2wf-train: rank %d ends the MPI job.\n",
+                 comm->rank(), comm->size(), e.what(), comm->rank());
+    comm->abort_job(kExitFailure);
+    throw;
+  }
 }
 
 }  // namespace

@@ -23,11 +23,14 @@
 #include "dataset/synthetic_line_cloud.h"
 #include "infer/prediction_io.h"
 #include "tests/common/run_cli.h"
+#include "tests/train/train_log.h"
 
 namespace lc2wf {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::log_lines;
+using testing::step_losses;
 
 std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -44,24 +47,6 @@ int run(const std::string& command) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 std::string command_output() { return read_text(kCommandLog); }
-
-std::vector<nlohmann::json> log_lines(const fs::path& p, const std::string& type) {
-  std::vector<nlohmann::json> out;
-  std::ifstream in(p);
-  std::string line;
-  while (std::getline(in, line)) {
-    const nlohmann::json j = nlohmann::json::parse(line);
-    if (j["type"] == type) out.push_back(j);
-  }
-  return out;
-}
-
-// (stage, step, loss) of every optimiser step, compared bit for bit.
-std::vector<std::tuple<std::string, int64_t, double>> step_losses(const fs::path& log) {
-  std::vector<std::tuple<std::string, int64_t, double>> out;
-  for (const auto& j : log_lines(log, "step")) out.emplace_back(j["stage"], j["step"], j["loss"]);
-  return out;
-}
 
 // (stage, epoch, train_loss) of every "epoch" line: a mid-epoch resume must log the same means.
 std::vector<std::tuple<std::string, int64_t, double>> epoch_losses(const fs::path& log) {
