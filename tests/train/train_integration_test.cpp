@@ -23,6 +23,7 @@
 #include "dataset/synthetic_line_cloud.h"
 #include "infer/prediction_io.h"
 #include "tests/common/run_cli.h"
+#include "tests/common/tiny_lpt.h"
 #include "tests/train/train_log.h"
 
 namespace lc2wf {
@@ -72,13 +73,8 @@ class TrainIntegration : public ::testing::Test {
     std::ofstream(dir_ / "train.txt") << "rect\nell\n";
     std::ofstream(dir_ / "val.txt") << "ell\n";
 
-    nlohmann::json lpt = {{"mlp_dims", {16, 16, 24}}, {"hidden_dim", 24}, {"num_heads", 2}, {"ffn_dim", 24},
-                          {"dropout", 0.1},           {"attn_dropout", 0.1}};
-    nlohmann::json junction_lpt = lpt, edge_lpt = lpt;
-    junction_lpt["patches"] = 24;
-    junction_lpt["lines_per_patch"] = 8;
-    edge_lpt["patches"] = 32;
-    edge_lpt["lines_per_patch"] = 16;
+    const testing::TinyLpt tiny = testing::tiny_lpt();
+    const nlohmann::json &junction_lpt = tiny.junction, &edge_lpt = tiny.edge;
     config_ = {{"seed", 7},
                {"threads", 2},
                {"data", {{"format", "lc2wf"}, {"dir", (dir_ / "clouds").string()},

@@ -23,6 +23,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tests/common/run_cli.h"
+#include "tests/common/tiny_lpt.h"
 #include "tests/train/train_log.h"
 
 namespace lc2wf {
@@ -138,13 +139,8 @@ class TrainMpi : public ::testing::Test {
     const auto r = testing::run_cli(std::string(LC2WF_SYNTHETIC_DATA_BIN) + " --quiet --count 12 --val 2 --test 1 --seed 3 --out " +
                                     (dir_ / "data").string());
     ASSERT_EQ(r.code, 0) << r.err;
-    nlohmann::json lpt = {{"mlp_dims", {16, 16, 24}}, {"hidden_dim", 24}, {"num_heads", 2}, {"ffn_dim", 24},
-                          {"dropout", 0.1},           {"attn_dropout", 0.1}};
-    nlohmann::json junction_lpt = lpt, edge_lpt = lpt;
-    junction_lpt["patches"] = 24;
-    junction_lpt["lines_per_patch"] = 8;
-    edge_lpt["patches"] = 32;
-    edge_lpt["lines_per_patch"] = 16;
+    const testing::TinyLpt tiny = testing::tiny_lpt();
+    const nlohmann::json &junction_lpt = tiny.junction, &edge_lpt = tiny.edge;
     const nlohmann::json config = {
         {"seed", 11},
         {"threads", 1},
