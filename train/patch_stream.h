@@ -1,7 +1,7 @@
-// Batches of stacked building patches built ahead of the compute on loader threads (dataset/
-// batch_loader.h), in a fixed order. The epoch's building order and each batch's seed depend only on
-// (seed, epoch, batch index), so an epoch can start at any batch (exact resume mid-epoch) and the
-// sequence is the same for any number of workers.
+// Batches of stacked building patches in lc2wf-train's order: dataset/batch_loader.h shuffles the buildings
+// per (seed, epoch) and seeds each batch from (seed, epoch, batch index); building k of a batch gets
+// mix_seed(batch seed, k). An epoch can start at any batch (exact resume mid-epoch), and the sequence is the
+// same for any number of workers.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "dataset/batch_loader.h"
 #include "dataset/patches.h"
 
 namespace lc2wf {
@@ -26,26 +27,40 @@ struct PatchStreamOptions {
 template <class Patches>
 class PatchStream {
  public:
-  // build(buildings, seed) makes one building's patches; it runs on loader threads.
+  // build(building, seed) makes one building's patches; it runs on loader threads.
   using BuildFn = std::function<Patches(size_t building, uint64_t seed)>;
 
-  PatchStream(size_t num_buildings, BuildFn build, PatchStreamOptions options);
-  ~PatchStream();
-  PatchStream(const PatchStream&) = delete;
-  PatchStream& operator=(const PatchStream&) = delete;
+  PatchStream(size_t num_buildings, BuildFn build, const PatchStreamOptions& o)
+      : loader_(num_buildings,
+                [build = std::move(build)](const std::vector<size_t>& buildings, uint64_t batch_seed) {
+                  std::vector<Patches> parts;
+                  for (size_t k = 0; k < buildings.size(); ++k) parts.push_back(build(buildings[k], mix_seed(batch_seed, k)));
+                  return stack(parts);
+                },
+                loader_options(o)) {}
 
-  int64_t batches_per_epoch() const;
+  int64_t batches_per_epoch() const { return static_cast<int64_t>(loader_.batches_per_epoch()); }
   // Starts `epoch` at batch `first_batch` (earlier batches are skipped without being built).
-  void start(int64_t epoch, int64_t first_batch = 0);
+  void start(int64_t epoch, int64_t first_batch = 0) {
+    loader_.start_epoch(static_cast<int>(epoch), static_cast<size_t>(first_batch));
+  }
   // The next stacked batch, or nullopt at the end of the epoch.
-  std::optional<Patches> next();
+  std::optional<Patches> next() { return loader_.next(); }
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
+  static LoaderOptions loader_options(const PatchStreamOptions& o) {
+    LoaderOptions lo;
+    lo.batch_size = static_cast<int>(o.batch_size);
+    lo.workers = static_cast<int>(o.workers);
+    lo.prefetch_batches = 2;
+    lo.shuffle = o.shuffle;
+    lo.drop_last = o.drop_last;
+    lo.seed = o.seed;
+    lo.max_batches = o.max_batches;
+    return lo;
+  }
 
-extern template class PatchStream<JunctionPatches>;
-extern template class PatchStream<PairPatches>;
+  BatchLoader<Patches> loader_;
+};
 
 }  // namespace lc2wf
