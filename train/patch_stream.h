@@ -12,6 +12,7 @@
 
 #include "dataset/batch_loader.h"
 #include "dataset/patches.h"
+#include "train/train_config.h"
 
 namespace lc2wf {
 
@@ -22,6 +23,18 @@ struct PatchStreamOptions {
   int64_t workers = 1;
   uint64_t seed = 1555;
   int64_t max_batches = 0;  // 0 = all
+
+  // A stage's stream: its schedule's batch size, last-batch rule and step cap, the run's loader threads,
+  // and the stage's seed.
+  static PatchStreamOptions of_stage(const StageSchedule& s, int64_t workers, uint64_t seed) {
+    PatchStreamOptions o;
+    o.batch_size = s.batch_size;
+    o.drop_last = s.drop_last;
+    o.workers = workers;
+    o.seed = seed;
+    o.max_batches = s.max_steps_per_epoch;
+    return o;
+  }
 };
 
 template <class Patches>
