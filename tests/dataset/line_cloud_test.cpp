@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -12,6 +13,8 @@
 #include "dataset/synthetic_line_cloud.h"
 #include "dataset/visibility.h"
 #include "test_util.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -108,8 +111,8 @@ void expect_error(const std::string& bytes, const std::string& needle) {
     line_cloud_from_bytes(bytes, "cloud.json");
     FAIL() << "no error, wanted: " << needle;
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("cloud.json"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("cloud.json")) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr(needle)) << e.what();
   }
 }
 
@@ -141,7 +144,7 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
     line_cloud_to_bytes(bad);
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("segment 0 has zero length"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("segment 0 has zero length"));
   }
   bad = c;
   bad.labels[0].i2 = 9;
@@ -152,7 +155,7 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
     line_cloud_to_bytes(bad);
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("support view 3 out of range"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("support view 3 out of range")) << e.what();
   }
 
   // Binary: truncated blob and a header length past the end.
@@ -212,7 +215,7 @@ TEST(LineCloudIo, MissingFileIsNamed) {
     read_line_cloud("/nonexistent/a.lc2wf");
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/a.lc2wf"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("/nonexistent/a.lc2wf"));
   }
 }
 
@@ -332,7 +335,7 @@ TEST(Labelling, OptionsCheckNamesField) {
     g.Check();
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("min_overlap"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("min_overlap"));
   }
 }
 
