@@ -65,4 +65,19 @@ TEST(Layering, NoModuleIncludesAModuleAboveIt) {
   EXPECT_GT(files, 100);
 }
 
+// train/ uses infer/ for the networks' inputs, validation metrics and inference, never to read its data:
+// line clouds and split lists come from dataset/ (cloud_input.h, splits.h).
+TEST(Layering, TrainReadsItsDataThroughDataset) {
+  const std::set<std::string> data_readers = {"infer/eval_inputs.h", "infer/batch_inference.h", "infer/prediction_io.h"};
+  const std::regex include_line("^\\s*#\\s*include\\s+\"([^\"]+)\"");
+  for (const auto& entry : fs::directory_iterator(fs::path(LC2WF_SOURCE_DIR) / "train")) {
+    std::ifstream in(entry.path());
+    for (std::string line; std::getline(in, line);) {
+      std::smatch m;
+      if (std::regex_search(line, m, include_line))
+        EXPECT_FALSE(data_readers.count(m[1])) << entry.path().filename() << " reads data through " << m[1];
+    }
+  }
+}
+
 }  // namespace
