@@ -83,6 +83,7 @@ int run(const Args& a) {
   if (!a.out.empty()) config.out = a.out;
   if (a.threads) config.threads = *a.threads;
   set_num_threads(static_cast<int>(config.threads));
+  config.threads = num_threads();  // -j 0 resolved, so config.json records a valid count
   const StageRun run{config.out, a.resume, a.quiet};
   // Every input is read before OUT is touched: a bad split or cloud leaves no half-made run folder.
   const BuildingSet train = load_building_set(config.data, config.data.train_split, a.quiet);
