@@ -116,13 +116,19 @@ void expect_error(const std::string& bytes, const std::string& needle) {
   }
 }
 
-TEST(LineCloudIo, BadInputsGiveNamedErrors) {
+// A one-edge wireframe with one labelled segment on it.
+LineCloud one_labelled_segment() {
   LineCloud c;
   c.name = "t";
   c.wireframe.junctions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
   c.wireframe.edges = {{0, 1}};
   c.segments = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};
   c.labels = {make_edge_label(c.segments[0], c.wireframe, 0, 1)};
+  return c;
+}
+
+TEST(LineCloudIo, BadInputsGiveNamedErrors) {
+  const LineCloud c = one_labelled_segment();
   LineCloudWriteOptions json;
   json.binary = false;
   const std::string good = line_cloud_to_bytes(c, json);
@@ -175,12 +181,7 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
 // Regression: header counts are checked against the file size before allocating (a 224 KB file claiming
 // 10^8 segments reached 4.5 GB), and JSON numbers are exact (0.7 -> 0, true -> 1, 300 -> 44 in a byte).
 TEST(LineCloudIo, HostileHeadersAreRejectedBeforeAllocating) {
-  LineCloud c;
-  c.name = "t";
-  c.wireframe.junctions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
-  c.wireframe.edges = {{0, 1}};
-  c.segments = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};
-  c.labels = {make_edge_label(c.segments[0], c.wireframe, 0, 1)};
+  const LineCloud c = one_labelled_segment();
   LineCloudWriteOptions text;
   text.binary = false;
   const nlohmann::json good = nlohmann::json::parse(line_cloud_to_bytes(c, text));
