@@ -5,7 +5,7 @@
 #   bench/compare.sh [--build DIR] [--workloads "junction_train edge_train junction_infer edge_infer"]
 #                    [--train-iters N] [--infer-iters N] [--threads N]
 #
-# PyTorch runs at its best setting (OPENBLAS_CORETYPE=SkylakeX, see ../shared/spec/perf-anchors.md).
+# PyTorch runs at its best setting on this machine (OPENBLAS_CORETYPE=SkylakeX: OpenBLAS's fastest kernels here).
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)

@@ -86,17 +86,9 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
   for (const LineCloud& cloud : val.clouds)
     val_predicted.push_back(read_predicted_junctions(predicted_junctions_path(handoff_dir, cloud.name)));
 
-  PatchStreamOptions so;
-  so.batch_size = c.schedule.batch_size;
-  so.drop_last = c.schedule.drop_last;
-  so.workers = config.loader_workers;
-  so.seed = config.seed + 2;
-  so.max_batches = c.schedule.max_steps_per_epoch;
-  so.rank = comm.rank();
-  so.ranks = comm.size();
   PatchStream<PairPatches> stream(
-      clouds.size(),
-      [&](size_t b, uint64_t seed) { return make_pair_training_sample(*clouds[b], selected[b], train_options, seed); }, so);
+      clouds.size(), [&](size_t b, uint64_t seed) { return make_pair_training_sample(*clouds[b], selected[b], train_options, seed); },
+      PatchStreamOptions::of_stage(c.schedule, config.loader_workers, config.seed + 2, comm.rank(), comm.size()));
 
   StageCallbacks cb;
   cb.batches_per_epoch = stream.batches_per_epoch();

@@ -1,4 +1,3 @@
-#include <cmath>
 #include <vector>
 
 #include "core/ops.h"
@@ -17,7 +16,7 @@
 namespace lc2wf {
 namespace {
 
-// Validation: the release's training-time junction metric (spec §5.4) in metres: every candidate,
+// Validation: the junction metric the release logs while training, in metres: every candidate,
 // point NMS at 0.15 m (3 raw), pooled vAP at the paper's three thresholds.
 constexpr double kValNmsRadius = 0.15;
 const std::vector<double> kVertexThresholds{0.15, 0.25, 0.35};
@@ -44,17 +43,9 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
   Communicator& comm = run.communicator();
   DataParallel dp(comm, net, net.dropout_rng(), c.schedule.batch_norm == "sync");
 
-  PatchStreamOptions so;
-  so.batch_size = c.schedule.batch_size;
-  so.drop_last = c.schedule.drop_last;
-  so.workers = config.loader_workers;
-  so.seed = config.seed + 1;
-  so.max_batches = c.schedule.max_steps_per_epoch;
-  so.rank = comm.rank();
-  so.ranks = comm.size();
   PatchStream<JunctionPatches> stream(
-      train.clouds.size(),
-      [&](size_t b, uint64_t seed) { return make_junction_sample(train.clouds[b], train_options, seed); }, so);
+      train.clouds.size(), [&](size_t b, uint64_t seed) { return make_junction_sample(train.clouds[b], train_options, seed); },
+      PatchStreamOptions::of_stage(c.schedule, config.loader_workers, config.seed + 1, comm.rank(), comm.size()));
 
   // Validation patches do not change between epochs: build them once. The batches are one process's
   // (the loss is a mean per batch); a data-parallel rank takes its share of the batches.
@@ -107,22 +98,12 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
       const PatchInput in = junction_input(p);
       const JunctionOutput y = net.forward(in.x, in.mask);
       loss_sum += junction_loss(y, junction_targets(p), c.loss).total.item() * p.batch;
-      const std::vector<double> logits = y.logits.to_vector(), offsets = y.offsets.to_vector();
-      for (int b = 0; b < p.batch; ++b, ++building) {
-        std::vector<Vec3> positions;
-        std::vector<double> conf;
-        for (int g = 0; g < p.num_patches; ++g) {
-          const size_t k = static_cast<size_t>(b) * p.num_patches + g;
-          conf.push_back(1.0 / (1.0 + std::exp(logits[2 * k] - logits[2 * k + 1])));
-          const Vec3 point(p.points[3 * k], p.points[3 * k + 1], p.points[3 * k + 2]);
-          const Vec3 offset(offsets[3 * k], offsets[3 * k + 1], offsets[3 * k + 2]);
-          positions.push_back(val_options.patch.frame.to_metres(point + offset));
-        }
+      for (const PredictedJunctions& candidates : junction_candidates(y, p, val_options.patch.frame)) {
         std::vector<Vec3> kept_pos;
         std::vector<double> kept_conf;
-        for (int i : point_nms(positions, conf, kValNmsRadius, PointNmsRule::kGreedy)) {
-          kept_pos.push_back(positions[i]);
-          kept_conf.push_back(conf[i]);
+        for (int i : point_nms(candidates.positions, candidates.confidence, kValNmsRadius, PointNmsRule::kGreedy)) {
+          kept_pos.push_back(candidates.positions[i]);
+          kept_conf.push_back(candidates.confidence[i]);
         }
         const std::vector<Vec3>& gt = val.clouds[building].wireframe.junctions;
         num_gt += static_cast<int64_t>(gt.size());
@@ -130,6 +111,7 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
           const auto h = match_junctions(kept_pos, kept_conf, gt, kVertexThresholds[t]);
           hits[t].insert(hits[t].end(), h.begin(), h.end());
         }
+        ++building;
       }
     }
     // Every rank's [loss sum, GT junctions, then per threshold: hit count, (score, true positive) pairs].

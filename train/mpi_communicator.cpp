@@ -10,6 +10,8 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "core/util/cli.h"
 #include <thread>
 
 namespace lc2wf {
@@ -177,7 +179,7 @@ class MpiCommunicator final : public Communicator {
                  "lc2wf-train: rank %d of %d: no answer from the other ranks for %.0f s (--comm-timeout) in the %s; "
                  "a rank is stuck or its node is unreachable. Ending the job; start it again with --resume.\n",
                  rank_, size_, options_.timeout_s, what);
-    abort_job(1);
+    abort_job(kExitDataError);  // the job's I/O failed: the same code as any other I/O error
     std::abort();
   }
 

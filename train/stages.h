@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "nn/model_checkpoint.h"
 #include "train/building_set.h"
 #include "train/run_log.h"
 #include "train/stage_loop.h"
@@ -31,8 +32,7 @@ StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig&
   lo.stage = stage;
   lo.schedule = c.schedule;
   lo.optim = c.optim;
-  lo.model_config = {{"stage", stage}, {"net", c.net.to_json()}, {"loss", c.loss.to_json()},
-                     {"optim", c.optim.to_json()}, {"seed", seed}};
+  lo.model_config = model_metadata(stage, c.net.to_json(), c.loss.to_json(), c.optim.to_json(), seed);
   lo.out = run.out;
   lo.resume = run.resume;
   lo.quiet = run.quiet;

@@ -1,5 +1,5 @@
 // The training configuration read by lc2wf-train (documented in train/README.md). Defaults are the
-// paper/release settings (reference spec §2.7, §3.7); configs/*.json differ only in values. Unknown keys
+// settings of the LC2WF paper and its released training scripts; configs/*.json differ only in values. Unknown keys
 // and bad values are rejected with the key's dotted name ("junction.optim.lr must be > 0").
 #pragma once
 
@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "dataset/cloud_augmentation.h"
+#include "dataset/geometry.h"
 #include "nn/config.h"
 
 namespace lc2wf {
@@ -19,7 +20,7 @@ struct DataConfig {
   std::string dir;               // one file per building, file stem = building name
   std::string train_split;       // building names, one per line
   std::string val_split;         // validation names (never the test split)
-  double raw_per_metre = 20.0;   // release JSON only: raw units per metre
+  double raw_per_metre = kRawUnitsPerMetre;  // release JSON only: raw units per metre
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>

@@ -3,6 +3,7 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/parallel.h"
@@ -10,6 +11,7 @@
 #include "core/util/atomic_file.h"
 #include "train/building_set.h"
 #include "train/communicator.h"
+#include "train/model_card.h"
 #include "train/run_log.h"
 #include "train/stages.h"
 #include "train/train_config.h"
@@ -19,8 +21,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
-const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [--stage junction|edge|all] [--resume] [--out DIR] [--threads N]
-                   [--comm-timeout S] [--quiet]
+const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [-o OUT] [--stage junction|edge|all] [--resume] [options]
        mpirun -np RANKS lc2wf-train CONFIG.json ...      (data-parallel, one process per rank)
 
 Trains LC2WF's two networks as the paper's release does, one after the other:
@@ -29,26 +30,26 @@ Trains LC2WF's two networks as the paper's release does, one after the other:
                model (OUT/predicted_junctions/<name>.json)
   3. edge      the edge model on GT + predicted pairs (best weights: OUT/edge.safetensors)
 Validation runs on the config's validation split only. OUT/log.jsonl logs losses, metrics, learning
-rate and throughput; OUT/checkpoints/ holds the last state of each stage for --resume.
+rate and throughput; OUT/checkpoints/ holds the last state of each stage for --resume; OUT/README.md is
+the model card (lc2wf version and commit, data, kept epochs and their validation scores).
 
-  --stage S   junction (step 1), edge (steps 2-3, needs OUT/junction.safetensors) or all (default)
-  --resume    continue from OUT/checkpoints/ exactly where the last run stopped (same losses as an
-              uninterrupted run); completed stages are skipped
-  --out DIR   output folder (default: the config's "out")
-  --threads N compute threads of this process (default: the config's "threads")
-  --comm-timeout S
-              MPI jobs: a rank that waits S seconds for the others ends the job with a message
-              (default 1800)
-  --quiet     no progress output
-  -h, --help  this text
+  -o, --out OUT      output folder (default: the config's "out"); created once the config and the
+                     line clouds have been read
+  --stage S          junction (step 1), edge (steps 2-3, needs OUT/junction.safetensors) or all (default)
+  --resume           continue from OUT/checkpoints/ exactly where the last run stopped (same losses as an
+                     uninterrupted run); completed stages are skipped
+  -j, --threads N    compute threads (default: the config's "threads"; 0 = all cores)
+  -q, --quiet        no progress output
+  --comm-timeout S   MPI jobs: a rank that waits S seconds for the others ends the job with a message
+                     (default 1800)
 
 Started by mpirun or srun, every rank computes its share of each global batch (the config's batch_size
-stays the global batch) and the gradients are summed over the ranks every step; rank 0 writes the log
-and the checkpoints. OUT and the data must be visible to every rank. --resume works with any number of
-ranks. See train/README.md, "Data-parallel training".
+stays the global batch) and the gradients are summed over the ranks every step; rank 0 writes the log,
+the checkpoints and the model card. OUT and the data must be visible to every rank. --resume works with
+any number of ranks. See train/README.md, "Data-parallel training".
 
-Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR.
-Exit codes: 0 success, 1 bad config / data / I/O error, 2 bad command line.
+Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR. A bad config or line cloud is a data
+error (exit 3) naming the file and the key.
 )";
 
 struct Args {
@@ -56,7 +57,7 @@ struct Args {
   std::string stage = "all";
   bool resume = false, quiet = false;
   std::string out;
-  int threads = 0;  // 0: the config's
+  std::optional<int> threads;
   CommunicatorOptions comm;
 };
 
@@ -71,13 +72,12 @@ Args parse_args(int argc, char** argv) {
         throw UsageError("--stage must be junction, edge or all, got '" + a.stage + "'");
     } else if (f == "--resume") {
       a.resume = true;
-    } else if (f == "--quiet") {
+    } else if (f == "-q" || f == "--quiet") {
       a.quiet = true;
-    } else if (f == "--out") {
+    } else if (f == "-o" || f == "--out") {
       a.out = value();
-    } else if (f == "--threads") {
-      a.threads = int_flag(f, value());
-      if (a.threads < 1) throw UsageError("--threads must be >= 1");
+    } else if (f == "-j" || f == "--threads") {
+      a.threads = threads_flag(f, value());
     } else if (f == "--comm-timeout") {
       a.comm.timeout_s = number_flag(f, value());
       if (a.comm.timeout_s <= 0) throw UsageError("--comm-timeout must be > 0 seconds");
@@ -97,15 +97,16 @@ int train(const Args& a, Communicator& comm) {
   const bool writer = comm.rank() == 0;
   TrainConfig config = TrainConfig::from_file(a.config);
   if (!a.out.empty()) config.out = a.out;
-  if (a.threads > 0) config.threads = a.threads;
+  if (a.threads) config.threads = *a.threads;
   set_num_threads(static_cast<int>(config.threads));
+  config.threads = num_threads();  // -j 0 resolved, so config.json records a valid count
   const StageRun run{config.out, a.resume, a.quiet || !writer, config.init_weights, &comm};
+  // Every input is read before OUT is touched: a bad split or cloud leaves no half-made run folder.
+  const BuildingSet train = load_building_set(config.data, config.data.train_split, run.quiet);
+  const BuildingSet val = load_building_set(config.data, config.data.val_split, run.quiet);
   fs::create_directories(run.out);
   if (writer) write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");
-
-  const BuildingSet train = load_building_set(config.data, config.data.train_split, run.quiet);
-  const BuildingSet val = load_building_set(config.data, config.data.val_split, run.quiet);
   if (!run.quiet)
     std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %d rank(s) x %lld threads, output %s\n",
                  train.clouds.size(), val.clouds.size(), comm.size(), static_cast<long long>(config.threads),
@@ -115,13 +116,14 @@ int train(const Args& a, Communicator& comm) {
     const fs::path handoff = write_junction_handoff(train, val, log, run);
     train_edge_stage(config, train, val, handoff, log, run);
   }
+  if (writer) write_model_card(run.out, a.config, config, train, val);
   if (!run.quiet) {
     std::fprintf(stderr, "lc2wf-train: done. Log: %s\n", log.path().string().c_str());
     if (a.stage != "junction")
-      std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors); run lc2wf-infer --weights %s ...\n",
+      std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors, model card README.md); run lc2wf-infer --weights %s ...\n",
                    run.out.string().c_str(), run.out.string().c_str());
   }
-  return 0;
+  return kExitDone;
 }
 
 int run(const Args& a) {
@@ -133,7 +135,7 @@ int run(const Args& a) {
     // The other ranks would wait for this one forever: say why, then end the whole job.
     std::fprintf(stderr, "\nlc2wf-train: rank %d of %d: error: %s\nlc2wf-train: rank %d ends the MPI job.\n",
                  comm->rank(), comm->size(), e.what(), comm->rank());
-    comm->abort_job(kExitFailure);
+    comm->abort_job(kExitDataError);
     throw;
   }
 }
@@ -141,5 +143,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lc2wf::cli_main("lc2wf-train", kUsage, argc, argv, parse_args, run);
+  return lc2wf::cli_main({"lc2wf-train", kUsage, {kEnvStorageCache}}, argc, argv, parse_args, run);
 }

@@ -2,6 +2,7 @@
 // trained on one extractor's clouds serves others (bench/robustness.sh scores a model on each).
 #include <cstdio>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "core/util/cli.h"
@@ -17,7 +18,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
-const char* kUsage = R"(Usage: lc2wf-cloud-styles --data DIR --split FILE -o OUT [--seed S]
+const char* kUsage = R"(Usage: lc2wf-cloud-styles --data DIR --split FILE -o OUT [--seed S] [-q]
 
 For every building of FILE, reads DIR/<name>.lcloud (a labelled cloud of lc2wf-dataset) and writes
   OUT/own/<name>.lcloud       the cloud as it is
@@ -31,13 +32,13 @@ Deterministic for a seed and the split's order.
   --split FILE   building names, one per line
   -o, --out DIR  output folder
   --seed S       seed of the long fragments (default 1555)
-  -h, --help     this text
-Exit codes: 0 success, 2 bad command line, 3 unreadable cloud or write error.
+  -q, --quiet    no summary line
 )";
 
 struct Args {
   fs::path data, split, out;
   uint64_t seed = 1555;
+  bool quiet = false;
 };
 
 Args parse_args(int argc, char** argv) {
@@ -47,6 +48,7 @@ Args parse_args(int argc, char** argv) {
     if (f == "--data") a.data = flag_value(argc, argv, i);
     else if (f == "--split") a.split = flag_value(argc, argv, i);
     else if (f == "-o" || f == "--out") a.out = flag_value(argc, argv, i);
+    else if (f == "-q" || f == "--quiet") a.quiet = true;
     else if (f == "--seed") a.seed = static_cast<uint64_t>(parse_count_flag(f, flag_value(argc, argv, i)));
     else throw UsageError("unknown option '" + f + "'");
   }
@@ -55,25 +57,21 @@ Args parse_args(int argc, char** argv) {
 }
 
 int run(const Args& a) {
-  try {
-    for (const char* kind : {"own", "line3dpp", "long", "gt"}) fs::create_directories(a.out / kind);
-    const auto names = read_name_list(a.split);
-    for (size_t i = 0; i < names.size(); ++i) {
-      const std::string& name = names[i];
-      const LineCloud cloud = read_line_cloud(a.data / (name + ".lcloud"));
-      write_line_cloud(a.out / "own" / (name + ".lcloud"), cloud);
-      write_line3dpp_txt(a.out / "line3dpp" / (name + ".txt"), cloud);
-      write_line_cloud(a.out / "long" / (name + ".lcloud"), make_long_fragment_cloud(cloud, LongFragmentOptions{}, mix_seed(a.seed, i)));
-      write_obj_wireframe(a.out / "gt" / (name + ".obj"), cloud.wireframe);
-    }
-    std::fprintf(stderr, "lc2wf-cloud-styles: %zu buildings -> %s\n", names.size(), a.out.string().c_str());
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lc2wf-cloud-styles: error: %s\n", e.what());
-    return 3;
+  const auto names = read_name_list(a.split);  // before OUT is made: a bad split writes nothing
+  if (names.empty()) throw std::runtime_error(a.split.string() + ": names no building (nothing to do)");
+  for (const char* kind : {"own", "line3dpp", "long", "gt"}) fs::create_directories(a.out / kind);
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    const LineCloud cloud = read_line_cloud(a.data / (name + ".lcloud"));
+    write_line_cloud(a.out / "own" / (name + ".lcloud"), cloud);
+    write_line3dpp_txt(a.out / "line3dpp" / (name + ".txt"), cloud);
+    write_line_cloud(a.out / "long" / (name + ".lcloud"), make_long_fragment_cloud(cloud, LongFragmentOptions{}, mix_seed(a.seed, i)));
+    write_obj_wireframe(a.out / "gt" / (name + ".obj"), cloud.wireframe);
   }
+  if (!a.quiet) std::fprintf(stderr, "lc2wf-cloud-styles: %zu buildings -> %s\n", names.size(), a.out.string().c_str());
+  return kExitDone;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return cli_main("lc2wf-cloud-styles", kUsage, argc, argv, parse_args, run); }
+int main(int argc, char** argv) { return lc2wf::cli_main({"lc2wf-cloud-styles", kUsage, {}}, argc, argv, parse_args, run); }

@@ -1,4 +1,5 @@
 // The configs in configs/ parse, share one key set, and bad keys/values are rejected by name.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,6 +10,8 @@
 
 #include "train/stage_loop.h"
 #include "train/train_config.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -81,11 +84,11 @@ TEST(TrainConfig, RoundTripsThroughJson) {
 TEST(TrainConfig, RejectsUnknownKeysByName) {
   nlohmann::json j = read_json(kConfigs / "base.json");
   j["junction"]["optim"]["learning_rate"] = 0.1;
-  EXPECT_NE(error_of(j).find("junction.optim"), std::string::npos) << error_of(j);
-  EXPECT_NE(error_of(j).find("learning_rate"), std::string::npos);
+  EXPECT_THAT(error_of(j), HasSubstr("junction.optim")) << error_of(j);
+  EXPECT_THAT(error_of(j), HasSubstr("learning_rate"));
   j = read_json(kConfigs / "base.json");
   j["epochs"] = 3;
-  EXPECT_NE(error_of(j).find("'epochs'"), std::string::npos) << error_of(j);
+  EXPECT_THAT(error_of(j), HasSubstr("'epochs'")) << error_of(j);
 }
 
 TEST(TrainConfig, RejectsBadValuesByName) {
@@ -111,7 +114,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
     for (const auto& key : c.path) node = &(*node)[key];
     *node = c.value;
     const std::string err = error_of(j);
-    EXPECT_NE(err.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << err;
+    EXPECT_THAT(err, HasSubstr(c.expected)) << "expected '" << c.expected << "' in: " << err;
   }
 }
 
@@ -130,7 +133,7 @@ TEST(TrainConfig, FileErrorsNameTheFile) {
     TrainConfig::from_file(p);
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr(p.string()));
   }
   fs::remove(p);
 }

@@ -2,6 +2,7 @@
 // checkpoints and a log whose loss goes down; a run killed with SIGKILL and resumed logs exactly the
 // losses of an uninterrupted run; lc2wf-infer and lc2wf-eval --weights produce files that parse; and
 // inference survives degenerate clouds.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -22,9 +23,12 @@
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "infer/prediction_io.h"
+#include "core/util/version.h"
 #include "tests/common/run_cli.h"
 #include "tests/common/tiny_lpt.h"
 #include "tests/train/train_log.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -108,8 +112,14 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   for (const char* f : {"junction.safetensors", "edge.safetensors", "checkpoints/junction_last_0.safetensors", "checkpoints/junction_last_1.safetensors",
                         "checkpoints/junction_last_0.optim.safetensors", "checkpoints/edge_last_0.safetensors",
                         "predicted_junctions/ell.json", "predicted_junctions/rect.json", "predicted_junctions/manifest.json",
-                        "config.json", "log.jsonl"})
+                        "config.json", "log.jsonl", "README.md"})
     EXPECT_TRUE(fs::exists(straight / f)) << f;
+  // The model card says which lc2wf trained the weights and what was kept.
+  std::ifstream card_file(straight / "README.md");
+  const std::string card((std::istreambuf_iterator<char>(card_file)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(card, HasSubstr(std::string("commit ") + lc2wf_git_commit()));
+  EXPECT_THAT(card, HasSubstr("| junction | `junction.safetensors` |"));
+  EXPECT_THAT(card, HasSubstr("| edge | `edge.safetensors` |"));
 
   // The loss goes down in both stages (mean of the first vs the last epoch).
   const auto epochs = log_lines(straight / "log.jsonl", "epoch");
@@ -213,7 +223,7 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
                                                 quote(hostile / "in" / "named.lcloud") + " " + quote(hostile / "in" / "fifo.lcloud") +
                                                 " " + quote(hostile / "in" / "far.lcloud") + " -o " + quote(hostile / "out"));
   EXPECT_EQ(r.code, 1) << r.err;  // the FIFO could not be read
-  EXPECT_NE(r.err.find("fifo.lcloud: is not a regular file"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("fifo.lcloud: is not a regular file")) << r.err;
   EXPECT_TRUE(fs::exists(hostile / "out" / "named.obj"));
   EXPECT_TRUE(fs::exists(hostile / "out" / "far.obj")) << r.err;
   EXPECT_FALSE(fs::exists(hostile / "escape.obj"));
@@ -234,15 +244,15 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_LT(std::get<2>(tuned_losses[2]), 0.7 * std::get<2>(straight_losses[80]));  // edge (0.54 x measured)
   finetune["junction"]["net"]["head"]["dims"] = {24};
   std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
-  EXPECT_EQ(run(finetune_cmd + quote(dir_ / "mismatch")), 1);
+  EXPECT_EQ(run(finetune_cmd + quote(dir_ / "mismatch")), 3);  // a data error (README: exit codes)
   EXPECT_NE(command_output().find("init_weights"), std::string::npos) << command_output();
 
   // An --out that cannot be created is an error naming it, not an abort.
   const testing::CliResult e = testing::run_cli(std::string(LC2WF_EVAL_BIN) + " --quiet --weights " + quote(straight) + " --data " +
                                                 quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " +
                                                 quote(dir_ / "tiny.json" / "eval"));
-  EXPECT_EQ(e.code, 1) << e.err;
-  EXPECT_NE(e.err.find("tiny.json"), std::string::npos) << e.err;
+  EXPECT_EQ(e.code, 3) << e.err;
+  EXPECT_THAT(e.err, HasSubstr("tiny.json")) << e.err;
 }
 
 TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {
@@ -252,8 +262,9 @@ TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {
   const testing::CliResult r =
       testing::run_cli(std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "bad.json") + " --out " + quote(dir_ / "bad"));
   const std::string output = r.out + r.err;
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(output.find("junction.optim.lr"), std::string::npos) << output;
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(output, HasSubstr("junction.optim.lr")) << output;
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));  // nothing written for a bad config
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/util/median.h"
 #include "dataset/errors.h"
 #include "dataset/line_meeting_point.h"
 #include "tools/process/run_process.h"
@@ -46,12 +47,6 @@ std::vector<std::pair<int, std::string>> data_lines(const fs::path& p, bool keep
     out.emplace_back(n, line);
   }
   return out;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
 }
 
 }  // namespace
@@ -235,6 +230,15 @@ double run_step(const std::vector<std::string>& argv, const fs::path& log, const
   return r.seconds;
 }
 
+// What an earlier run in the same workspace left (re-runs must not mix with it): only the entries this
+// file creates, never the folder or anything else in it.
+void clear_colmap_outputs(const fs::path& workspace) {
+  if (!fs::is_directory(workspace)) return;
+  for (const char* name : {"images", "database.db", "sparse", "colmap.log"}) fs::remove_all(workspace / name);
+  for (const auto& e : fs::directory_iterator(workspace))
+    if (e.path().filename().string().rfind("model_txt_", 0) == 0) fs::remove_all(e.path());
+}
+
 }  // namespace
 
 std::vector<ColmapImage> read_colmap_model(const fs::path& dir, const fs::path& scratch, const std::string& colmap_executable) {
@@ -250,7 +254,7 @@ std::vector<ColmapImage> read_colmap_model(const fs::path& dir, const fs::path& 
 ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
                                      const ColmapOptions& o) {
   o.Check();
-  fs::remove_all(workspace);
+  clear_colmap_outputs(workspace);
   fs::create_directories(workspace / "images");
   std::vector<std::string> names;
   for (const fs::path& p : images) {
