@@ -5,7 +5,7 @@
 #   bench/compare.sh [--build DIR] [--workloads "junction_train edge_train junction_infer edge_infer"]
 #                    [--train-iters N] [--infer-iters N] [--threads N]
 #
-# PyTorch runs at its best setting (OPENBLAS_CORETYPE=SkylakeX, see ../shared/spec/perf-anchors.md).
+# PyTorch runs at its best setting on this machine (OPENBLAS_CORETYPE=SkylakeX: OpenBLAS's fastest kernels here).
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -40,6 +40,10 @@ declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1 [edge_train]=BM
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
+# Ratios only mean something next to the CPU they were measured on.
+cpu_model=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -1)
+simd_flags=$(grep -m1 '^flags' /proc/cpuinfo | tr ' ' '\n' | grep -E '^(avx|avx2|fma|f16c|avx512f|avx512bw|avx512vl|avx512_bf16|amx_bf16|amx_tile)$' | sort | tr '\n' ' ')
+echo "CPU: $cpu_model, $(nproc) cores; SIMD flags: ${simd_flags:-none}"
 printf '%-15s %10s %10s %8s %10s %10s %8s\n' workload ours_s torch_s speedup ours_MB torch_MB rss_ratio
 for w in $workloads; do
   [[ -n "${filter[$w]:-}" ]] || { echo "compare.sh: unknown workload '$w'" >&2; exit 2; }

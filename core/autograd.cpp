@@ -11,6 +11,7 @@ namespace lc2wf {
 
 namespace {
 std::atomic<int64_t> g_live_nodes{0};
+thread_local const LeafGradReadyHook::Fn* g_leaf_ready = nullptr;
 
 bool input_requires_grad(const Tensor& t) { return t.defined() && t.requires_grad(); }
 
@@ -51,6 +52,9 @@ Node::~Node() { g_live_nodes.fetch_sub(1, std::memory_order_relaxed); }
 
 int64_t live_node_count() { return g_live_nodes.load(std::memory_order_relaxed); }
 
+LeafGradReadyHook::LeafGradReadyHook(Fn fn) : fn_(std::move(fn)), previous_(g_leaf_ready) { g_leaf_ready = &fn_; }
+LeafGradReadyHook::~LeafGradReadyHook() { g_leaf_ready = previous_; }
+
 bool needs_grad(std::initializer_list<const Tensor*> inputs) {
   if (!grad_enabled()) return false;
   for (const Tensor* t : inputs)
@@ -87,16 +91,19 @@ void record(Tensor& out, const char* name, const std::vector<Tensor>& inputs, Ba
 void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
   NoGradGuard no_grad;
   TensorImpl* impl = root.impl();
+  const LeafGradReadyHook::Fn* leaf_ready = g_leaf_ready;
   if (!impl->grad_fn) {
     accumulate_leaf(*impl, seed);
+    if (leaf_ready) (*leaf_ready)(impl);
     return;
   }
   Node* start = impl->grad_fn.get();
   if (!start->backward)
     throw_arg("backward: the graph was already freed by a previous backward(); pass retain_graph=true to the first call");
 
-  // Count, for every reachable node, how many reachable edges point at it.
+  // Count, for every reachable node, how many reachable edges point at it (and, for the hook, at each leaf).
   std::unordered_map<Node*, int64_t> deps;
+  std::unordered_map<const TensorImpl*, int64_t> leaf_deps;
   std::vector<Node*> stack{start};
   deps[start] = 0;
   // Owns every reachable node until the pass ends: freeing a node's edges must not destroy nodes
@@ -106,6 +113,7 @@ void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
     Node* n = stack.back();
     stack.pop_back();
     for (const Edge& e : n->edges) {
+      if (leaf_ready && e.leaf) ++leaf_deps[e.leaf.get()];
       if (!e.fn) continue;
       auto [it, inserted] = deps.try_emplace(e.fn.get(), 0);
       ++it->second;
@@ -116,6 +124,9 @@ void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
     }
   }
 
+  auto leaf_done = [&](const Edge& e) {
+    if (leaf_ready && e.leaf && --leaf_deps[e.leaf.get()] == 0) (*leaf_ready)(e.leaf.get());
+  };
   start->grad_buffer = seed;
   std::vector<Node*> ready{start};
   while (!ready.empty()) {
@@ -125,8 +136,10 @@ void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
     n->grad_buffer = Tensor();
     if (!g.defined()) {
       // No gradient reached this node: release its consumers' dependency counts all the same.
-      for (const Edge& e : n->edges)
+      for (const Edge& e : n->edges) {
         if (e.fn && --deps[e.fn.get()] == 0) ready.push_back(e.fn.get());
+        leaf_done(e);
+      }
       if (!retain_graph) {
         n->backward = nullptr;
         n->edges.clear();
@@ -150,9 +163,12 @@ void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph) {
           next->grad_buffer = next->grad_buffer.defined() ? add(next->grad_buffer, gi) : gi;
         }
         if (--deps[next] == 0) ready.push_back(next);
-      } else if (gi.defined()) {
-        check_grad(e, gi, n->name);
-        accumulate_leaf(*e.leaf, gi);
+      } else {
+        if (gi.defined()) {
+          check_grad(e, gi, n->name);
+          accumulate_leaf(*e.leaf, gi);
+        }
+        leaf_done(e);
       }
     }
     if (!retain_graph) {

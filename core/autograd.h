@@ -48,4 +48,20 @@ void record(Tensor& out, const char* name, const std::vector<Tensor>& inputs, Ba
 // Runs the backward pass from `root` seeded with `seed` (same shape as root).
 void run_backward(const Tensor& root, const Tensor& seed, bool retain_graph);
 
+// While alive, backward passes on this thread call `fn(leaf)` as soon as a leaf's gradient has received
+// every contribution of the pass, so data-parallel training can start summing it across processes while
+// the rest of the pass runs. Guards nest; the innermost one is called.
+class LeafGradReadyHook {
+ public:
+  using Fn = std::function<void(const TensorImpl* leaf)>;
+  explicit LeafGradReadyHook(Fn fn);
+  ~LeafGradReadyHook();
+  LeafGradReadyHook(const LeafGradReadyHook&) = delete;
+  LeafGradReadyHook& operator=(const LeafGradReadyHook&) = delete;
+
+ private:
+  Fn fn_;
+  const Fn* previous_;
+};
+
 }  // namespace lc2wf

@@ -82,27 +82,23 @@ void map3(const T* a, const T* b, const T* c, T* out, int64_t n, F f) {
 // Counter-based dropout mask for one reserved block of draws starting at `first`: element i is kept
 // when a 24-bit hash of (seed, first, i) is >= p * 2^24. The per-element hash is one 32-bit murmur
 // finaliser (a bijection, so the keep rate is exact over 2^32 draws) and vectorises; the keys come
-// from the full 64-bit stream.
+// from the full 64-bit stream. A tensor that is a slice of the batch's (Rng::reserve_tensor) reads the
+// block from its offset on: every index below is the tensor's own and the offset is added here.
 class DropoutMask {
  public:
   DropoutMask() = default;
-  DropoutMask(const Rng& rng, uint64_t first, double p)
-      : threshold_(static_cast<uint32_t>(std::ceil(p * 16777216.0))) {
-    uint64_t key = rng.bits(first);
+  DropoutMask(const Rng& rng, Rng::TensorDraws draws, double p)
+      : threshold_(static_cast<uint32_t>(std::ceil(p * 16777216.0))), offset_(draws.offset) {
+    uint64_t key = rng.bits(draws.first);
     k0_ = static_cast<uint32_t>(key);
     k1_ = static_cast<uint32_t>(key >> 32);
   }
-  bool keep(uint64_t i) const { return keep_low(static_cast<uint32_t>(i), high_key(i)); }
-  // Split form for vector loops: high_key(i) is constant over any 2^32-aligned block.
-  uint32_t high_key(uint64_t i) const { return k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u; }
-  bool keep_low(uint32_t low, uint32_t high_key) const {
-    uint32_t h = fmix32((low ^ k0_) + high_key);
-    return (h >> 8) >= threshold_;
-  }
+  bool keep(uint64_t i) const { return keep_block(i + offset_); }
 
 #ifdef __AVX512F__
   // keep(first + l) for lanes l = 0..15; first must be a multiple of 16 (one 2^32 block for all lanes).
   __mmask16 keep16(uint64_t first) const {
+    first += offset_;
     const __m512i lane = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
     __m512i h = _mm512_add_epi32(_mm512_set1_epi32(static_cast<int>(static_cast<uint32_t>(first))), lane);
     h = _mm512_add_epi32(_mm512_xor_si512(h, _mm512_set1_epi32(static_cast<int>(k0_))),
@@ -119,6 +115,7 @@ class DropoutMask {
 #if defined(__AVX2__)
   // keep(first + l) for lanes l = 0..7 as all-ones lanes; first must be a multiple of 8.
   __m256i keep8(uint64_t first) const {
+    first += offset_;
     const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
     __m256i h = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(static_cast<uint32_t>(first))), lane);
     h = _mm256_add_epi32(_mm256_xor_si256(h, _mm256_set1_epi32(static_cast<int>(k0_))),
@@ -136,9 +133,10 @@ class DropoutMask {
   // d[i] = s[i] * (keep(i) ? scale : 0) for i in [begin, end).
   template <class T>
   void apply(const T* __restrict s, T* __restrict d, int64_t begin, int64_t end, T scale) const {
-    const uint32_t hk = high_key(static_cast<uint64_t>(begin));
+    const uint64_t at = static_cast<uint64_t>(begin) + offset_;
+    const uint32_t hk = high_key(at);
     const uint32_t k0 = k0_, thr = threshold_;
-    const uint32_t base = static_cast<uint32_t>(begin);
+    const uint32_t base = static_cast<uint32_t>(at);
     const int64_t n = end - begin;
     s += begin;
     d += begin;
@@ -149,6 +147,13 @@ class DropoutMask {
   }
 
  private:
+  // i is an index into the whole block. high_key(i) is constant over any 2^32-aligned block, so vector
+  // loops hash only the low 32 bits per lane.
+  uint32_t high_key(uint64_t i) const { return k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u; }
+  bool keep_block(uint64_t i) const {
+    uint32_t h = fmix32((static_cast<uint32_t>(i) ^ k0_) + high_key(i));
+    return (h >> 8) >= threshold_;
+  }
   static uint32_t fmix32(uint32_t h) {
     h ^= h >> 16;
     h *= 0x85EBCA6Bu;
@@ -157,6 +162,7 @@ class DropoutMask {
     return h ^ (h >> 16);
   }
   uint32_t threshold_ = 0, k0_ = 0, k1_ = 0;
+  uint64_t offset_ = 0;
 };
 
 // exp that vectorises (Cephes-style polynomial, ~1 ulp in float); exactly 0 below the float range.

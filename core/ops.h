@@ -98,6 +98,24 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
 Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Tensor& running_mean,
                   Tensor& running_var, bool training, double momentum = 0.1, double eps = 1e-5);
 
+// While alive, batch_norm in training mode on this thread takes its statistics over the rows of every
+// process of a data-parallel job (synchronised BatchNorm). `sum(values, n)` adds n doubles element-wise
+// across the processes, in place; it is called once in the forward and once in the backward pass of each
+// batch_norm, in the same order on every process. The weight and bias gradients stay per process (the
+// trainer sums all gradients afterwards). Guards nest; the innermost one is used.
+class BatchNormSyncGuard {
+ public:
+  using Sum = std::function<void(double* values, int64_t n)>;
+  explicit BatchNormSyncGuard(Sum sum);
+  ~BatchNormSyncGuard();
+  BatchNormSyncGuard(const BatchNormSyncGuard&) = delete;
+  BatchNormSyncGuard& operator=(const BatchNormSyncGuard&) = delete;
+
+ private:
+  Sum sum_;
+  const Sum* previous_;
+};
+
 // ---------------------------------------------------------------- recompute in backward (activation memory)
 // y = linear(layer_norm(x, norm_weight, norm_bias, eps), weight, bias) saving only x and the weights: the
 // normalised rows are rebuilt in the backward pass, one (rows x in) activation less than the two ops.

@@ -229,7 +229,7 @@ DropoutPlan make_dropout(double p, bool training, Rng& rng, uint64_t count, cons
   DropoutPlan plan;
   if (!training || p == 0.0) return plan;
   plan.active = true;
-  plan.mask = DropoutMask(rng, rng.reserve(count), p);
+  plan.mask = DropoutMask(rng, rng.reserve_tensor(count), p);
   plan.scale = 1.0 / (1.0 - p);
   return plan;
 }

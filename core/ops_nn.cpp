@@ -1,4 +1,5 @@
 // softmax / log_softmax, dropout, layer_norm and batch_norm with fused backward passes.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <type_traits>
@@ -142,7 +143,7 @@ Tensor dropout(const Tensor& a, double p, bool training, Rng& rng) {
   if (!(p >= 0.0 && p <= 1.0)) throw_arg("dropout: p must be in [0, 1], got " + std::to_string(p));
   if (!training || p == 0.0) return a;
   if (p == 1.0) return mul(a, 0.0);
-  DropoutMask mask(rng, rng.reserve(static_cast<uint64_t>(a.numel())), p);
+  DropoutMask mask(rng, rng.reserve_tensor(static_cast<uint64_t>(a.numel())), p);
   double scale = 1.0 / (1.0 - p);
   Tensor out = Tensor::empty(a.shape(), a.dtype());
   auto apply = [mask, scale](const Tensor& src, const Tensor& dst) {
@@ -273,6 +274,15 @@ Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, dou
   return out;
 }
 
+namespace {
+thread_local const BatchNormSyncGuard::Sum* g_batch_norm_sync = nullptr;
+}  // namespace
+
+BatchNormSyncGuard::BatchNormSyncGuard(Sum sum) : sum_(std::move(sum)), previous_(g_batch_norm_sync) {
+  g_batch_norm_sync = &sum_;
+}
+BatchNormSyncGuard::~BatchNormSyncGuard() { g_batch_norm_sync = previous_; }
+
 Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Tensor& running_mean,
                   Tensor& running_var, bool training, double momentum, double eps) {
   check_float(x, "batch_norm", "x");
@@ -295,6 +305,9 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
   Tensor out = Tensor::empty(x.shape(), x.dtype());
   Tensor mean_t = Tensor::empty({C}, x.dtype()), rstd_t = Tensor::empty({C}, x.dtype());
   int64_t nblk = num_chunks(M, kNormRows);
+  // Synchronised statistics: rows of every process; count_all is their number.
+  const BatchNormSyncGuard::Sum* sync = training ? g_batch_norm_sync : nullptr;
+  int64_t count_all = M;
   dispatch_float(x.dtype(), "batch_norm", [&](auto tag) {
     using T = decltype(tag);
     const T* px = ptr<T>(x);
@@ -334,7 +347,25 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
           v[i] += bm2[b * C + i] + delta * delta * (na * nb / n);
         }
       }
-      for (int64_t i = 0; i < C; ++i) pr[i] = T(1) / std::sqrt(v[i] / static_cast<T>(M) + static_cast<T>(eps));
+      if (sync) {
+        // Per-channel sums and sums of squares in double, added over the processes with the row count.
+        std::vector<double> s(static_cast<size_t>(2 * C + 1));
+        for (int64_t i = 0; i < C; ++i) {
+          const double m = static_cast<double>(pm[i]);
+          s[i] = m * static_cast<double>(M);
+          s[C + i] = static_cast<double>(v[i]) + m * m * static_cast<double>(M);
+        }
+        s[2 * C] = static_cast<double>(M);
+        (*sync)(s.data(), 2 * C + 1);
+        count_all = static_cast<int64_t>(std::llround(s[2 * C]));
+        const double n = s[2 * C];
+        for (int64_t i = 0; i < C; ++i) {
+          const double mean_all = s[i] / n;
+          pm[i] = static_cast<T>(mean_all);
+          v[i] = static_cast<T>(std::max(0.0, s[C + i] - s[i] * mean_all));
+        }
+      }
+      for (int64_t i = 0; i < C; ++i) pr[i] = T(1) / std::sqrt(v[i] / static_cast<T>(count_all) + static_cast<T>(eps));
       if (running_mean.defined()) {
         T* rm = ptr<T>(running_mean);
         T mom = static_cast<T>(momentum);
@@ -344,7 +375,7 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
         T* rv = ptr<T>(running_var);
         T mom = static_cast<T>(momentum);
         for (int64_t i = 0; i < C; ++i)
-          rv[i] = (T(1) - mom) * rv[i] + mom * v[i] / static_cast<T>(M - 1);
+          rv[i] = (T(1) - mom) * rv[i] + mom * v[i] / static_cast<T>(count_all - 1);
       }
     } else {
       const T* rm = ptr<T>(running_mean);
@@ -378,7 +409,8 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
          gb = bias.defined() && bias.requires_grad();
     Tensor wd = weight.defined() ? weight.detach() : Tensor();
     record(out, "batch_norm", {x, weight, bias},
-           [xd = x.detach(), wd, mean_t, rstd_t, gx, gw, gb, M, C, nblk, training](const Tensor& g) -> std::vector<Tensor> {
+           [xd = x.detach(), wd, mean_t, rstd_t, gx, gw, gb, M, C, nblk, training, count_all,
+            sync_sum = sync ? *sync : BatchNormSyncGuard::Sum()](const Tensor& g) -> std::vector<Tensor> {
              Tensor dx = gx ? Tensor::empty(xd.shape(), g.dtype()) : Tensor();
              Tensor dw = Tensor::empty({C}, g.dtype()), db = Tensor::empty({C}, g.dtype());
              dispatch_float(g.dtype(), "batch_norm backward", [&](auto tag) {
@@ -415,12 +447,20 @@ Tensor batch_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, Ten
                if (gx) {
                  const T* pw = wd.defined() ? ptr<T>(wd) : nullptr;
                  std::vector<T> k(C), c1(C), c2(C);
-                 T invm = T(1) / static_cast<T>(M);
+                 T invm = T(1) / static_cast<T>(count_all);
+                 // Synchronised statistics depend on every process's rows: their mean terms are summed too.
+                 std::vector<T> all_g(sum_g, sum_g + C), all_gh(sum_gh, sum_gh + C);
+                 if (sync_sum) {
+                   std::vector<double> s(static_cast<size_t>(2 * C));
+                   for (int64_t i = 0; i < C; ++i) s[i] = sum_g[i], s[C + i] = sum_gh[i];
+                   sync_sum(s.data(), 2 * C);
+                   for (int64_t i = 0; i < C; ++i) all_g[i] = static_cast<T>(s[i]), all_gh[i] = static_cast<T>(s[C + i]);
+                 }
                  for (int64_t i = 0; i < C; ++i) {
                    k[i] = pr[i] * (pw ? pw[i] : T(1));
                    // Training: the batch statistics depend on x, which adds the two mean terms.
-                   c1[i] = training ? sum_g[i] * invm : T(0);
-                   c2[i] = training ? sum_gh[i] * invm : T(0);
+                   c1[i] = training ? all_g[i] * invm : T(0);
+                   c2[i] = training ? all_gh[i] * invm : T(0);
                  }
                  T* pd = ptr<T>(dx);
                  parallel_for_work(M, kNormRows, 4 * C, [&](int64_t r0, int64_t r1) {

@@ -148,7 +148,7 @@ ThreadPool& pool() {
 }  // namespace
 
 void set_num_threads(int n) {
-  g_threads = n <= 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : n;
+  g_threads = n <= 0 ? default_threads() : n;
 }
 
 int num_threads() { return g_threads > 0 ? g_threads : (g_threads = default_threads()); }

@@ -9,7 +9,7 @@
 namespace lc2wf {
 
 // Default: OMP_NUM_THREADS when set, else all hardware threads.
-void set_num_threads(int n);  // <= 0 means all hardware threads
+void set_num_threads(int n);  // <= 0: OMP_NUM_THREADS when set, else all hardware threads
 int num_threads();
 
 // Calls fn(begin, end) for chunks [k*grain, min((k+1)*grain, n)); chunks run in parallel.

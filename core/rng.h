@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 
 namespace lc2wf {
 
@@ -20,6 +22,34 @@ class Rng {
     counter_ += count;
     return first;
   }
+  // The buildings a forward pass computes when a batch is cut up (micro-batches, data-parallel ranks):
+  // [first, first + count) of a batch of `total`, stacked outermost in every tensor the pass draws for.
+  void set_batch_slice(uint64_t first, uint64_t count, uint64_t total) {
+    if (count == 0 || first + count > total)
+      throw std::invalid_argument("Rng::set_batch_slice: [" + std::to_string(first) + ", +" + std::to_string(count) +
+                                  ") is not a slice of a batch of " + std::to_string(total));
+    slice_first_ = first, slice_count_ = count, slice_total_ = total;
+  }
+  void clear_batch_slice() { slice_first_ = 0, slice_count_ = slice_total_ = 0; }
+
+  struct TensorDraws {
+    uint64_t first = 0;   // the block's first draw (its key)
+    uint64_t offset = 0;  // index of this tensor's element 0 within the block
+  };
+  // Reserves the draws of a batch-major tensor of `count` elements. With a batch slice set, the block is
+  // the one the whole batch's tensor would get and `offset` places the slice in it, so dropout masks do
+  // not depend on how a batch is cut up. Without one it is reserve(count) at offset 0.
+  TensorDraws reserve_tensor(uint64_t count) {
+    if (slice_count_ == 0 || slice_count_ == slice_total_) return {reserve(count), 0};
+    if (count % slice_count_ != 0)
+      throw std::invalid_argument("Rng::reserve_tensor: " + std::to_string(count) + " elements are not " +
+                                  std::to_string(slice_count_) + " equal buildings of a batch-major tensor");
+    const uint64_t per_building = count / slice_count_, whole = per_building * slice_total_;
+    // Sliced masks index the block with 32-bit lanes.
+    if (whole >= (uint64_t{1} << 32)) throw std::invalid_argument("Rng::reserve_tensor: a batch tensor of 2^32 or more elements cannot be sliced");
+    return {reserve(whole), per_building * slice_first_};
+  }
+
   // 64 random bits for draw index n (stateless, thread-safe).
   uint64_t bits(uint64_t n) const { return mix(seed_ * 0x9E3779B97F4A7C15ull + mix(n)); }
   // Uniform in [0, 1) for draw index n, 24 bits (exact in float).
@@ -42,6 +72,7 @@ class Rng {
   }
   uint64_t seed_;
   uint64_t counter_ = 0;
+  uint64_t slice_first_ = 0, slice_count_ = 0, slice_total_ = 0;  // no slice: count 0
 };
 
 }  // namespace lc2wf

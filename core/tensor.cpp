@@ -340,6 +340,13 @@ Tensor& Tensor::set_requires_grad(bool required) {
 bool Tensor::is_leaf() const { return checked(impl_).grad_fn == nullptr; }
 Tensor Tensor::grad() const { return checked(impl_).grad; }
 void Tensor::zero_grad() { const_cast<TensorImpl&>(checked(impl_)).grad = Tensor(); }
+void Tensor::set_grad(const Tensor& grad) {
+  TensorImpl& impl = const_cast<TensorImpl&>(checked(impl_));
+  if (impl.grad_fn) throw_arg("set_grad: only leaf tensors hold a gradient");
+  if (grad.defined() && (grad.shape() != impl.shape || grad.dtype() != impl.dtype))
+    throw_arg("set_grad: gradient " + shape_str(grad.shape()) + " does not match the tensor " + shape_str(impl.shape));
+  impl.grad = grad;
+}
 
 Tensor Tensor::detach() const {
   const TensorImpl& impl = checked(impl_);

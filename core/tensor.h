@@ -72,6 +72,8 @@ class Tensor {
   bool is_leaf() const;
   Tensor grad() const;  // undefined until a backward pass reaches this tensor
   void zero_grad();     // drops the gradient (the next backward starts from zero)
+  // Sets the gradient of a leaf (same shape and dtype), e.g. one summed over data-parallel processes.
+  void set_grad(const Tensor& grad);
   Tensor detach() const;  // same storage, no graph, no grad
   // Scalar losses may omit the seed (it is 1). The graph is freed afterwards unless retain_graph.
   void backward(const Tensor& seed = Tensor(), bool retain_graph = false) const;

@@ -16,7 +16,7 @@ class DataRng;
 struct AugmentOptions {
   double scale_min = 0.8;
   double scale_max = 1.25;
-  double shift_max_m = 0.1 * 266.2135032067564 / 20.0;  // 0.1 network units
+  double shift_max_m = 0.1 * kReleaseStdRaw / kRawUnitsPerMetre;  // 0.1 network units
   bool rotate_z = false;
   void Check() const;
 };

@@ -1,8 +1,10 @@
 // Builds batches on worker threads ahead of the consumer through a bounded window, delivering them in a
 // fixed order. The epoch's item order and every batch's seed depend only on (seed, epoch, batch index),
-// so the sequence of batches is identical for any number of workers.
+// so the sequence of batches is identical for any number of workers, and an epoch can start at any batch
+// (a resumed training run continues the sequence). The project's one batch order: lc2wf-train uses it.
 #pragma once
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -24,10 +26,12 @@ struct LoaderOptions {
   bool shuffle = true;
   bool drop_last = true;
   uint64_t seed = 1555;
+  int64_t max_batches = 0;   // batches per epoch at most (0 = all)
   void Check() const {
     if (batch_size < 1) throw std::invalid_argument("LoaderOptions.batch_size must be >= 1");
     if (workers < 1) throw std::invalid_argument("LoaderOptions.workers must be >= 1");
     if (prefetch_batches < 1) throw std::invalid_argument("LoaderOptions.prefetch_batches must be >= 1");
+    if (max_batches < 0) throw std::invalid_argument("LoaderOptions.max_batches must be >= 0");
   }
 };
 
@@ -48,7 +52,8 @@ class BatchLoader {
 
   size_t batches_per_epoch() const {
     const size_t b = options_.batch_size;
-    return options_.drop_last ? num_items_ / b : (num_items_ + b - 1) / b;
+    const size_t all = options_.drop_last ? num_items_ / b : (num_items_ + b - 1) / b;
+    return options_.max_batches > 0 ? std::min(all, static_cast<size_t>(options_.max_batches)) : all;
   }
 
   // The item order of an epoch (a pure function of seed and epoch).
@@ -62,14 +67,15 @@ class BatchLoader {
     return order;
   }
 
-  // Stops any running epoch and starts building `epoch`.
-  void start_epoch(int epoch) {
+  // Stops any running epoch and starts building `epoch` at batch `first_batch` (earlier batches are skipped
+  // without being built; the later ones are the same as in a whole epoch).
+  void start_epoch(int epoch, size_t first_batch = 0) {
     stop();
     epoch_ = epoch;
     order_ = epoch_order(epoch);
     slots_.assign(batches_per_epoch(), Slot{});
-    next_build_ = 0;
-    next_take_ = 0;
+    next_build_ = std::min(first_batch, slots_.size());
+    next_take_ = next_build_;
     stopping_ = false;
     for (int w = 0; w < options_.workers; ++w) threads_.emplace_back([this] { work(); });
   }

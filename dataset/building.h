@@ -40,7 +40,7 @@ int merge_duplicate_vertices(PolyMesh& mesh, double tolerance, int* dropped_face
 enum class NonPlanarPolicy { Keep, Skip };
 
 struct BuildingOptions {
-  double raw_per_metre = 20.0;      // Roof-Image: 20 raw units = 1 m (data-sources.md 2.3)
+  double raw_per_metre = kRawUnitsPerMetre;  // Roof-Image meshes are in raw units
   bool recentre_xy = true;          // x/y origin at the centre of the footprint's bounding box
   double duplicate_tol_m = 0.005;   // 5 mm: merges 48 near-duplicate vertices in 20 Roof-Image buildings
   double planarity_tol_m = 0.05;    // typical faces deviate by 1e-7 m; the one bad building by 1.6 m

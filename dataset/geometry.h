@@ -47,6 +47,10 @@ struct PolyMesh {
   std::vector<FaceLabel> labels;  // one per face; empty when the source has none (plain OBJ)
 };
 
+// Roof-Image meshes and the LC2WF release's line clouds: 20 raw units = 1 m (the release's thresholds, e.g.
+// 5 raw = 0.25 m, follow from it). The one place this number is written.
+inline constexpr double kRawUnitsPerMetre = 20.0;
+
 // metres = (raw - origin_raw) / raw_per_metre; raw = metres * raw_per_metre + origin_raw.
 struct UnitTransform {
   double raw_per_metre = 1.0;

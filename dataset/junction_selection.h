@@ -1,5 +1,5 @@
 // The one rule that turns the junction model's candidates into the junctions that get paired, shared by
-// the edge stage's training pairs, its validation and inference (reference spec §3.3, §3.4): point NMS on
+// the edge stage's training pairs, its validation and inference (as in the release): point NMS on
 // the regressed positions, then a cut (c > min_confidence, or at training time the top_k without a cut),
 // then refinement of the survivors against the cloud's segments.
 #pragma once
@@ -32,7 +32,7 @@ struct JunctionSelectionOptions {
 };
 
 // Which cut follows the NMS: inference and validation cut by confidence, training pair sampling keeps the
-// top_k (release §3.3 uses no threshold there).
+// top_k (the release's training pairs use no threshold).
 enum class SelectionCut { kConfidence, kTopK };
 
 struct JunctionSelection {

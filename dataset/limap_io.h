@@ -1,4 +1,4 @@
-// LIMAP line maps (../shared/spec/line-cloud-formats.md): the `finaltracks/` folder, one
+// LIMAP line maps (10 decimals, fixed layout): the `finaltracks/` folder, one
 // `track_<i>.txt` per track (its 3D line, then the supporting image ids, 2D line ids and 2D segments).
 // LIMAP's `.obj` export is read by dataset/line_obj_io.h.
 #pragma once

@@ -1,4 +1,4 @@
-// Line3D++ output (../shared/spec/line-cloud-formats.md): the `.txt` file, one text line per final 3D line
+// Line3D++ output (its `Line3D++__*.txt` files): the `.txt` file, one text line per final 3D line
 // "n P1 Q1 ... Pn Qn m cam1 seg1 p1x p1y q1x q1y ... ", and a writer of the same layout for our clouds
 // (one 3D segment per line, its supports as (view + 1, segment id, p, q)). `.obj` files: dataset/line_obj_io.h.
 #pragma once

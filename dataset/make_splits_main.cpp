@@ -1,73 +1,77 @@
 // lc2wf-make-splits: writes train.txt / val.txt / test.txt from the Roof-Image building names.
 #include <cstdio>
-#include <cstdlib>
-#include <exception>
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 
+#include "core/util/cli.h"
 #include "dataset/building.h"
 #include "dataset/splits.h"
 
 namespace {
 
-void usage(std::FILE* out) {
-  std::fprintf(out,
-               "Usage: lc2wf-make-splits --data DIR --out DIR [--seed N] [--test N] [--val N]\n"
-               "Writes DIR/train.txt, val.txt, test.txt (one building name per line) from the .polyshape\n"
-               "files in --data (e.g. ../shared/data/roof-image/res_building).\n"
-               "Rule: sort names by mix(FNV-1a-64(name), seed); first --test are test (default 757), next --val\n"
-               "validation (default 200), the rest train. Default seed 1555.\n");
+namespace fs = std::filesystem;
+using namespace lc2wf;
+
+const char* kUsage = R"(Usage: lc2wf-make-splits --meshes DIR -o OUT [--seed N] [--test N] [--val N]
+
+Writes OUT/train.txt, val.txt and test.txt (one building name per line) from the .polyshape files in
+--meshes (e.g. ../shared/data/roof-image/res_building). Rule: sort names by mix(FNV-1a-64(name), seed);
+the first --test are test, the next --val validation, the rest train. Prints the counts on stdout.
+One thread.
+
+  --meshes DIR        Roof-Image meshes (*.polyshape); the names are the file stems
+  -o, --out OUT       output folder (configs/splits for the published splits)
+  --seed N            split seed (default 1555)
+  --test N            test buildings (default 757)
+  --val N             validation buildings (default 200)
+  -q, --quiet         do not print the counts
+A folder without any .polyshape file is a data error (exit 3).
+)";
+
+struct Args {
+  fs::path meshes, out;
+  SplitRule rule;
+  bool quiet = false;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    auto value = [&] { return flag_value(argc, argv, i); };
+    auto count = [&] {
+      const long long n = parse_count_flag(f, value());
+      if (n > 1000000000) throw UsageError(f + " is too large");
+      return static_cast<int>(n);
+    };
+    if (f == "--meshes") a.meshes = value();
+    else if (f == "-o" || f == "--out") a.out = value();
+    else if (f == "--seed") a.rule.seed = static_cast<uint64_t>(parse_count_flag(f, value()));
+    else if (f == "--test") a.rule.test_count = count();
+    else if (f == "--val") a.rule.val_count = count();
+    else if (f == "-q" || f == "--quiet") a.quiet = true;
+    else throw UsageError("unknown option '" + f + "'");
+  }
+  if (a.meshes.empty()) throw UsageError("--meshes DIR is required");
+  if (a.out.empty()) throw UsageError("-o OUT is required");
+  return a;
+}
+
+int run(const Args& a) {
+  const auto names = list_polyshape_names(a.meshes);
+  if (names.empty()) throw std::runtime_error(a.meshes.string() + ": no .polyshape file: nothing to split");
+  const Splits s = make_splits(names, a.rule);
+  fs::create_directories(a.out);
+  write_name_list(a.out / "train.txt", s.train);
+  write_name_list(a.out / "val.txt", s.val);
+  write_name_list(a.out / "test.txt", s.test);
+  if (!a.quiet)
+    std::printf("%zu buildings: %zu train, %zu val, %zu test -> %s\n", names.size(), s.train.size(), s.val.size(), s.test.size(),
+              a.out.string().c_str());
+  return kExitDone;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  std::string data, out;
-  lc2wf::SplitRule rule;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      usage(stdout);
-      return 0;
-    }
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "error: %s needs a value\n", a.c_str());
-      usage(stderr);
-      return 2;
-    }
-    const std::string v = argv[++i];
-    try {
-      if (a == "--data") data = v;
-      else if (a == "--out") out = v;
-      else if (a == "--seed") rule.seed = std::stoull(v);
-      else if (a == "--test") rule.test_count = std::stoi(v);
-      else if (a == "--val") rule.val_count = std::stoi(v);
-      else {
-        std::fprintf(stderr, "error: unknown option %s\n", a.c_str());
-        usage(stderr);
-        return 2;
-      }
-    } catch (const std::exception&) {
-      std::fprintf(stderr, "error: bad number for %s: %s\n", a.c_str(), v.c_str());
-      return 2;
-    }
-  }
-  if (data.empty() || out.empty()) {
-    std::fprintf(stderr, "error: --data and --out are required\n");
-    usage(stderr);
-    return 2;
-  }
-  try {
-    const auto names = lc2wf::list_polyshape_names(data);
-    const auto s = lc2wf::make_splits(names, rule);
-    std::filesystem::create_directories(out);
-    lc2wf::write_name_list(std::filesystem::path(out) / "train.txt", s.train);
-    lc2wf::write_name_list(std::filesystem::path(out) / "val.txt", s.val);
-    lc2wf::write_name_list(std::filesystem::path(out) / "test.txt", s.test);
-    std::printf("%zu buildings: %zu train, %zu val, %zu test -> %s\n", names.size(), s.train.size(), s.val.size(),
-                s.test.size(), out.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
-  }
-  return 0;
-}
+int main(int argc, char** argv) { return cli_main({"lc2wf-make-splits", kUsage, {}}, argc, argv, parse_args, run); }

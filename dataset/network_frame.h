@@ -1,15 +1,17 @@
 // Metres <-> network units. The release normalises raw coordinates with one global mean and a scalar
-// std (MEAN = [0.12249484, -0.3440005, 70.5140106], STD = 266.2135032 raw); in metres (20 raw = 1 m)
-// that is centre = MEAN / 20 and scale = STD / 20 = 13.3107 m, the defaults here.
+// std (MEAN = [0.12249484, -0.3440005, 70.5140106], STD = 266.2135032 raw); in metres that is
+// centre = MEAN / kRawUnitsPerMetre and scale = STD / kRawUnitsPerMetre = 13.3107 m, the defaults here.
 #pragma once
 
 #include "dataset/geometry.h"
 
 namespace lc2wf {
 
+inline constexpr double kReleaseStdRaw = 266.2135032067564;  // the release's normalisation scale, raw units
+
 struct NetworkFrame {
-  Vec3 centre_m = Vec3(0.12249484 / 20.0, -0.3440005 / 20.0, 70.5140106 / 20.0);
-  double scale_m = 266.2135032067564 / 20.0;
+  Vec3 centre_m = Vec3(0.12249484, -0.3440005, 70.5140106) / kRawUnitsPerMetre;
+  double scale_m = kReleaseStdRaw / kRawUnitsPerMetre;
   void Check() const;
 
   Vec3 to_network(const Vec3& metres) const { return (metres - centre_m) / scale_m; }

@@ -21,7 +21,7 @@ enum class PaddingMode { Release, Zero };
 
 struct PatchOptions {
   int lines_per_patch = 32;
-  double radius_m = 0.2 * 266.2135032067564 / 20.0;  // 0.2 network units = 2.662 m
+  double radius_m = 0.2 * kReleaseStdRaw / kRawUnitsPerMetre;  // 0.2 network units = 2.662 m
   int negative_noise_count = 16;                       // patch negative if >= this many noise lines
   PaddingMode padding = PaddingMode::Release;
   NetworkFrame frame;

@@ -12,7 +12,7 @@ enum class PointNmsRule {
   // Classic greedy NMS: walk points by descending score; a point survives unless a *surviving* point lies
   // within the radius.
   kGreedy,
-  // The release's rule (reference spec §2.9): a point is also removed by a stronger neighbour that was
+  // The release's rule (its "suppressor" NMS): a point is also removed by a stronger neighbour that was
   // itself suppressed, so on a chain A > B > C (A–B and B–C close, A–C far) only A survives.
   kSuppressor,
 };

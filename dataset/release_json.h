@@ -12,7 +12,7 @@
 namespace lc2wf {
 
 struct ReleaseJsonOptions {
-  double raw_per_metre = 20.0;
+  double raw_per_metre = kRawUnitsPerMetre;
   Vec3 origin_raw = Vec3::Zero();
   void Check() const;
 };

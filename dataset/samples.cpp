@@ -12,6 +12,9 @@ void require_segments(const LineCloud& c) {
   if (c.segments.empty()) throw DataError(c.name.empty() ? "line cloud" : c.name, "empty line cloud (no segments)");
 }
 
+// The cloud's statistics augmentation draws from its own stream, so enabling it leaves the other draws alone.
+constexpr uint64_t kCloudAugmentStream = 0xC10DA06ull;
+
 }  // namespace
 
 void JunctionSampleOptions::Check() const {
@@ -19,17 +22,23 @@ void JunctionSampleOptions::Check() const {
   sampling.Check();
   patch.Check();
   augment.Check();
+  cloud_augment.Check();
 }
 
 void PairSampleOptions::Check() const {
   pairs.Check();
   patch.Check();
   augment.Check();
+  cloud_augment.Check();
 }
 
-JunctionPatches make_junction_sample(const LineCloud& cloud, const JunctionSampleOptions& o, uint64_t seed) {
+JunctionPatches make_junction_sample(const LineCloud& original, const JunctionSampleOptions& o, uint64_t seed) {
   o.Check();
-  require_segments(cloud);
+  require_segments(original);
+  const LineCloud augmented = o.cloud_augment_enabled
+                                  ? augment_cloud_statistics(original, o.cloud_augment, mix_seed(seed, kCloudAugmentStream))
+                                  : LineCloud{};
+  const LineCloud& cloud = o.cloud_augment_enabled ? augmented : original;
   DataRng rng(seed);
   const Augmentation aug = o.augment_enabled ? draw_augmentation(rng, o.augment, o.patch.frame) : Augmentation{};
   const std::vector<Vec3> endpoints = segment_endpoints(cloud.segments);
@@ -53,7 +62,9 @@ PairPatches make_pair_training_sample(const LineCloud& cloud, const JunctionSele
     p.u = aug.apply(p.u);
     p.v = aug.apply(p.v);
   }
-  std::vector<Segment3> segs = cloud.segments;
+  std::vector<Segment3> segs =
+      o.cloud_augment_enabled ? augment_cloud_statistics(cloud, o.cloud_augment, mix_seed(seed, kCloudAugmentStream)).segments
+                              : cloud.segments;
   aug.apply(segs);
   return build_pair_patches(SegmentSet(segs), pairs, o.patch);
 }

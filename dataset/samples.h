@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "dataset/augmentation.h"
+#include "dataset/cloud_augmentation.h"
 #include "dataset/line_cloud.h"
 #include "dataset/pair_sampling.h"
 #include "dataset/patches.h"
@@ -17,12 +18,16 @@ struct JunctionSampleOptions {
   PatchOptions patch;
   AugmentOptions augment;
   bool augment_enabled = false;  // training only, as the release
+  CloudAugmentOptions cloud_augment;
+  bool cloud_augment_enabled = false;  // training only; the release has no such augmentation
   // Endpoint labels farther than this from their junction count as noise (see endpoint_labels()); the
   // default keeps the plain (f, i1, i2) derivation.
   double endpoint_label_max_distance_m = std::numeric_limits<double>::infinity();
   void Check() const;
 };
 
+// With cloud_augment_enabled the cloud's statistics are augmented first (augment_cloud_statistics, its
+// own seed stream), and everything below sees the augmented cloud.
 // Sample points are chosen on the un-augmented cloud (the release computes density seeds before
 // augmentation; FPS is invariant to the similarity transform), then segments and GT are augmented and
 // patched. Deterministic for a seed. Throws DataError naming the cloud when it has no segments.
@@ -33,6 +38,8 @@ struct PairSampleOptions {
   PatchOptions patch;
   AugmentOptions augment;
   bool augment_enabled = false;
+  CloudAugmentOptions cloud_augment;
+  bool cloud_augment_enabled = false;
   void Check() const;
 };
 

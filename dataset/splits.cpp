@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/util/fnv1a.h"
 #include "dataset/atomic_file.h"
 #include "dataset/errors.h"
 #include "dataset/rng.h"
@@ -18,12 +19,7 @@ void SplitRule::Check() const {
 }
 
 uint64_t split_key(const std::string& name, uint64_t seed) {
-  uint64_t h = 0xcbf29ce484222325ull;
-  for (unsigned char c : name) {
-    h ^= c;
-    h *= 0x100000001b3ull;
-  }
-  return mix_seed(h, seed);
+  return mix_seed(fnv1a64(name), seed);
 }
 
 Splits make_splits(const std::vector<std::string>& names, const SplitRule& rule) {

@@ -8,8 +8,6 @@
 namespace lc2wf {
 namespace {
 
-constexpr double kRawPerMetre = 20.0;
-
 void check_common(const char* type, double eave, double slope_deg) {
   if (!(eave > 0)) throw std::invalid_argument(std::string(type) + ".eave_height must be > 0");
   if (!(slope_deg > 0 && slope_deg < 80)) throw std::invalid_argument(std::string(type) + ".slope_deg must be in (0, 80)");
@@ -30,9 +28,9 @@ void add_walls_and_base(PolyMesh& m, int n, int first_bottom) {
 }
 
 Building to_building(const std::string& name, PolyMesh m) {
-  for (auto& v : m.vertices) v *= kRawPerMetre;
+  for (auto& v : m.vertices) v *= kRawUnitsPerMetre;
   BuildingOptions opt;
-  opt.raw_per_metre = kRawPerMetre;
+  opt.raw_per_metre = kRawUnitsPerMetre;
   return make_building(name, std::move(m), opt);
 }
 

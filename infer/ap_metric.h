@@ -1,5 +1,5 @@
 // Ranked average precision of junctions (vAP) and edges (sAP) as the LC2WF release computes them
-// (reference spec §5.1/§5.2): per building, predictions in score order are matched greedily to their
+// (its evaluation script): per building, predictions in score order are matched greedily to their
 // *nearest* ground-truth element only; the (score, TP) flags of all buildings are pooled into one list
 // and scored with VOC all-point AP against the total ground-truth count.
 #pragma once

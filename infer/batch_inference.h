@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "infer/cloud_input.h"
+#include "dataset/cloud_input.h"
 #include "infer/inference.h"
 
 namespace lc2wf {
@@ -16,7 +16,7 @@ namespace lc2wf {
 struct BatchInferenceOptions {
   PostProcessOptions post;
   CloudFormat format = CloudFormat::kAuto;
-  double raw_per_metre = 20.0;  // release JSON only
+  double raw_per_metre = kRawUnitsPerMetre;  // release JSON only
   bool raw_units = false;       // write raw (source) coordinates instead of metres
   // Where the preview PNG of a building goes; empty function = no previews.
   std::function<std::filesystem::path(const std::string& name)> preview_path;

@@ -1,4 +1,4 @@
-// Building3D-style wireframe metrics (Building3D, ICCV 2023; ../shared/spec/line-cloud-formats.md), the family
+// Building3D-style wireframe metrics (Building3D, ICCV 2023), the family
 // recent building-wireframe papers report: corner and edge precision / recall / F1 (CP/CR/CF1, EP/ER/EF1), the
 // average corner offset (ACO) and a GT-length-normalised edit distance, named B3D-nWED so it is never read as
 // the LC2WF paper's WED.

@@ -1,15 +1,11 @@
 #include "infer/eval_inputs.h"
 
-#include <algorithm>
 #include <set>
 
-#include "dataset/atomic_file.h"
 #include "dataset/building.h"
+#include "dataset/cloud_input.h"
 #include "dataset/errors.h"
-#include "dataset/line_cloud_io.h"
 #include "dataset/mesh_io.h"
-#include "dataset/release_json.h"
-#include "dataset/text_parse.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;
@@ -37,29 +33,14 @@ std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const
     if (has_poly) return poly;
     return std::nullopt;
   }
-  // Line clouds: the dataset layer fixes the content, not the extension, so match on the stem.
-  std::vector<fs::path> hits;
-  std::error_code type_ec;  // a symlink loop is not a folder: its reader names it
-  for (const auto& entry : fs::directory_iterator(source.dir))
-    if (!entry.is_directory(type_ec) && entry.path().stem() == name) hits.push_back(entry.path());  // folders: LIMAP runs, plots
-  if (hits.size() > 1) {
-    std::sort(hits.begin(), hits.end());
-    throw DataError(source.dir.string(), "several files named '" + name + "' (" + hits[0].filename().string() + ", " +
-                                             hits[1].filename().string() + "); keep one line cloud per building");
-  }
-  if (hits.empty()) return std::nullopt;
-  return hits[0];
+  return find_cloud_file_if_any(source.dir, name);
 }
 
 GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& path) {
   GroundTruth gt;
   gt.path = path;
   if (source.kind == GroundTruthSource::Kind::kLineCloudDir) {
-    // Our line-cloud files and the release's LineCloud JSON both may start with '{'; the release keys tell.
-    const std::string bytes = read_file(path);
-    const bool release = bytes.find("\"junc3DList\"") != std::string::npos &&
-                         bytes.find("\"lc2wf-linecloud\"") == std::string::npos;
-    LineCloud cloud = release ? parse_release_line_cloud(bytes, path.string()) : line_cloud_from_bytes(bytes, path.string());
+    LineCloud cloud = load_line_cloud(path, CloudFormat::kAuto, source.raw_per_metre);
     if (cloud.wireframe.junctions.empty())
       throw DataError(path.string(), "line cloud has no ground-truth wireframe");
     gt.wireframe = std::move(cloud.wireframe);

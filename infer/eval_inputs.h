@@ -21,7 +21,7 @@ struct GroundTruthSource {
   std::filesystem::path dir;
   CoordinateUnits obj_units = CoordinateUnits::kMetres;  // units of GT `.obj` files
   bool obj_y_up = false;        // GT OBJs exported Y-up (Roof-Image res_obj, LC2WF house/): swap to Z-up
-  double raw_per_metre = 20.0;  // raw OBJ units per metre (Roof-Image: 20)
+  double raw_per_metre = kRawUnitsPerMetre;  // raw units per metre of GT .obj files and release JSON
 };
 
 struct GroundTruth {

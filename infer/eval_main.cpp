@@ -1,4 +1,5 @@
 // lc2wf-eval: scores predicted wireframes against ground truth (the paper's Table 2 metrics).
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "core/util/cli.h"
+#include "core/util/input_file.h"
 #include "core/util/progress.h"
 #include "infer/eval_inputs.h"
 #include "infer/eval_report_io.h"
@@ -16,8 +18,9 @@
 #include "infer/html_report.h"
 #include "infer/prediction_io.h"
 #if LC2WF_EVAL_WITH_WEIGHTS
+#include "core/parallel.h"
 #include "infer/batch_inference.h"
-#include "infer/cloud_input.h"
+#include "dataset/cloud_input.h"
 #endif
 
 namespace {
@@ -25,8 +28,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
-const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) --out DIR [options]
-       lc2wf-eval --weights DIR --data DIR --split FILE --out DIR [options]
+const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) -o OUT [options]
+       lc2wf-eval --weights DIR --data DIR --split FILE -o OUT [options]
 
 Scores predicted wireframes against the ground truth with the LC2WF paper's metrics (Table 2):
 vAP/vRecall at eta = 0.15/0.25/0.35 m, sAP/sRecall at eta = 0.25/0.35/0.50 m (one ranked list pooled
@@ -47,7 +50,8 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth;
                   with --weights and --gt, only the clouds to run on
   --split FILE    building names, one per line (default: every ground-truth building in the folder)
-  --out DIR       writes metrics.md, metrics.json and per_building.csv there
+  -o, --out OUT   writes metrics.md, metrics.json and per_building.csv there (created after the
+                  arguments and inputs are checked)
   --units U       metres (default) or raw: units of the .obj files; raw coordinates are mapped to metres
                   with the ground truth's own transform (polyshape/line cloud) or divided by 20 (.obj)
   --gt-y-up       ground-truth .obj files are Y-up exports (Roof-Image res_obj, LC2WF house/)
@@ -55,17 +59,18 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --ties T        list (default: equal scores ranked in building order, then prediction order, as the
                   release) or group (precision/recall taken only after a whole group of equal scores)
   --method NAME   row label in the tables (default: name of the --pred folder)
-  --quiet         no progress output
+  -j, --threads N  with --weights: compute threads (default: all cores)
+  -q, --quiet     no progress output
 
   --html          also write OUT/report.html: one self-contained page (opens offline) with the tables, a
                   per-building table sortable by every metric and a 3D viewer per building (needs Debian's
                   libjs-three; LC2WF_THREE_JS_DIR overrides /usr/share/javascript/three)
   --html-compare DIR  with --html: add the Table-2 rows of another lc2wf-eval --out folder (its metrics.json,
                   e.g. the --release-quirks run) to the report; may be repeated
-  -h, --help      this text
 
-A building listed in the split without a prediction file is scored as an empty wireframe and listed in
-the outputs. Exit codes: 0 success, 1 bad or missing input data / I/O error, 2 bad command line.
+The Markdown tables go to stdout. A building listed in the split without a prediction file is scored as
+an empty wireframe, listed in the outputs and named on stderr, and the exit code is 1 (also when
+inference failed on some clouds); with no prediction at all nothing is evaluated: exit 3.
 )";
 
 struct Args {
@@ -76,6 +81,7 @@ struct Args {
   bool gt_y_up = false, strict_wed = false, quiet = false;
   ApTieRule ties = ApTieRule::kListOrder;
   std::string method;
+  int threads = 0;                     // -j, with --weights
   bool html = false;                   // --html
   std::vector<fs::path> html_compare;  // --html-compare, repeatable
 };
@@ -94,11 +100,12 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--gt") a.gt = value(i);
     else if (f == "--data") a.data = value(i);
     else if (f == "--split") a.split = value(i);
-    else if (f == "--out") a.out = value(i);
+    else if (f == "-o" || f == "--out") a.out = value(i);
+    else if (f == "-j" || f == "--threads") a.threads = threads_flag(f, value(i));
     else if (f == "--method") a.method = value(i);
     else if (f == "--gt-y-up") a.gt_y_up = true;
     else if (f == "--strict-wed") a.strict_wed = true;
-    else if (f == "--quiet") a.quiet = true;
+    else if (f == "-q" || f == "--quiet") a.quiet = true;
     else if (f == "--html") a.html = true;
     else if (f == "--html-compare") a.html_compare.push_back(value(i));
     else if (f == "--units") {
@@ -122,12 +129,6 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
   if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine || a.format != "auto"))
     throw UsageError("--release-quirks, --no-junction-refine, --previews and --format only apply with --weights");
-  if (!a.weights.empty()) {
-    if (!fs::is_directory(a.weights)) throw UsageError("'" + a.weights.string() + "' is not a folder");
-    if (a.out.empty()) throw UsageError("--out DIR is required");
-    a.pred = a.out / "predictions";
-    fs::create_directories(a.pred);
-  }
 #if LC2WF_EVAL_WITH_WEIGHTS
   try {
     parse_cloud_format(a.format, "--format");
@@ -139,14 +140,20 @@ Args parse_args(int argc, char** argv) {
   if (a.weights.empty() && a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
   if (a.gt.empty() && a.data.empty()) throw UsageError("give --gt DIR or --data DIR");
   if (!a.html_compare.empty() && !a.html) throw UsageError("--html-compare only applies with --html");
-  for (const fs::path& d : a.html_compare)
-    if (!fs::is_regular_file(d / "metrics.json"))
-      throw UsageError("--html-compare: '" + (d / "metrics.json").string() + "' does not exist");
-  if (a.out.empty()) throw UsageError("--out DIR is required");
-  for (const fs::path& d : {a.pred, a.gt.empty() ? a.data : a.gt, a.data.empty() ? a.gt : a.data})
-    if (!fs::is_directory(d)) throw UsageError("'" + d.string() + "' is not a folder");
+  if (a.out.empty()) throw UsageError("-o OUT is required");
+  for (const fs::path& d : a.html_compare) {
+    const fs::path metrics = d / "metrics.json";
+    // A FIFO or folder there is named for what it is (checked before opening: a FIFO blocks).
+    if (const std::string problem = input_file_problem(metrics); !problem.empty())
+      throw std::runtime_error("--html-compare: " + metrics.string() + ": " + problem);
+    if (!fs::is_regular_file(metrics)) throw std::runtime_error("--html-compare: '" + metrics.string() + "' does not exist");
+  }
+  // Inputs that are not there are data errors (exit 3), found before anything is written.
+  for (const fs::path& d : {a.weights.empty() ? a.pred : a.weights, a.gt.empty() ? a.data : a.gt, a.data.empty() ? a.gt : a.data})
+    if (!fs::is_directory(d)) throw std::runtime_error("'" + d.string() + "' is not a folder");
   if (!a.split.empty() && !fs::is_regular_file(a.split))
-    throw UsageError("split file '" + a.split.string() + "' does not exist");
+    throw std::runtime_error("split file '" + a.split.string() + "' does not exist");
+  if (!a.weights.empty()) a.pred = a.out / "predictions";
   if (a.method.empty() && !a.weights.empty())
     a.method = fs::absolute(a.weights).lexically_normal().filename().string() + (a.release_quirks ? " (release quirks)" : "");
   if (a.method.empty()) a.method = fs::absolute(a.pred).lexically_normal().filename().string();
@@ -162,27 +169,29 @@ int run(const Args& a) {
   source.obj_y_up = a.gt_y_up;
 
   const std::vector<std::string> names = a.split.empty() ? list_ground_truth_names(source) : read_name_list(a.split);
-  if (names.empty()) {
-    std::fprintf(stderr, "lc2wf-eval: error: no buildings to evaluate (%s is empty)\n",
-                 (a.split.empty() ? source.dir : a.split).string().c_str());
-    return kExitFailure;
-  }
+  if (names.empty())
+    throw std::runtime_error("no buildings to evaluate (" + (a.split.empty() ? source.dir : a.split).string() + " lists none)");
+  if (a.weights.empty() && std::none_of(names.begin(), names.end(), [&](const std::string& n) { return fs::exists(a.pred / (n + ".obj")); }))
+    throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings has a prediction in " +
+                             a.pred.string());
 
 #if LC2WF_EVAL_WITH_WEIGHTS
   if (!a.weights.empty()) {
     // Inference on every listed building, then the usual scoring of what it wrote.
+    set_num_threads(a.threads);
     std::vector<fs::path> clouds;
     for (const std::string& name : names) clouds.push_back(find_cloud_file(a.data, name));
+    const WireframePredictor predictor(a.weights);  // before OUT is created: missing weights write nothing
     BatchInferenceOptions inference;
     if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
     if (a.no_junction_refine) inference.post.selection.refine.radius = 0.0;
     inference.quiet = a.quiet;
     inference.format = parse_cloud_format(a.format, "--format");
     if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
-    const BatchInferenceSummary s = infer_clouds(WireframePredictor(a.weights), clouds, a.pred, inference);
+    const BatchInferenceSummary s = infer_clouds(predictor, clouds, a.pred, inference);
     if (s.failed > 0) {
       std::fprintf(stderr, "lc2wf-eval: error: %d line cloud(s) could not be read\n", s.failed);
-      return kExitFailure;
+      return s.buildings > 0 ? kExitPartly : kExitDataError;
     }
     std::fprintf(stderr, "lc2wf-eval: inference %.3f s per building on average (max %.3f s), %d empty wireframe(s)\n",
                  s.buildings ? s.total_seconds / s.buildings : 0.0, s.max_seconds, s.empty);
@@ -204,9 +213,7 @@ int run(const Args& a) {
     const auto gt_path = find_ground_truth(source, name);
     if (!gt_path) {
       if (progress) progress->finish();
-      std::fprintf(stderr, "lc2wf-eval: error: no ground truth for building '%s' in %s\n", name.c_str(),
-                   source.dir.string().c_str());
-      return kExitFailure;
+      throw std::runtime_error("no ground truth for building '" + name + "' in " + source.dir.string());
     }
     const GroundTruth gt = load_ground_truth(source, *gt_path);
     const fs::path pred_path = a.pred / (name + ".obj");
@@ -232,16 +239,19 @@ int run(const Args& a) {
     std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings have no prediction in %s (scored as empty)\n",
                  missing.size(), names.size(), a.pred.string().c_str());
   std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method)).c_str(), stdout);
-  std::fprintf(stdout, "\nWrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),
+  std::fprintf(stderr, "lc2wf-eval: wrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),
                (a.out / "metrics.json").string().c_str(), (a.out / "per_building.csv").string().c_str());
   if (html)
-    std::fprintf(stdout, "Report: %s\n",
+    std::fprintf(stderr, "lc2wf-eval: report %s\n",
                  write_html_report(a.out, *html, report, a.method, &b3d, a.html_compare, a.weights).string().c_str());
-  return 0;
+  return missing.empty() ? kExitDone : kExitPartly;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lc2wf::cli_main("lc2wf-eval", kUsage, argc, argv, parse_args, run);
+  return lc2wf::cli_main({"lc2wf-eval", kUsage,
+                          {kEnvOmpThreads, kEnvStorageCache,
+                           {"LC2WF_THREE_JS_DIR", "--html: folder of three.js r111 (default /usr/share/javascript/three)"}}},
+                         argc, argv, parse_args, run);
 }

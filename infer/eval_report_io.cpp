@@ -7,6 +7,7 @@
 #include "core/util/atomic_file.h"
 #include "core/util/json_text.h"
 #include "core/util/number_format.h"
+#include "core/util/version_json.h"
 
 namespace lc2wf {
 namespace {
@@ -108,6 +109,7 @@ nlohmann::json eval_json(const EvalReport& r, const std::string& method) {
   const EvalOptions& o = r.options;
   nlohmann::json j;
   j["method"] = method;
+  add_version_fields(j);
   j["buildings"] = r.buildings.size();
   j["missing_predictions"] = r.missing_predictions();
   j["options"] = {{"vertex_thresholds_m", o.vertex_thresholds},
@@ -181,6 +183,7 @@ void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& repo
     md += building3d_markdown(*building3d, method);
     j["building3d"] = building3d_json(*building3d);
   }
+  md += "\nlc2wf " + version_line() + "\n";
   write_text_atomically(dir / "metrics.md", md);
   write_text_atomically(dir / "metrics.json", json_text(j, 2) + "\n");
   write_text_atomically(dir / "per_building.csv", eval_per_building_csv(report));

@@ -16,7 +16,7 @@ struct EvalOptions {
   std::vector<double> edge_thresholds{0.25, 0.35, 0.50};    // η for sAP, metres (release: 5/7/10 raw)
   double min_score = 0.0;                // predictions scoring <= this are dropped (release: 0)
   ApTieRule ties = ApTieRule::kListOrder;  // equal scores: building order, then prediction order (release)
-  double raw_per_metre = 20.0;           // dataset scale, used only by the release WED's sqrt(raw) move cost
+  double raw_per_metre = kRawUnitsPerMetre;          // dataset scale, used only by the release WED's sqrt(raw) move cost
   bool strict_wed = false;               // also compute the strict WED variant
 
   void Check() const;  // throws std::invalid_argument naming the bad field

@@ -37,10 +37,10 @@ wireframe and a note, never a failure.
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in
                       their own frame as metres, z up (dataset/README.md)
-  --threads N         compute threads (default: all)
-  --quiet             no progress output
-  -h, --help          this text
-Exit codes: 0 success, 1 some input could not be read / weights missing, 2 bad command line.
+  -j, --threads N     compute threads (default: all cores)
+  -q, --quiet         no progress output
+Each written OUT/<name>.obj is printed on stdout. Exit code 1: some clouds could not be read or predicted
+(each is named), 3: none could, or the weights are missing.
 )";
 
 struct Args {
@@ -61,17 +61,15 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--preview") a.preview = value();
     else if (f == "--release-quirks") a.options.post = PostProcessOptions::release_quirks();
     else if (f == "--no-junction-refine") a.options.post.selection.refine.radius = 0.0;
-    else if (f == "--quiet") a.options.quiet = true;
+    else if (f == "-q" || f == "--quiet") a.options.quiet = true;
     else if (f == "--format") {
       try {
         a.options.format = parse_cloud_format(value(), "--format");
       } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
       }
-    } else if (f == "--threads") {
-      const long long n = parse_count_flag(f, value());
-      if (n > 4096) throw UsageError("--threads is too large");
-      a.threads = static_cast<int>(n);
+    } else if (f == "-j" || f == "--threads") {
+      a.threads = threads_flag(f, value());
     } else if (f == "--units") {
       const std::string u = value();
       if (u == "raw") a.options.raw_units = true;
@@ -97,6 +95,7 @@ int run(const Args& a) {
   set_num_threads(a.threads);
   const WireframePredictor predictor(a.weights);
   const BatchInferenceSummary s = infer_clouds(predictor, a.clouds, a.out, a.options);
+  for (const std::string& name : s.names) std::printf("%s\n", (a.out / (name + ".obj")).string().c_str());
   if (!a.options.quiet && s.buildings > 0)
     std::fprintf(stderr,
                  "lc2wf-infer: %d building(s) -> %s (%d empty); %.3f s per building on average (junction %.3f, "
@@ -104,11 +103,11 @@ int run(const Args& a) {
                  s.buildings, a.out.string().c_str(), s.empty, s.total_seconds / s.buildings,
                  s.junction_seconds / s.buildings, s.edge_seconds / s.buildings, s.post_seconds / s.buildings,
                  s.max_seconds);
-  return s.failed > 0 ? kExitFailure : 0;
+  return s.failed == 0 ? kExitDone : s.buildings > 0 ? kExitPartly : kExitDataError;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lc2wf::cli_main("lc2wf-infer", kUsage, argc, argv, parse_args, run);
+  return lc2wf::cli_main({"lc2wf-infer", kUsage, {kEnvOmpThreads, kEnvStorageCache}}, argc, argv, parse_args, run);
 }

@@ -7,7 +7,6 @@
 
 #include "core/tensor.h"
 #include "infer/patch_tensors.h"
-#include "nn/checkpoint.h"
 
 #include "core/util/seconds_since.h"
 
@@ -27,26 +26,6 @@ class EvalScope {
   bool was_training_;
   NoGradGuard no_grad_;
 };
-
-nlohmann::json stored_net_config(const std::filesystem::path& path, const std::string& stage) {
-  const CheckpointInfo info = read_checkpoint_info(path);
-  if (!info.config.is_object() || !info.config.contains("net"))
-    throw std::runtime_error(path.string() + ": checkpoint has no network config (not written by lc2wf-train?)");
-  const std::string found = info.config.value("stage", std::string());
-  if (found != stage)
-    throw std::runtime_error(path.string() + ": expected a " + stage + " model, found stage '" + found + "'");
-  return info.config.at("net");
-}
-
-// Check() names the field; the checkpoint's path makes the error findable.
-template <class Config>
-void check_stored(const Config& config, const std::filesystem::path& path) {
-  try {
-    config.Check();
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(path.string() + ": net: " + e.what());
-  }
-}
 
 // Row-wise softmax of P x C logits, rounded to float as the probabilities are reported.
 std::vector<float> softmax_rows(const std::vector<double>& logits, size_t C) {
@@ -80,24 +59,12 @@ PatchOptions pair_patch_options(const EdgeNetConfig& config) {
 }
 
 PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud) {
-  PredictedJunctions out;
-  if (cloud.segments.empty()) return out;
+  if (cloud.segments.empty()) return {};
   const JunctionSampleOptions options = junction_sample_options(net.config());
   const JunctionPatches patches = make_junction_sample(cloud, options, 0);
   const PatchInput in = junction_input(patches);
   EvalScope scope(net);
-  const JunctionOutput y = net.forward(in.x, in.mask);
-  const std::vector<double> logits = y.logits.to_vector(), offsets = y.offsets.to_vector();
-  const int G = patches.num_patches;
-  out.positions.resize(G);
-  out.confidence.resize(G);
-  for (int g = 0; g < G; ++g) {
-    out.confidence[g] = 1.0 / (1.0 + std::exp(logits[2 * g] - logits[2 * g + 1]));  // softmax[1]
-    const Vec3 point(patches.points[3 * g], patches.points[3 * g + 1], patches.points[3 * g + 2]);
-    const Vec3 offset(offsets[3 * g], offsets[3 * g + 1], offsets[3 * g + 2]);
-    out.positions[g] = options.patch.frame.to_metres(point + offset);
-  }
-  return out;
+  return junction_candidates(net.forward(in.x, in.mask), patches, options.patch.frame).at(0);
 }
 
 Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
@@ -165,24 +132,6 @@ InferenceResult WireframePredictor::predict(const LineCloud& cloud, const PostPr
 InferenceResult WireframePredictor::predict_from_junctions(const LineCloud& cloud, const PredictedJunctions& junctions,
                                                            const PostProcessOptions& options) const {
   return predict_wireframe(*edge_, cloud, junctions, options);
-}
-
-std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path) {
-  const JunctionNetConfig config = JunctionNetConfig::from_json(stored_net_config(path, "junction"), path.string() + ": net");
-  check_stored(config, path);
-  auto net = std::make_unique<JunctionNet>(config);
-  load_checkpoint(path, *net, nullptr, nullptr);
-  net->eval();
-  return net;
-}
-
-std::unique_ptr<EdgeNet> load_edge_net(const std::filesystem::path& path) {
-  const EdgeNetConfig config = EdgeNetConfig::from_json(stored_net_config(path, "edge"), path.string() + ": net");
-  check_stored(config, path);
-  auto net = std::make_unique<EdgeNet>(config);
-  load_checkpoint(path, *net, nullptr, nullptr);
-  net->eval();
-  return net;
 }
 
 }  // namespace lc2wf

@@ -1,4 +1,4 @@
-// Running the two networks on a line cloud (reference spec §2.8, §3.4, §4): junction sampling and
+// Running the two networks on a line cloud, as the release's inference does: junction sampling and
 // patches -> JunctionNet -> junction candidates (metres, confidences) -> select_junctions (the rule the
 // training pairs use too) -> every pair of the selection -> EdgeNet over every pair of the building at
 // once (its patch encoder attends across pairs) -> post_process -> ScoredWireframe. Degenerate clouds (no segments, < 2 junctions, no candidate edge) give
@@ -16,6 +16,7 @@
 #include "infer/post_process.h"
 #include "nn/edge_net.h"
 #include "nn/junction_net.h"
+#include "nn/model_checkpoint.h"  // load_junction_net, load_edge_net
 
 namespace lc2wf {
 
@@ -71,9 +72,5 @@ class WireframePredictor {
 InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, const PredictedJunctions& junctions,
                                   const PostProcessOptions& options, const Wireframe* label_against = nullptr,
                                   Tensor* logits = nullptr);
-
-// Rebuilds a network from the config stored in a checkpoint written by lc2wf-train and loads its weights.
-std::unique_ptr<JunctionNet> load_junction_net(const std::filesystem::path& path);
-std::unique_ptr<EdgeNet> load_edge_net(const std::filesystem::path& path);
 
 }  // namespace lc2wf

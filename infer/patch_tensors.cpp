@@ -1,5 +1,6 @@
 #include "infer/patch_tensors.h"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +33,21 @@ Tensor pair_labels(const PairPatches& p) {
     labels[k] = p.label[k];
   }
   return Tensor::from_vector(labels, {p.batch, p.num_pairs});
+}
+
+std::vector<PredictedJunctions> junction_candidates(const JunctionOutput& y, const JunctionPatches& p, const NetworkFrame& frame) {
+  const std::vector<double> logits = y.logits.to_vector(), offsets = y.offsets.to_vector();
+  std::vector<PredictedJunctions> out(static_cast<size_t>(p.batch));
+  for (int b = 0; b < p.batch; ++b) {
+    for (int g = 0; g < p.num_patches; ++g) {
+      const size_t k = static_cast<size_t>(b) * p.num_patches + g;
+      out[b].confidence.push_back(1.0 / (1.0 + std::exp(logits[2 * k] - logits[2 * k + 1])));  // softmax[1]
+      const Vec3 point(p.points[3 * k], p.points[3 * k + 1], p.points[3 * k + 2]);
+      const Vec3 offset(offsets[3 * k], offsets[3 * k + 1], offsets[3 * k + 2]);
+      out[b].positions.push_back(frame.to_metres(point + offset));
+    }
+  }
+  return out;
 }
 
 }  // namespace lc2wf

@@ -1,9 +1,13 @@
-// Patch arrays (dataset/patches.h) as network input tensors: features F32 (B, G, L, F) and the padding
-// mask Bool (B, G, L), plus the training targets of each stage.
+// Where patch arrays (dataset/patches.h) meet the networks, for training and inference alike: input tensors
+// (features F32 (B, G, L, F), padding mask Bool (B, G, L)), the training targets of each stage, and the
+// junction model's output decoded into candidates.
 #pragma once
 
 #include "core/tensor.h"
+#include "dataset/junction_selection.h"
+#include "dataset/network_frame.h"
 #include "dataset/patches.h"
+#include "nn/junction_net.h"
 #include "nn/losses.h"
 
 namespace lc2wf {
@@ -20,5 +24,10 @@ PatchInput pair_input(const PairPatches& patches);
 JunctionTargets junction_targets(const JunctionPatches& patches);
 // I64 (B, P) pair classes; throws std::invalid_argument when a pair has no label.
 Tensor pair_labels(const PairPatches& patches);
+
+// The junction model's output on `patches`, one entry per building: each sample point's hypothesis,
+// position = sample point + predicted offset (metres, through `frame`), confidence = softmax(logits)[1].
+std::vector<PredictedJunctions> junction_candidates(const JunctionOutput& y, const JunctionPatches& patches,
+                                                    const NetworkFrame& frame);
 
 }  // namespace lc2wf

@@ -1,5 +1,5 @@
 // Inference post-processing: from the edge model's pair probabilities over the selected junctions
-// (dataset/junction_selection.h, §3.4) to the final wireframe (§4). Everything is in metres. No input
+// (dataset/junction_selection.h) to the final wireframe, as the release's post-processing. Everything is in metres. No input
 // makes these functions crash: degenerate cases (no candidates, < 2 junctions, no identical pair, no
 // candidate edge) give a valid, possibly empty, result and a note saying what happened.
 #pragma once

@@ -1,4 +1,4 @@
-// Constants and rule choices of the inference post-processing (reference spec §3.4 and §4), in metres.
+// Constants and rule choices of the inference post-processing (the release's defaults, in metres).
 // Defaults are the release's constants with the sound rule wherever the release has a quirk;
 // release_quirks() reproduces the release's behaviour exactly.
 #pragma once
@@ -8,19 +8,19 @@
 namespace lc2wf {
 
 struct PostProcessOptions {
-  // Junction selection before pairing (§3.4): the rule training uses too (dataset/junction_selection.h).
+  // Junction selection before pairing: the rule training uses too (dataset/junction_selection.h).
   JunctionSelectionOptions selection;
 
-  // Identical-pair pruning (§4 step 2): P(identical) > merge_threshold marks the less confident junction.
+  // Identical-pair pruning (post-processing step 2): P(identical) > merge_threshold marks the less confident junction.
   double merge_threshold = 0.2;
   // Release true: a junction already marked by an earlier pair still marks its partner, so a chain
   // A ~ B ~ C deletes C through the deleted B; false skips pairs whose survivor is already deleted.
   bool prune_through_deleted = false;
 
-  // Candidate edges (§4 step 3): P(connected) > connect_threshold; the probability is the edge score.
+  // Candidate edges (step 3): P(connected) > connect_threshold; the probability is the edge score.
   double connect_threshold = 0.3;
 
-  // Hamming junction merge (§4 step 6): junctions whose adjacency rows differ in < hamming_threshold
+  // Hamming junction merge (step 6): junctions whose adjacency rows differ in < hamming_threshold
   // entries and that are closer than junction_merge_distance collapse onto the more confident one.
   int hamming_threshold = 3;
   double junction_merge_distance = 1.5;  // metres (release: 30 raw)
@@ -29,7 +29,7 @@ struct PostProcessOptions {
   // can absorb a nearby junction of degree < hamming_threshold.
   bool pruned_junctions_in_merge = false;
 
-  // Line NMS (§4 step 7): edges whose summed endpoint distance (best orientation) is < line_nms_distance.
+  // Line NMS (step 7): edges whose summed endpoint distance (best orientation) is < line_nms_distance.
   double line_nms_distance = 1.0;    // metres (release: 20 raw)
   bool line_nms_keep_higher = true;  // release false: edges are visited by ascending score, so the lower one stays
 

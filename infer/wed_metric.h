@@ -1,5 +1,5 @@
 // Wireframe edit distance (WED), per building. Two variants:
-//  - release (reference spec §5.3, the paper's Table 2b): every predicted junction moves to its nearest GT
+//  - release (the release's evaluation script, the paper's Table 2b): every predicted junction moves to its nearest GT
 //    vertex at a cost of sqrt(distance in raw units)/raw_per_metre; GT vertices nobody moved to are "+vertex";
 //    mapped predicted edges that hit a GT edge a second time are "−edge" (length between the mapped GT
 //    vertices); GT edges never hit are "+edge". Spurious (non-GT or degenerate) mapped edges and surplus
@@ -32,7 +32,7 @@ struct WedResult {
 
 // Release WED. Inputs in metres; raw_per_metre (20 for Roof-Image) reproduces the release's move cost
 // sqrt(d_raw)/raw_per_metre. An empty GT maps nothing: every term is 0.
-WedResult wed_release(const Wireframe& pred, const Wireframe& gt, double raw_per_metre = 20.0);
+WedResult wed_release(const Wireframe& pred, const Wireframe& gt, double raw_per_metre = kRawUnitsPerMetre);
 
 // Strict WED (metres). With an empty GT every predicted junction is a −vertex and every predicted edge a
 // −edge charged its own length.

@@ -4,6 +4,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/util/version.h"
 #include "nn/safetensors.h"
 
 namespace lc2wf {
@@ -72,7 +73,9 @@ void save_checkpoint(const std::filesystem::path& path, const Module& model, con
                       {{"format", kFormat},
                        {"step", step},
                        {"optimizer_steps", std::to_string(optimizer->step_count())},
-                       {"lr", exact(optimizer->lr())}});
+                       {"lr", exact(optimizer->lr())},
+                       {"lc2wf_version", lc2wf_version()},
+                       {"commit", lc2wf_git_commit()}});
   }
   write_safetensors(path, model.state_dict(),
                     {{"format", kFormat},
@@ -82,7 +85,9 @@ void save_checkpoint(const std::filesystem::path& path, const Module& model, con
                      {"epoch_loss_sum", exact(position.epoch_loss_sum)},
                      {"dropout_rng_seed", std::to_string(dropout_rng.seed())},
                      {"dropout_rng_counter", std::to_string(dropout_rng.counter())},
-                     {"optimizer", optimizer ? "1" : "0"}});
+                     {"optimizer", optimizer ? "1" : "0"},
+                     {"lc2wf_version", lc2wf_version()},
+                     {"commit", lc2wf_git_commit()}});
 }
 
 CheckpointInfo read_checkpoint_info(const std::filesystem::path& path) {

@@ -1,7 +1,8 @@
 // Training checkpoints as two safetensors files: `<name>.safetensors` holds the model state dict (loadable
 // on its own, also from Python) with the config, training position and dropout-RNG state in its metadata;
 // `<name>.optim.safetensors` holds the optimiser state. Both are written atomically, the model file
-// last, and each records the step so a mismatched pair is refused on load.
+// last, and each records the step so a mismatched pair is refused on load, and the lc2wf version and git
+// commit that wrote it (`lc2wf_version`, `commit`; not needed to load, so older files load the same).
 #pragma once
 
 #include <cstdint>

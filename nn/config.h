@@ -1,5 +1,5 @@
-// Sizes and options of the networks, losses and optimiser. Defaults are the paper/release values
-// (reference §2.5-2.7, §3.6-3.7); every struct round-trips through JSON and Check() names a bad field.
+// Sizes and options of the networks, losses and optimiser. Defaults are the values of the LC2WF paper
+// and its released code (width 256, G = 256 / 512, N = 32 / 64, AdamW 1e-3); every struct round-trips through JSON and Check() names a bad field.
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Edge (connectivity) model (reference §3.6): LPT over the 64-line patches of junction pairs, the patch
+// Edge (connectivity) model of the LC2WF paper and release: LPT over the 64-line patches of junction pairs, the patch
 // encoder running over all pairs of a building, and one head with 5 class logits per pair.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Junction model (reference §2.5): LPT over the line patches around G sample points, then a 2-logit
+// Junction model of the LC2WF paper and release: LPT over the line patches around G sample points, then a 2-logit
 // classification head and a 3-offset regression head per patch.
 #pragma once
 

@@ -1,11 +1,11 @@
 // Training losses of the two stages.
 //
-// Junction, "release" (reference §2.6): 2-class softmax cross-entropy over all B*G patches plus
+// Junction, "release" (the loss the released code trains with): 2-class softmax cross-entropy over all B*G patches plus
 //   reg_weight * mean_b[ sum_g sum_xyz |offset - target| * cls / (sum_g cls + 1e-8) ].
 // Junction, "paper": binary cross-entropy on the positive logit z1 - z0 (so sigmoid of it equals the
 //   softmax confidence used at inference) plus reg_weight * the same per-building mean with squared
 //   error instead of absolute error.
-// Edge (§3.7): 5-class cross-entropy with class weights, PyTorch's weighted mean.
+// Edge (as the release): 5-class cross-entropy with class weights, PyTorch's weighted mean.
 #pragma once
 
 #include "core/tensor.h"

@@ -1,4 +1,4 @@
-// Line-Patch Transformer (reference §2.5): per-line MLP with BatchNorm over every line slot, an encoder
+// Line-Patch Transformer (LC2WF paper, as in the release): per-line MLP with BatchNorm over every line slot, an encoder
 // over the N lines of each patch (padding-masked), pooling over the N slots, and an encoder over the G
 // patches of each building.
 #pragma once

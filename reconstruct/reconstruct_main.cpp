@@ -66,12 +66,9 @@ Options:
   --keep                 keep the private temporary workspace (its path is printed)
   -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)
   -q, --quiet            no progress output
-  -h, --help             this text
-
-Exit codes: 0 done; 1 done, but some images were unreadable or not registered, or the wireframe is
-empty (see "warnings" in report.json); 2 bad command line; 3 data or I/O error (too few images,
-too few registered, no 2D or 3D lines, unreadable weights or cameras; the message names the stage and
-the files, and nothing is written to OUT).
+Exit code 1: done, but some images were unreadable or not registered, or the wireframe is empty (see
+"warnings" in report.json); 3: too few images, too few registered, no 2D or 3D lines, unreadable weights
+or cameras, or an I/O error (the message names the stage and the files, and nothing is written to OUT).
 )";
 
 Vec3 parse_vector(const std::string& flag, const std::string& value) {
@@ -95,7 +92,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--workspace") o.workspace = value();
     else if (f == "--keep") o.keep = true;
     else if (f == "-q" || f == "--quiet") o.quiet = true;
-    else if (f == "-j" || f == "--threads") o.threads = static_cast<int>(std::min<long long>(parse_count_flag(f, value()), 4096));
+    else if (f == "-j" || f == "--threads") o.threads = threads_flag(f, value());
     else if (f == "--release-quirks") o.post = PostProcessOptions::release_quirks();
     else if (f == "--focal-35mm") o.focal_35mm = number_flag(f, value());
     else if (f == "--max-features") o.colmap.max_features = int_flag(f, value());
@@ -137,14 +134,15 @@ ReconstructOptions parse_args(int argc, char** argv) {
     }
   }
   if (o.images.empty()) throw UsageError("IMAGES_DIR is required");
-  if (!fs::is_directory(o.images)) throw UsageError("'" + o.images.string() + "' is not a folder");
   if (o.weights.empty()) throw UsageError("--weights DIR is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
-  try {
-    o.Check();
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  check_options([&] { o.Check(); }, {{"ReconstructOptions.focal_35mm", "--focal-35mm"},
+                                     {"ReconstructOptions.intrinsics", "--intrinsics"},
+                                     {"ReconstructOptions: a known distance", "--known-distance"},
+                                     {"ColmapOptions.max_features", "--max-features"},
+                                     {"ColmapOptions.matcher", "--matcher"},
+                                     {"TriangulatorOptions.min_best_score", "--min-score"}});
+  if (!fs::is_directory(o.images)) throw std::runtime_error("'" + o.images.string() + "' is not a folder");  // a data error
   return o;
 }
 
@@ -157,10 +155,12 @@ int run(const ReconstructOptions& o) {
     // StageError names its stage; other failures here are I/O (workspace, outputs).
     const bool staged = dynamic_cast<const StageError*>(&e) != nullptr;
     std::fprintf(stderr, "lc2wf-reconstruct: error: %s%s\nnothing was written to %s\n", staged ? "" : "I/O: ", e.what(), o.out.string().c_str());
-    return kReconstructDataError;
+    return kExitDataError;
   }
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return cli_main("lc2wf-reconstruct", kUsage, argc, argv, parse_args, run); }
+int main(int argc, char** argv) {
+  return cli_main({"lc2wf-reconstruct", kUsage, {kEnvOmpThreads, kEnvStorageCache}}, argc, argv, parse_args, run);
+}

@@ -20,9 +20,10 @@
 #include "reconstruct/camera_sources.h"
 #include "reconstruct/image_folder.h"
 #include "reconstruct/stage_error.h"
-#include "reconstruct/workspace.h"
+#include "core/util/workspace.h"
 
 #include "core/util/seconds_since.h"
+#include "core/util/version_json.h"
 
 namespace lc2wf {
 
@@ -94,6 +95,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   ReconstructResult result;
   Json& report = result.report;
   report = {{"format", "lc2wf-reconstruct-report"}, {"version", 1}, {"images_dir", o.images.string()}};
+  add_version_fields(report);
   Json seconds = Json::object();
   StageLog log(o.quiet);
 
@@ -259,7 +261,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   log.done(seconds, "staged in " + stage.string());
   seconds["total"] = seconds_since(t_total);
   report["seconds"] = seconds;
-  result.exit_code = result.warnings.empty() ? kReconstructDone : kReconstructPartly;
+  result.exit_code = result.warnings.empty() ? kExitDone : kExitPartly;
   report["warnings"] = result.warnings;
   report["exit_code"] = result.exit_code;
   write_file_atomic(stage / "report.json", json_text(report, 2));

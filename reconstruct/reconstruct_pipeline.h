@@ -8,16 +8,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/util/cli.h"  // exit codes
 #include "reconstruct/reconstruct_options.h"
 
 namespace lc2wf {
 
-constexpr int kReconstructDone = 0;
-constexpr int kReconstructPartly = 1;  // finished, but images were skipped or the wireframe is empty
-constexpr int kReconstructDataError = 3;
 
 struct ReconstructResult {
-  int exit_code = kReconstructDone;
+  int exit_code = kExitDone;
   nlohmann::json report;              // also written as OUT/report.json
   std::vector<std::string> warnings;  // why the run only partly succeeded
   std::vector<std::string> written;   // file names in OUT

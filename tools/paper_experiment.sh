@@ -6,6 +6,10 @@
 #                                       plots and the HTML report -> runs/base/test*
 #   tools/paper_experiment.sh raster    the same model on raster-rendered test clouds (how much the renderer matters)
 #   tools/paper_experiment.sh all       dataset, train, eval
+#   tools/paper_experiment.sh snapshot  copy the training state (newest checkpoint of each stage, best
+#                                       weights, log) to models/base-training/ for committing
+#   tools/paper_experiment.sh restore   put that state back into runs/base (train does it by itself when
+#                                       runs/base is missing), so a lost machine costs one session
 # Every step can be killed and started again: the dataset skips finished buildings, training resumes from
 # its last checkpoint, evaluation is redone. LC2WF_DATA_DIR (default ../shared/data) holds roof-image/;
 # LC2WF_BUILD_DIR (default build/) the binaries.
@@ -22,7 +26,43 @@ step_dataset() {
   "$build_dir/tools/lc2wf-dataset" --meshes "$meshes" --out runs/dataset --renderer blender -j 2
 }
 
+snapshot_dir=models/base-training
+
+step_snapshot() {
+  [[ -f runs/base/config.json ]] || { echo "paper_experiment.sh: no training run in runs/base" >&2; exit 3; }
+  local tmp=$snapshot_dir.tmp
+  rm -rf "$tmp" && mkdir -p "$tmp/checkpoints"
+  cp runs/base/config.json runs/base/log.jsonl "$tmp/"
+  for stage in junction edge; do
+    [[ -f runs/base/$stage.safetensors ]] && cp "runs/base/$stage.safetensors" "$tmp/"
+    # The newest complete slot: its weights and optimiser state are written together.
+    local newest
+    newest=$(ls -t runs/base/checkpoints/${stage}_last_?.safetensors 2>/dev/null | head -1 || true)
+    [[ -n "$newest" && -f "${newest%.safetensors}.optim.safetensors" ]] || continue
+    cp "$newest" "$tmp/checkpoints/${stage}_last_0.safetensors"
+    cp "${newest%.safetensors}.optim.safetensors" "$tmp/checkpoints/${stage}_last_0.optim.safetensors"
+  done
+  # The hand-off is an hour of compute and the edge stage's input: kept as one archive.
+  [[ -f runs/base/predicted_junctions/manifest.json ]] &&
+    tar -C runs/base -czf "$tmp/predicted_junctions.tar.gz" predicted_junctions
+  cp tools/paper_experiment-snapshot.md "$tmp/README.md"
+  rm -rf "$snapshot_dir" && mv "$tmp" "$snapshot_dir"
+  echo "Training state of runs/base copied to $snapshot_dir ($(du -sh "$snapshot_dir" | cut -f1))"
+}
+
+step_restore() {
+  [[ -f $snapshot_dir/config.json ]] || { echo "paper_experiment.sh: no $snapshot_dir to restore" >&2; exit 3; }
+  [[ ! -e runs/base ]] || { echo "paper_experiment.sh: runs/base exists; move it away to restore" >&2; exit 3; }
+  mkdir -p runs/base.tmp
+  cp -r "$snapshot_dir"/. runs/base.tmp/
+  rm -f runs/base.tmp/README.md runs/base.tmp/predicted_junctions.tar.gz
+  [[ -f $snapshot_dir/predicted_junctions.tar.gz ]] && tar -C runs/base.tmp -xzf "$snapshot_dir/predicted_junctions.tar.gz"
+  mv runs/base.tmp runs/base
+  echo "runs/base restored from $snapshot_dir"
+}
+
 step_train() {
+  [[ ! -e runs/base && -f $snapshot_dir/config.json ]] && step_restore
   local resume=()
   [[ -d runs/base/checkpoints ]] && resume=(--resume)
   "$build_dir/train/lc2wf-train" configs/base.json --out runs/base "${resume[@]}"
@@ -61,6 +101,8 @@ case "${1:-}" in
   train) step_train ;;
   eval) step_eval ;;
   raster) step_raster ;;
+  snapshot) step_snapshot ;;
+  restore) step_restore ;;
   all) step_dataset && step_train && step_eval ;;
-  *) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

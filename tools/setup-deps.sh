@@ -8,6 +8,7 @@ packages=(
   libopencv-dev libopencv-contrib-dev
   python3-numpy
   libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
+  libopenmpi-dev openmpi-bin       # mpirun -np N lc2wf-train (data-parallel); its tests run 2 local ranks
   time                             # GNU time: peak memory of each command in tests/fuzz/adversarial
 )
 # Rendering and pose tools are only needed by the dataset generator (tools/), so they are opt-in.

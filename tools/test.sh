@@ -8,6 +8,5 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} LC2WF_WITH_BROWSER=${LC2WF_WITH_BROWSER:-1} \
   "$root/tools/build.sh" "$@"
 cd "${LC2WF_BUILD_DIR:-$root/build}"
-# Long runs carry the "slow" label and are opt-in: ctest -L slow
-ctest --output-on-failure -j "$(nproc)" -LE slow
+ctest --output-on-failure -j "$(nproc)"
 "$root/tools/sanitize.sh"

@@ -4,8 +4,8 @@
 
 #include "core/util/progress.h"
 #include "dataset/errors.h"
-#include "infer/cloud_input.h"
-#include "infer/eval_inputs.h"
+#include "dataset/cloud_input.h"
+#include "dataset/splits.h"
 
 namespace lc2wf {
 

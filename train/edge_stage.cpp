@@ -8,6 +8,7 @@
 #include "infer/post_process_options.h"
 #include "nn/edge_net.h"
 #include "nn/losses.h"
+#include "train/data_parallel.h"
 #include "train/junction_handoff.h"
 #include "train/patch_stream.h"
 #include "train/stage_loop.h"
@@ -15,16 +16,54 @@
 
 namespace lc2wf {
 
+namespace {
+
+// A validation wireframe as doubles (coordinates, scores and indices are exact in double), so the
+// ranks can pool their buildings' predictions.
+void append_wireframe(const ScoredWireframe& w, std::vector<double>& out) {
+  out.push_back(static_cast<double>(w.wireframe.junctions.size()));
+  for (size_t i = 0; i < w.wireframe.junctions.size(); ++i) {
+    const Vec3& p = w.wireframe.junctions[i];
+    out.insert(out.end(), {p.x(), p.y(), p.z(), w.junction_scores.at(i)});
+  }
+  out.push_back(static_cast<double>(w.wireframe.edges.size()));
+  for (size_t i = 0; i < w.wireframe.edges.size(); ++i) {
+    const auto& e = w.wireframe.edges[i];
+    out.insert(out.end(), {static_cast<double>(e[0]), static_cast<double>(e[1]), w.edge_scores.at(i)});
+  }
+}
+
+ScoredWireframe read_wireframe(const std::vector<double>& in, size_t& at) {
+  ScoredWireframe w;
+  const size_t junctions = static_cast<size_t>(in.at(at++));
+  for (size_t i = 0; i < junctions; ++i, at += 4) {
+    w.wireframe.junctions.emplace_back(in.at(at), in.at(at + 1), in.at(at + 2));
+    w.junction_scores.push_back(in.at(at + 3));
+  }
+  const size_t edges = static_cast<size_t>(in.at(at++));
+  for (size_t i = 0; i < edges; ++i, at += 3) {
+    w.wireframe.edges.push_back({static_cast<int>(in.at(at)), static_cast<int>(in.at(at + 1))});
+    w.edge_scores.push_back(in.at(at + 2));
+  }
+  return w;
+}
+
+}  // namespace
+
 void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const BuildingSet& val,
                       const std::filesystem::path& handoff_dir, RunLog& log, const StageRun& run) {
   const EdgeStageConfig& c = config.edge;
   EdgeNet net(c.net, config.seed);
+  Communicator& comm = run.communicator();
+  DataParallel dp(comm, net, net.dropout_rng(), c.schedule.batch_norm == "sync");
 
   PairSampleOptions train_options;
   train_options.pairs.pairs_per_building = static_cast<int>(c.net.lpt.patches);
   train_options.pairs.max_static_pairs = static_cast<int>(c.max_static_pairs);
   train_options.patch = pair_patch_options(c.net);
   train_options.augment_enabled = c.schedule.augment;
+  train_options.cloud_augment_enabled = c.schedule.cloud_augment.enabled;
+  train_options.cloud_augment = c.schedule.cloud_augment.options;
   // Training pairs and validation wireframes select junctions as lc2wf-infer does (same NMS, refinement).
   const PostProcessOptions post = c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
   JunctionSelectionOptions selection = post.selection;
@@ -47,59 +86,78 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
   for (const LineCloud& cloud : val.clouds)
     val_predicted.push_back(read_predicted_junctions(predicted_junctions_path(handoff_dir, cloud.name)));
 
-  PatchStreamOptions so;
-  so.batch_size = c.schedule.batch_size;
-  so.drop_last = c.schedule.drop_last;
-  so.workers = config.loader_workers;
-  so.seed = config.seed + 2;
-  so.max_batches = c.schedule.max_steps_per_epoch;
   PatchStream<PairPatches> stream(
-      clouds.size(),
-      [&](size_t b, uint64_t seed) { return make_pair_training_sample(*clouds[b], selected[b], train_options, seed); }, so);
+      clouds.size(), [&](size_t b, uint64_t seed) { return make_pair_training_sample(*clouds[b], selected[b], train_options, seed); },
+      PatchStreamOptions::of_stage(c.schedule, config.loader_workers, config.seed + 2, comm.rank(), comm.size()));
 
   StageCallbacks cb;
   cb.batches_per_epoch = stream.batches_per_epoch();
   cb.start_epoch = [&](int64_t epoch, int64_t first) { stream.start(epoch, first); };
   cb.train_step = [&]() -> std::optional<StageStep> {
-    std::optional<PairPatches> p = stream.next();
+    std::optional<StreamBatch<PairPatches>> p = stream.next();
     if (!p) return std::nullopt;
-    const auto ranges = micro_batch_ranges(p->batch, c.schedule.micro_batch);
-    if (ranges.size() == 1) {
-      const PatchInput in = pair_input(*p);
-      const Tensor loss = edge_loss(net.forward(in.x, in.mask), pair_labels(*p), c.loss);
-      loss.backward();
-      return StageStep{loss.item(), nlohmann::json::object(), p->batch};
+    const int64_t micro = c.schedule.micro_batch;
+    if (comm.size() == 1 && micro_batch_ranges(static_cast<int>(p->batch), micro).size() == 1) {
+      double total = 0.0;
+      dp.run_step(p->batch, micro, [&](int64_t, int64_t) {
+        const PatchInput in = pair_input(p->patches);
+        const Tensor loss = edge_loss(net.forward(in.x, in.mask), pair_labels(p->patches), c.loss);
+        loss.backward();
+        total = loss.item();
+      });
+      return StageStep{total, nlohmann::json::object(), p->batch};
     }
-    // Each micro-batch divides by the whole batch's class-weight sum: the parts add up to the batch loss.
-    const double weight_total = edge_loss_weight(pair_labels(*p), c.loss);
-    double total = 0.0;
-    for (const auto& [first, count] : ranges) {
-      const PairPatches part = slice(*p, first, count);
-      const PatchInput in = pair_input(part);
-      const Tensor loss = edge_loss(net.forward(in.x, in.mask), pair_labels(part), c.loss, weight_total);
+    // Each pass divides by the whole batch's class-weight sum: the parts add up to the batch loss.
+    std::vector<double> weight_total{p->share.count > 0 ? edge_loss_weight(pair_labels(p->patches), c.loss) : 0.0};
+    dp.sum(weight_total, "edge loss weight");
+    std::vector<double> total{0.0};
+    const double comm_seconds = dp.run_step(p->batch, micro, [&](int64_t first, int64_t count) {
+      const bool all_local = count == p->share.count;
+      const PairPatches part =
+          all_local ? PairPatches{} : slice(p->patches, static_cast<int>(first - p->share.first), static_cast<int>(count));
+      const PairPatches& q = all_local ? p->patches : part;
+      const PatchInput in = pair_input(q);
+      const Tensor loss = edge_loss(net.forward(in.x, in.mask), pair_labels(q), c.loss, weight_total[0]);
       loss.backward();
-      total += loss.item();
-    }
-    return StageStep{total, nlohmann::json::object(), p->batch};
+      total[0] += loss.item();
+    });
+    dp.sum(total, "loss terms");
+    return StageStep{total[0], nlohmann::json::object(), p->batch, comm_seconds};
   };
   cb.validate = [&]() {
     // One pass per building: the loss is computed on exactly the pairs whose wireframe is scored.
-    Evaluator evaluator{EvalOptions{}};
-    double loss_sum = 0.0;
-    int64_t loss_buildings = 0;
-    for (size_t k = 0; k < val.clouds.size(); ++k) {
-      const LineCloud& cloud = val.clouds[k];
+    // This rank's share of the buildings is predicted here; every rank then scores all of them in order.
+    const BatchShare share = batch_share(static_cast<int64_t>(val.clouds.size()), comm.rank(), comm.size());
+    std::vector<double> mine;
+    for (int64_t k = share.first; k < share.first + share.count; ++k) {
+      const LineCloud& cloud = val.clouds[static_cast<size_t>(k)];
       Tensor logits;
-      const InferenceResult r = predict_wireframe(net, cloud, val_predicted[k], post, &cloud.wireframe, &logits);
-      if (!r.pairs.empty() && cloud.wireframe.junctions.size() >= 2) {
+      const InferenceResult r = predict_wireframe(net, cloud, val_predicted[static_cast<size_t>(k)], post, &cloud.wireframe, &logits);
+      double loss = 0.0;
+      const bool has_loss = !r.pairs.empty() && cloud.wireframe.junctions.size() >= 2;
+      if (has_loss) {
         std::vector<int64_t> labels;
         for (const JunctionPair& p : r.pairs) labels.push_back(p.label);
         NoGradGuard no_grad;
-        loss_sum += edge_loss(logits, Tensor::from_vector(labels, {1, static_cast<int64_t>(labels.size())}), c.loss).item();
-        ++loss_buildings;
+        loss = edge_loss(logits, Tensor::from_vector(labels, {1, static_cast<int64_t>(labels.size())}), c.loss).item();
       }
-      evaluator.add(cloud.name, r.wireframe, cloud.wireframe);
+      mine.insert(mine.end(), {has_loss ? 1.0 : 0.0, loss});
+      append_wireframe(r.wireframe, mine);
     }
+    Evaluator evaluator{EvalOptions{}};
+    double loss_sum = 0.0;
+    int64_t loss_buildings = 0;
+    size_t k = 0;
+    for (const std::vector<double>& theirs : gather_doubles(comm, mine, "validation results"))
+      for (size_t at = 0; at < theirs.size(); ++k) {
+        const LineCloud& cloud = val.clouds.at(k);
+        if (theirs.at(at) != 0.0) {
+          loss_sum += theirs.at(at + 1);
+          ++loss_buildings;
+        }
+        at += 2;
+        evaluator.add(cloud.name, read_wireframe(theirs, at), cloud.wireframe);
+      }
     const EvalReport report = evaluator.report();
     StageValidation v;
     v.score = report.edge_ap_mean;

@@ -8,6 +8,7 @@
 #include "core/util/progress.h"
 #include "infer/inference.h"
 #include "nn/checkpoint.h"
+#include "train/batch_share.h"
 #include "train/junction_handoff.h"
 #include "train/stage_loop.h"
 #include "train/stages.h"
@@ -30,32 +31,44 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   for (const BuildingSet* set : {&train, &val})
     for (const LineCloud& c : set->clouds) clouds.push_back(&c);
 
-  if (run.resume && fs::exists(manifest)) {
+  // Rank 0 decides (and clears the old manifest) for all ranks; each rank then predicts its share.
+  Communicator& comm = run.communicator();
+  const bool writer = comm.rank() == 0;
+  std::string decision = "redo";
+  if (writer && run.resume && fs::exists(manifest)) {
     std::ifstream in(manifest);
     const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
     bool complete = !m.is_discarded() && m.value("junction_step", int64_t{-1}) == step &&
                     m.value("version", 0) == kHandoffVersion;
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
-    if (complete) {
-      if (!run.quiet) std::fprintf(stderr, "handoff: predicted junctions in %s are up to date\n", dir.string().c_str());
-      return dir;
-    }
+    if (complete) decision = "keep";
   }
-  fs::remove(manifest);
-  log.rewind("handoff", 0, stage_order());
+  comm.broadcast(decision, "hand-off decision");
+  if (decision == "keep") {
+    if (!run.quiet) std::fprintf(stderr, "handoff: predicted junctions in %s are up to date\n", dir.string().c_str());
+    return dir;
+  }
+  if (writer) {
+    fs::remove(manifest);
+    log.rewind("handoff", 0, stage_order());
+  }
 
   std::unique_ptr<JunctionNet> net = load_junction_net(weights);
+  const BatchShare share = batch_share(static_cast<int64_t>(clouds.size()), comm.rank(), comm.size());
   std::unique_ptr<Progress> bar;
-  if (!run.quiet) bar = std::make_unique<Progress>("predicting junctions", static_cast<int64_t>(clouds.size()));
+  if (!run.quiet) bar = std::make_unique<Progress>("predicting junctions", share.count);
   const auto t0 = std::chrono::steady_clock::now();
-  nlohmann::json names = nlohmann::json::array();
-  for (const LineCloud* c : clouds) {
+  for (int64_t k = share.first; k < share.first + share.count; ++k) {
+    const LineCloud* c = clouds[static_cast<size_t>(k)];
     write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c));
-    names.push_back(c->name);
     if (bar) bar->step();
   }
   if (bar) bar->finish();
+  comm.barrier("hand-off");  // every rank's files are written before the manifest says so
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!writer) return dir;
+  nlohmann::json names = nlohmann::json::array();
+  for (const LineCloud* c : clouds) names.push_back(c->name);
   const nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
                             {"junction_checkpoint", weights.string()},
                             {"junction_step", step},

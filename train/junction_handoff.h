@@ -1,4 +1,5 @@
-// The hand-off between the two stages (reference spec §2.8, §3.1): the frozen junction model's candidates
+// The hand-off between the two stages (as the release: the edge model trains on the junction model's
+// predictions, not only on GT junctions): the frozen junction model's candidates
 // for one building, written as `<dir>/<name>.json`:
 //   {"format": "lc2wf-predicted-junctions", "version": 1, "name": "<building>", "units": "metres",
 //    "positions": [[x, y, z], ...],   one per sample point (G), in the building frame

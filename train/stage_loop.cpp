@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <ctime>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -10,6 +12,7 @@
 #include "core/util/progress.h"
 #include "nn/checkpoint.h"
 #include "nn/optimizer.h"
+#include "train/data_parallel.h"
 
 namespace lc2wf {
 
@@ -46,7 +49,42 @@ struct Best {
   }
 };
 
+// CPU time of the whole process (every thread): unlike wall time it hardly depends on the machine's load.
+double process_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+std::string hex(uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
+// Every rank's fingerprint of its replica after a step; they must all be equal.
+nlohmann::json check_replicas(Communicator& comm, const Module& model, const std::string& stage, int64_t step) {
+  const uint64_t mine = state_fingerprint(model);
+  nlohmann::json all = nlohmann::json::array();
+  bool equal = true;
+  for (const std::string& bytes : comm.all_gather(std::string(reinterpret_cast<const char*>(&mine), sizeof mine), "replica check")) {
+    uint64_t v = 0;
+    std::memcpy(&v, bytes.data(), sizeof v);
+    equal = equal && v == mine;
+    all.push_back(hex(v));
+  }
+  if (!equal)
+    throw std::runtime_error(stage + " stage: the ranks' model replicas differ after step " + std::to_string(step) +
+                             " (fingerprints " + all.dump() + "); the MPI sums did not give every rank the same bits");
+  return all;
+}
+
 }  // namespace
+
+Communicator& local_communicator() {
+  static LocalCommunicator local;
+  return local;
+}
 
 std::vector<std::pair<int, int>> micro_batch_ranges(int batch, int64_t micro) {
   const int step = micro <= 0 || micro >= batch ? batch : static_cast<int>(micro);
@@ -63,10 +101,12 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
   const int64_t spe = cb.batches_per_epoch;
   if (spe < 1) throw std::runtime_error(stage + " stage: the training split gives no full batch (fewer buildings than batch_size?)");
 
+  Communicator& comm = o.comm ? *o.comm : local_communicator();
+  const bool writer = comm.rank() == 0;  // logs and checkpoints
   TrainingPosition pos;
   Best best;
   int slot = 0;  // the "last" slot the next save goes to
-  if (o.resume) {
+  if (o.resume && writer) {
     // Newest slot that loads completely (weights + matching optimiser state) wins.
     std::vector<std::pair<int64_t, int>> slots;
     for (int k : {0, 1}) {
@@ -103,11 +143,29 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       if (!o.quiet) std::fprintf(stderr, "%s: no checkpoint in %s, starting from scratch\n", stage.c_str(), (o.out / "checkpoints").string().c_str());
     }
   }
+  if (pos.step == 0 && !o.init_weights.empty()) {
+    if (read_checkpoint_info(o.init_weights).config.value("net", nlohmann::json()) != o.model_config.at("net"))
+      throw std::runtime_error("init_weights: " + o.init_weights.string() + " has another network config than " + stage + ".net");
+    load_checkpoint(o.init_weights, model, nullptr, nullptr);
+    if (!o.quiet) std::fprintf(stderr, "%s: starting from the weights of %s\n", stage.c_str(), o.init_weights.string().c_str());
+  }
+  if (comm.size() > 1) {
+    // Rank 0's position, weights, optimiser and dropout stream, so every replica starts equal.
+    std::string state = nlohmann::json{{"epoch", pos.epoch}, {"step", pos.step}, {"epoch_loss_sum", pos.epoch_loss_sum},
+                                       {"best", best.to_json()}}.dump();
+    comm.broadcast(state, "start-up state");
+    const nlohmann::json j = nlohmann::json::parse(state);
+    pos.epoch = j["epoch"].get<int64_t>();
+    pos.step = j["step"].get<int64_t>();
+    pos.epoch_loss_sum = j["epoch_loss_sum"].get<double>();
+    best = Best::from_json(j["best"]);
+    broadcast_training_state(comm, model, optimizer.get(), dropout_rng);
+  }
   if (pos.epoch >= o.schedule.epochs) {  // complete: its log and the later stages' stay as they are
     if (!o.quiet) std::fprintf(stderr, "%s: already trained for %lld epochs\n", stage.c_str(), static_cast<long long>(pos.epoch));
     return 0;
   }
-  log.rewind(stage, pos.step, stage_order());
+  if (writer) log.rewind(stage, pos.step, stage_order());
 
   auto config_with_best = [&] {
     nlohmann::json c = o.model_config;
@@ -115,6 +173,7 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
     return c;
   };
   auto save_last = [&] {
+    if (!writer) return;
     save_checkpoint(last_checkpoint_path(o.out, stage, slot), model, config_with_best(), dropout_rng, optimizer.get(), pos);
     slot = 1 - slot;
   };
@@ -137,6 +196,7 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
     int64_t epoch_steps = first, epoch_buildings = 0;
     for (;;) {
       const auto t0 = Clock::now();
+      const double cpu0 = process_cpu_seconds();
       std::optional<StageStep> s = cb.train_step();
       if (!s) break;
       if (!std::isfinite(s->loss))
@@ -150,10 +210,16 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
       nlohmann::json line = {{"stage", stage}, {"type", "step"}, {"epoch", epoch + 1}, {"step", pos.step},
                              {"loss", s->loss}, {"lr", lr}, {"seconds", seconds},
+                             {"cpu_seconds", process_cpu_seconds() - cpu0},
                              {"buildings_per_s", seconds > 0 ? s->buildings / seconds : 0.0}};
       for (auto it = s->terms.begin(); it != s->terms.end(); ++it) line[it.key()] = it.value();
       if (grad_norm >= 0) line["grad_norm"] = grad_norm;
-      log.append(line);
+      if (comm.size() > 1) {
+        line["ranks"] = comm.size();
+        line["comm_seconds"] = s->comm_seconds;
+        line["replicas"] = check_replicas(comm, model, stage, pos.step);
+      }
+      if (writer) log.append(line);
       epoch_loss += s->loss;
       ++epoch_steps;
       epoch_buildings += s->buildings;
@@ -184,13 +250,14 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
                              {"score", v.score}, {"loss", v.loss}, {"best", improved},
                              {"seconds", std::chrono::duration<double>(Clock::now() - v0).count()}};
       for (auto it = v.metrics.begin(); it != v.metrics.end(); ++it) line[it.key()] = it.value();
-      log.append(line);
-      if (improved) save_checkpoint(best_path, model, config_with_best(), dropout_rng, nullptr, pos);
+      if (writer) log.append(line);
+      if (improved && writer) save_checkpoint(best_path, model, config_with_best(), dropout_rng, nullptr, pos);
       if (!o.quiet)
         std::fprintf(stderr, "%s epoch %lld: validation score %.4f loss %.4f%s\n", stage.c_str(),
                      static_cast<long long>(epoch + 1), v.score, v.loss, improved ? " (best)" : "");
     }
-    log.append({{"stage", stage}, {"type", "epoch"}, {"epoch", epoch + 1}, {"step", pos.step},
+    if (writer)
+      log.append({{"stage", stage}, {"type", "epoch"}, {"epoch", epoch + 1}, {"step", pos.step},
                 {"train_loss", epoch_steps ? epoch_loss / epoch_steps : 0.0}, {"lr", lr}, {"seconds", epoch_seconds},
                 {"buildings_per_s", epoch_seconds > 0 ? epoch_buildings / epoch_seconds : 0.0}});
     save_last();

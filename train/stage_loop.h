@@ -16,6 +16,7 @@
 #include "core/rng.h"
 #include "nn/config.h"
 #include "nn/module.h"
+#include "train/communicator.h"
 #include "train/run_log.h"
 #include "train/train_config.h"
 
@@ -31,9 +32,10 @@ std::filesystem::path best_checkpoint_path(const std::filesystem::path& out, con
 std::filesystem::path last_checkpoint_path(const std::filesystem::path& out, const std::string& stage, int slot);
 
 struct StageStep {
-  double loss = 0.0;          // total loss of the batch
+  double loss = 0.0;          // total loss of the batch (summed over the ranks)
   nlohmann::json terms;       // extra loss terms for the log
   int64_t buildings = 0;      // buildings in the batch
+  double comm_seconds = 0.0;  // waiting for the gradient sum after the backward pass (data-parallel jobs)
 };
 
 struct StageValidation {
@@ -59,7 +61,16 @@ struct StageLoopOptions {
   std::filesystem::path out;
   bool resume = false;
   bool quiet = false;
+  // Fine-tuning: weights to start from (a best-weights file of an earlier run, same network config);
+  // the optimiser, schedule and dropout stream start fresh. A resumed checkpoint takes precedence.
+  std::filesystem::path init_weights;
+  // The data-parallel job (null: one process). Rank 0 resumes, logs and writes checkpoints; the other
+  // ranks receive its state at the start, and every step checks that all replicas are still equal.
+  Communicator* comm = nullptr;
 };
+
+// The job of one process, for callers without a communicator.
+Communicator& local_communicator();
 
 // (first, count) ranges cutting a batch of `batch` buildings into micro-batches of at most `micro`
 // buildings (micro <= 0 or >= batch: the whole batch in one range).

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "nn/model_checkpoint.h"
 #include "train/building_set.h"
 #include "train/run_log.h"
 #include "train/stage_loop.h"
@@ -17,6 +18,10 @@ struct StageRun {
   std::filesystem::path out;
   bool resume = false;
   bool quiet = false;
+  std::filesystem::path init_weights;  // folder of <stage>.safetensors to fine-tune from (config "init_weights")
+  Communicator* comm = nullptr;  // the data-parallel job; null: one process
+
+  Communicator& communicator() const { return comm ? *comm : local_communicator(); }
 };
 
 // What both stages hand to run_stage: their schedule and optimiser, the config stored in every
@@ -27,11 +32,12 @@ StageLoopOptions stage_loop_options(const std::string& stage, const StageConfig&
   lo.stage = stage;
   lo.schedule = c.schedule;
   lo.optim = c.optim;
-  lo.model_config = {{"stage", stage}, {"net", c.net.to_json()}, {"loss", c.loss.to_json()},
-                     {"optim", c.optim.to_json()}, {"seed", seed}};
+  lo.model_config = model_metadata(stage, c.net.to_json(), c.loss.to_json(), c.optim.to_json(), seed);
   lo.out = run.out;
   lo.resume = run.resume;
   lo.quiet = run.quiet;
+  if (!run.init_weights.empty()) lo.init_weights = run.init_weights / (stage + ".safetensors");
+  lo.comm = run.comm;
   return lo;
 }
 

@@ -18,21 +18,19 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
-const char* kUsage = R"(Usage: lc2wf-synthetic-data --out DIR [--count N] [--val K] [--test K] [--seed S]
+const char* kUsage = R"(Usage: lc2wf-synthetic-data -o OUT [--count N] [--val K] [--test K] [--seed S]
 
 Writes N seeded random buildings (rectangles and L shapes, hip or gable ends, Roof-Image sizes) as
-synthetic line clouds DIR/clouds/synth_<i>.lcloud (noisy pieces of the GT edges, roof/wall texture lines
-and clutter, labelled by construction) and the split files DIR/{train,val,test}.txt (the last K + K
-buildings are validation and test). Deterministic for a seed.
+synthetic line clouds OUT/clouds/synth_<i>.lcloud (noisy pieces of the GT edges, roof/wall texture lines
+and clutter, labelled by construction) and the split files OUT/{train,val,test}.txt (the last K + K
+buildings are validation and test). Deterministic for a seed. One thread.
 
-  --out DIR    output folder (required)
-  --count N    number of buildings (default 12)
-  --val K      validation buildings (default 2)
-  --test K     test buildings (default 2)
-  --seed S     seed (default 1555)
-  --quiet      no progress output
-  -h, --help   this text
-Exit codes: 0 success, 1 I/O error, 2 bad command line.
+  -o, --out OUT       output folder (required)
+  --count N           number of buildings (default 12)
+  --val K             validation buildings (default 2)
+  --test K            test buildings (default 2)
+  --seed S            seed (default 1555)
+  -q, --quiet         no progress output
 )";
 
 struct Args {
@@ -46,25 +44,21 @@ Args parse_args(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
-    if (f == "--quiet") {
-      a.quiet = true;
-      continue;
-    }
-    if (i + 1 >= argc) throw UsageError(f.rfind("--", 0) == 0 ? f + " needs a value" : "unexpected argument '" + f + "'");
-    const std::string v = argv[++i];
     auto small_count = [&] {
+      const std::string v = flag_value(argc, argv, i);
       const long long x = parse_count_flag(f, v);
       if (x > 1000000) throw UsageError(f + " is too large (" + v + ")");
       return static_cast<int>(x);
     };
-    if (f == "--out") a.out = v;
+    if (f == "-q" || f == "--quiet") a.quiet = true;
+    else if (f == "-o" || f == "--out") a.out = flag_value(argc, argv, i);
     else if (f == "--count") a.count = small_count();
     else if (f == "--val") a.val = small_count();
     else if (f == "--test") a.test = small_count();
-    else if (f == "--seed") a.seed = static_cast<uint64_t>(parse_count_flag(f, v));
-    else throw UsageError("unknown option '" + f + "'");
+    else if (f == "--seed") a.seed = static_cast<uint64_t>(parse_count_flag(f, flag_value(argc, argv, i)));
+    else throw UsageError(f.rfind('-', 0) == 0 ? "unknown option '" + f + "'" : "unexpected argument '" + f + "'");
   }
-  if (a.out.empty()) throw UsageError("--out DIR is required");
+  if (a.out.empty()) throw UsageError("-o OUT is required");
   if (a.count < 1 || a.val + a.test >= a.count) throw UsageError("--count must exceed --val + --test (and be >= 1)");
   return a;
 }
@@ -98,11 +92,11 @@ int run(const Args& a) {
   if (!a.quiet)
     std::fprintf(stderr, "lc2wf-synthetic-data: %d line clouds in %s, splits %d/%d/%d\n", a.count,
                  (a.out / "clouds").string().c_str(), train, a.val, a.test);
-  return 0;
+  return kExitDone;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lc2wf::cli_main("lc2wf-synthetic-data", kUsage, argc, argv, parse_args, run);
+  return lc2wf::cli_main({"lc2wf-synthetic-data", kUsage, {}}, argc, argv, parse_args, run);
 }

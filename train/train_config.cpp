@@ -53,6 +53,14 @@ void StageSchedule::Check(const std::string& w) const {
   require(val_every >= 1, w + ".val_every", "must be >= 1");
   require(checkpoint_every_steps >= 0, w + ".checkpoint_every_steps", "must be >= 0 (0 = per epoch)");
   require(micro_batch >= 0, w + ".micro_batch", "must be >= 0 (0 = the whole batch)");
+  require(batch_norm == "per_rank" || batch_norm == "sync", w + ".batch_norm", "must be \"per_rank\" or \"sync\"");
+  check_nested(cloud_augment.options, w);
+}
+
+nlohmann::json CloudAugmentConfig::to_json() const { return fields_to_json(*this); }
+
+CloudAugmentConfig CloudAugmentConfig::from_json(const nlohmann::json& j, const std::string& where, CloudAugmentConfig c) {
+  return fields_from_json(j, where, std::move(c));
 }
 
 // -------------------------------------------------------------------------------- JunctionStageConfig

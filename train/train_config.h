@@ -1,5 +1,5 @@
 // The training configuration read by lc2wf-train (documented in train/README.md). Defaults are the
-// paper/release settings (reference spec §2.7, §3.7); configs/*.json differ only in values. Unknown keys
+// settings of the LC2WF paper and its released training scripts; configs/*.json differ only in values. Unknown keys
 // and bad values are rejected with the key's dotted name ("junction.optim.lr must be > 0").
 #pragma once
 
@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dataset/cloud_augmentation.h"
+#include "dataset/geometry.h"
 #include "nn/config.h"
 
 namespace lc2wf {
@@ -18,7 +20,7 @@ struct DataConfig {
   std::string dir;               // one file per building, file stem = building name
   std::string train_split;       // building names, one per line
   std::string val_split;         // validation names (never the test split)
-  double raw_per_metre = 20.0;   // release JSON only: raw units per metre
+  double raw_per_metre = kRawUnitsPerMetre;  // release JSON only: raw units per metre
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -34,6 +36,26 @@ struct DataConfig {
   static DataConfig from_json(const nlohmann::json& j, const std::string& where, DataConfig base);
 };
 
+// Training-time augmentation of the clouds' statistics (dataset/cloud_augmentation.h). Off by default:
+// the paper's configs do not use it; configs/robust.json does.
+struct CloudAugmentConfig {
+  bool enabled = false;
+  CloudAugmentOptions options;
+  // Every JSON key, listed once (to_json and from_json both walk it).
+  template <class S, class V>
+  static void fields(S& s, V& v) {
+    v("enabled", s.enabled);
+    v("merge_prob_max", s.options.merge_prob_max);
+    v("split_prob_max", s.options.split_prob_max);
+    v("densify_prob_max", s.options.densify_prob_max);
+    v("drop_max", s.options.drop_max);
+    v("endpoint_noise_max_m", s.options.endpoint_noise_max_m);
+    v("min_length_m", s.options.min_length_m);
+  }
+  nlohmann::json to_json() const;
+  static CloudAugmentConfig from_json(const nlohmann::json& j, const std::string& where, CloudAugmentConfig base);
+};
+
 // Options shared by both stages' loops.
 struct StageSchedule {
   int64_t epochs = 41;
@@ -46,6 +68,10 @@ struct StageSchedule {
   // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the
   // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
   int64_t micro_batch = 0;          // 0 = the whole batch at once
+  CloudAugmentConfig cloud_augment;  // training batches only, never validation
+  // Data-parallel jobs (mpirun): BatchNorm statistics of each rank's own passes ("per_rank") or summed
+  // over the ranks' passes ("sync"). One process: no difference.
+  std::string batch_norm = "per_rank";
 
   void Check(const std::string& where) const;
   // The schedule keys live directly in the stage object, so the stages list them through this.
@@ -59,6 +85,8 @@ struct StageSchedule {
     v("augment", s.augment);
     v("drop_last", s.drop_last);
     v("micro_batch", s.micro_batch);
+    v("cloud_augment", s.cloud_augment);
+    v("batch_norm", s.batch_norm);
   }
 };
 
@@ -119,6 +147,7 @@ struct TrainConfig {
   int64_t threads = 2;         // compute threads (set_num_threads)
   int64_t loader_workers = 1;  // threads building batches ahead of the compute
   std::string out = "runs/base";
+  std::string init_weights;    // fine-tune: a trained model's folder (junction/edge.safetensors); "" = random init
   DataConfig data;
   JunctionStageConfig junction;
   EdgeStageConfig edge;
@@ -130,6 +159,7 @@ struct TrainConfig {
     v("threads", s.threads);
     v("loader_workers", s.loader_workers);
     v("out", s.out);
+    v("init_weights", s.init_weights);
     v("data", s.data);
     v("junction", s.junction);
     v("edge", s.edge);

@@ -2,12 +2,16 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include "core/parallel.h"
 #include "core/util/cli.h"
 #include "core/util/atomic_file.h"
 #include "train/building_set.h"
+#include "train/communicator.h"
+#include "train/model_card.h"
 #include "train/run_log.h"
 #include "train/stages.h"
 #include "train/train_config.h"
@@ -17,7 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
-const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [--stage junction|edge|all] [--resume] [--out DIR] [--quiet]
+const char* kUsage = R"(Usage: lc2wf-train CONFIG.json [-o OUT] [--stage junction|edge|all] [--resume] [options]
+       mpirun -np RANKS lc2wf-train CONFIG.json ...      (data-parallel, one process per rank)
 
 Trains LC2WF's two networks as the paper's release does, one after the other:
   1. junction  the junction model (best weights: OUT/junction.safetensors)
@@ -25,17 +30,26 @@ Trains LC2WF's two networks as the paper's release does, one after the other:
                model (OUT/predicted_junctions/<name>.json)
   3. edge      the edge model on GT + predicted pairs (best weights: OUT/edge.safetensors)
 Validation runs on the config's validation split only. OUT/log.jsonl logs losses, metrics, learning
-rate and throughput; OUT/checkpoints/ holds the last state of each stage for --resume.
+rate and throughput; OUT/checkpoints/ holds the last state of each stage for --resume; OUT/README.md is
+the model card (lc2wf version and commit, data, kept epochs and their validation scores).
 
-  --stage S   junction (step 1), edge (steps 2-3, needs OUT/junction.safetensors) or all (default)
-  --resume    continue from OUT/checkpoints/ exactly where the last run stopped (same losses as an
-              uninterrupted run); completed stages are skipped
-  --out DIR   output folder (default: the config's "out")
-  --quiet     no progress output
-  -h, --help  this text
+  -o, --out OUT      output folder (default: the config's "out"); created once the config and the
+                     line clouds have been read
+  --stage S          junction (step 1), edge (steps 2-3, needs OUT/junction.safetensors) or all (default)
+  --resume           continue from OUT/checkpoints/ exactly where the last run stopped (same losses as an
+                     uninterrupted run); completed stages are skipped
+  -j, --threads N    compute threads (default: the config's "threads"; 0 = all cores)
+  -q, --quiet        no progress output
+  --comm-timeout S   MPI jobs: a rank that waits S seconds for the others ends the job with a message
+                     (default 1800)
 
-Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR.
-Exit codes: 0 success, 1 bad config / data / I/O error, 2 bad command line.
+Started by mpirun or srun, every rank computes its share of each global batch (the config's batch_size
+stays the global batch) and the gradients are summed over the ranks every step; rank 0 writes the log,
+the checkpoints and the model card. OUT and the data must be visible to every rank. --resume works with
+any number of ranks. See train/README.md, "Data-parallel training".
+
+Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR. A bad config or line cloud is a data
+error (exit 3) naming the file and the key.
 )";
 
 struct Args {
@@ -43,6 +57,8 @@ struct Args {
   std::string stage = "all";
   bool resume = false, quiet = false;
   std::string out;
+  std::optional<int> threads;
+  CommunicatorOptions comm;
 };
 
 Args parse_args(int argc, char** argv) {
@@ -56,10 +72,15 @@ Args parse_args(int argc, char** argv) {
         throw UsageError("--stage must be junction, edge or all, got '" + a.stage + "'");
     } else if (f == "--resume") {
       a.resume = true;
-    } else if (f == "--quiet") {
+    } else if (f == "-q" || f == "--quiet") {
       a.quiet = true;
-    } else if (f == "--out") {
+    } else if (f == "-o" || f == "--out") {
       a.out = value();
+    } else if (f == "-j" || f == "--threads") {
+      a.threads = threads_flag(f, value());
+    } else if (f == "--comm-timeout") {
+      a.comm.timeout_s = number_flag(f, value());
+      if (a.comm.timeout_s <= 0) throw UsageError("--comm-timeout must be > 0 seconds");
     } else if (!f.empty() && f[0] == '-') {
       throw UsageError("unknown option '" + f + "'");
     } else if (a.config.empty()) {
@@ -72,36 +93,55 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
-int run(const Args& a) {
+int train(const Args& a, Communicator& comm) {
+  const bool writer = comm.rank() == 0;
   TrainConfig config = TrainConfig::from_file(a.config);
   if (!a.out.empty()) config.out = a.out;
+  if (a.threads) config.threads = *a.threads;
   set_num_threads(static_cast<int>(config.threads));
-  const StageRun run{config.out, a.resume, a.quiet};
+  config.threads = num_threads();  // -j 0 resolved, so config.json records a valid count
+  const StageRun run{config.out, a.resume, a.quiet || !writer, config.init_weights, &comm};
+  // Every input is read before OUT is touched: a bad split or cloud leaves no half-made run folder.
+  const BuildingSet train = load_building_set(config.data, config.data.train_split, run.quiet);
+  const BuildingSet val = load_building_set(config.data, config.data.val_split, run.quiet);
   fs::create_directories(run.out);
-  write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
+  if (writer) write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");
-
-  const BuildingSet train = load_building_set(config.data, config.data.train_split, a.quiet);
-  const BuildingSet val = load_building_set(config.data, config.data.val_split, a.quiet);
-  if (!a.quiet)
-    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %lld threads, output %s\n",
-                 train.clouds.size(), val.clouds.size(), static_cast<long long>(config.threads), run.out.string().c_str());
+  if (!run.quiet)
+    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %d rank(s) x %lld threads, output %s\n",
+                 train.clouds.size(), val.clouds.size(), comm.size(), static_cast<long long>(config.threads),
+                 run.out.string().c_str());
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
   if (a.stage == "edge" || a.stage == "all") {
     const fs::path handoff = write_junction_handoff(train, val, log, run);
     train_edge_stage(config, train, val, handoff, log, run);
   }
-  if (!a.quiet) {
+  if (writer) write_model_card(run.out, a.config, config, train, val);
+  if (!run.quiet) {
     std::fprintf(stderr, "lc2wf-train: done. Log: %s\n", log.path().string().c_str());
     if (a.stage != "junction")
-      std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors); run lc2wf-infer --weights %s ...\n",
+      std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors, model card README.md); run lc2wf-infer --weights %s ...\n",
                    run.out.string().c_str(), run.out.string().c_str());
   }
-  return 0;
+  return kExitDone;
+}
+
+int run(const Args& a) {
+  const std::unique_ptr<Communicator> comm = open_communicator(nullptr, nullptr, a.comm);
+  try {
+    return train(a, *comm);
+  } catch (const std::exception& e) {
+    if (comm->size() == 1) throw;
+    // The other ranks would wait for this one forever: say why, then end the whole job.
+    std::fprintf(stderr, "\nlc2wf-train: rank %d of %d: error: %s\nlc2wf-train: rank %d ends the MPI job.\n",
+                 comm->rank(), comm->size(), e.what(), comm->rank());
+    comm->abort_job(kExitDataError);
+    throw;
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lc2wf::cli_main("lc2wf-train", kUsage, argc, argv, parse_args, run);
+  return lc2wf::cli_main({"lc2wf-train", kUsage, {kEnvStorageCache}}, argc, argv, parse_args, run);
 }

@@ -1,10 +1,13 @@
 // Tape semantics: accumulation, graph freeing, NoGradGuard, detach, and clear errors on misuse.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/autograd.h"
 #include "core/ops.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -125,8 +128,8 @@ TEST(Errors, ShapeMismatchNamesBothShapes) {
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     std::string msg = e.what();
-    EXPECT_NE(msg.find("[2, 3]"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("[4]"), std::string::npos) << msg;
+    EXPECT_THAT(msg, HasSubstr("[2, 3]")) << msg;
+    EXPECT_THAT(msg, HasSubstr("[4]")) << msg;
   }
   EXPECT_THROW(matmul(Tensor::zeros({2, 3}), Tensor::zeros({2, 3})), std::invalid_argument);
   EXPECT_THROW(linear(Tensor::zeros({2, 3}), Tensor::zeros({4, 2})), std::invalid_argument);
@@ -165,7 +168,7 @@ TEST(Errors, BackwardOnNonScalarWithoutSeed) {
     y.backward();
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("seed"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("seed")) << e.what();
   }
   EXPECT_THROW(y.backward(Tensor::ones({3}, DType::F64)), std::invalid_argument);
   EXPECT_THROW(Tensor::ones({1}).backward(), std::invalid_argument);  // does not require grad
@@ -182,8 +185,8 @@ TEST(Errors, GradientShapeMismatchNamesBothShapes) {
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
     std::string msg = e.what();
-    EXPECT_NE(msg.find("[2]"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("[3]"), std::string::npos) << msg;
+    EXPECT_THAT(msg, HasSubstr("[2]")) << msg;
+    EXPECT_THAT(msg, HasSubstr("[3]")) << msg;
   }
 }
 

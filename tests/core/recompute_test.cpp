@@ -1,5 +1,6 @@
 // Recompute-in-backward ops: the same values and gradients as the ops they replace, bit for bit, while
 // keeping fewer activations alive between the forward and the backward pass.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -7,6 +8,8 @@
 #include "core/ops.h"
 #include "core/storage_cache.h"
 #include "tests/core/gradcheck.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -76,7 +79,7 @@ TEST(Recompute, CheckpointRejectsARecomputationOfAnotherShape) {
     sum(y).backward();
     FAIL() << "expected std::invalid_argument";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("checkpoint"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("checkpoint")) << e.what();
   }
 }
 

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,9 @@
 #include "dataset/mesh_io.h"
 #include "dataset/synthetic_building.h"
 #include "test_util.h"
+
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace lc2wf {
 namespace {
@@ -77,8 +81,8 @@ TEST(Polyshape, BadInputsNameFileAndLine) {
       parse(text, "bad.polyshape");
       FAIL() << "no error for: " << needle;
     } catch (const DataError& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("bad.polyshape"), std::string::npos) << e.what();
+      EXPECT_THAT(std::string(e.what()), HasSubstr(needle)) << e.what();
+      EXPECT_THAT(std::string(e.what()), HasSubstr("bad.polyshape")) << e.what();
     }
   };
   expect_error("", "bad.polyshape:1: unexpected end of file");
@@ -101,7 +105,7 @@ TEST(Polyshape, MissingFileIsNamed) {
     read_polyshape("/nonexistent/x.polyshape");
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/x.polyshape: cannot open"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("/nonexistent/x.polyshape: cannot open"));
   }
 }
 
@@ -120,7 +124,7 @@ TEST(Building, MergesDuplicateVerticesAndDropsDegenerateFaces) {
   EXPECT_EQ(b.issues.dropped_faces, 1);
   EXPECT_EQ(b.mesh.vertices.size(), 8u);
   ASSERT_FALSE(b.issues.warnings.empty());
-  EXPECT_NE(b.issues.warnings[0].find("dup: merged 2 duplicate vertices"), std::string::npos);
+  EXPECT_THAT(b.issues.warnings[0], HasSubstr("dup: merged 2 duplicate vertices"));
   for (const auto& f : b.mesh.faces) {
     for (int id : f) EXPECT_LT(id, 8);
   }
@@ -143,7 +147,7 @@ TEST(Building, OptionsCheckNamesField) {
     o.Check();
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("raw_per_metre"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("raw_per_metre"));
   }
 }
 
@@ -183,7 +187,7 @@ TEST(Obj, BadInputs) {
       parse_obj(in, "bad.obj");
       FAIL() << needle;
     } catch (const DataError& e) {
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_THAT(std::string(e.what()), HasSubstr(needle)) << e.what();
     }
   };
   expect_error("v 0 0\n", "bad.obj:1: 'v' needs 3");
@@ -208,7 +212,7 @@ TEST(Obj, WireframeRoundTripInRawUnits) {
   const ObjData m = read_obj(dir / "m.obj");
   EXPECT_EQ(m.mesh.faces, b.mesh.faces);
   for (const auto& e : std::filesystem::directory_iterator(dir)) {
-    EXPECT_EQ(e.path().string().find(".tmp."), std::string::npos) << "temporary file left behind";
+    EXPECT_THAT(e.path().string(), Not(HasSubstr(".tmp."))) << "temporary file left behind";
   }
 }
 

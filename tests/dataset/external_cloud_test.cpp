@@ -1,5 +1,6 @@
 // Readers for line clouds made elsewhere (Line3D++ .txt, LIMAP finaltracks/, line OBJ) and our converter
 // to Line3D++ .txt. Every fixture is written here.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -13,6 +14,8 @@
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "test_util.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -163,7 +166,7 @@ TEST(LimapTracks, MalformedInputNamesFileLineAndField) {
   const fs::path dir = test::scratch_dir("limap_bad");
   write(dir / "track_0.txt", limap_track("0 0 0 1 0 0", 1));
   write(dir / "track_2.txt", limap_track("0 0 0 1 0 0", 1));
-  EXPECT_NE(error_of([&] { read_limap_tracks(dir); }).find("track_1.txt: missing"), std::string::npos);
+  EXPECT_THAT(error_of([&] { read_limap_tracks(dir); }), HasSubstr("track_1.txt: missing"));
   EXPECT_EQ(error_of([] { parse_limap_track("0 0 0 1 0 nan\n1 1\n", "t.txt"); }),
             "t.txt:1: end coordinate 'nan' is not a finite number");
   EXPECT_EQ(error_of([] { parse_limap_track("0 0 0 1 0 0\n1000000000 1\nimage_id_list 1\n", "t.txt"); }),

@@ -1,6 +1,7 @@
 // Regressions for hostile input files: FIFOs, devices and directories are refused before opening (a FIFO
 // blocked forever, /dev/zero was read until allocation failed), long names still write atomically, and
 // mesh coordinates beyond the stated limit are rejected with the file and line.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -18,6 +19,8 @@
 #include "dataset/mesh_io.h"
 #include "test_util.h"
 
+using ::testing::HasSubstr;
+
 namespace lc2wf {
 namespace {
 
@@ -29,8 +32,8 @@ void expect_refused(const fs::path& path, Read read, const std::string& needle) 
     read(path);
     FAIL() << path << " was read";
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr(path.string())) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr(needle)) << e.what();
   }
 }
 
@@ -53,7 +56,7 @@ TEST(InputFiles, FifoDeviceAndDirectoryAreRefusedWithoutBlocking) {
   EXPECT_EQ(input_file_problem(dir / "missing"), "");  // left to the open, which names it and says why
   expect_refused(dir / "missing", read_bytes, "cannot open file: No such file or directory");
   expect_refused(dir / "missing", read_mesh, "cannot open file: No such file or directory");
-  EXPECT_NE(input_file_problem(fifo, 1).find("not a regular file"), std::string::npos);
+  EXPECT_THAT(input_file_problem(fifo, 1), HasSubstr("not a regular file"));
   fs::remove_all(dir);
 }
 
@@ -61,7 +64,7 @@ TEST(InputFiles, SizeLimitIsChecked) {
   const fs::path dir = test::scratch_dir("input_size");
   write_file_atomic(dir / "f.txt", std::string(100, 'x'));
   EXPECT_EQ(input_file_problem(dir / "f.txt", 100), "");
-  EXPECT_NE(input_file_problem(dir / "f.txt", 99).find("more than the 99-byte limit"), std::string::npos);
+  EXPECT_THAT(input_file_problem(dir / "f.txt", 99), HasSubstr("more than the 99-byte limit"));
   EXPECT_THROW(read_input_file(dir / "f.txt", 99), std::runtime_error);
   fs::remove_all(dir);
 }

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -12,6 +13,8 @@
 #include "dataset/synthetic_line_cloud.h"
 #include "dataset/visibility.h"
 #include "test_util.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -108,18 +111,24 @@ void expect_error(const std::string& bytes, const std::string& needle) {
     line_cloud_from_bytes(bytes, "cloud.json");
     FAIL() << "no error, wanted: " << needle;
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("cloud.json"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("cloud.json")) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr(needle)) << e.what();
   }
 }
 
-TEST(LineCloudIo, BadInputsGiveNamedErrors) {
+// A one-edge wireframe with one labelled segment on it.
+LineCloud one_labelled_segment() {
   LineCloud c;
   c.name = "t";
   c.wireframe.junctions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
   c.wireframe.edges = {{0, 1}};
   c.segments = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};
   c.labels = {make_edge_label(c.segments[0], c.wireframe, 0, 1)};
+  return c;
+}
+
+TEST(LineCloudIo, BadInputsGiveNamedErrors) {
+  const LineCloud c = one_labelled_segment();
   LineCloudWriteOptions json;
   json.binary = false;
   const std::string good = line_cloud_to_bytes(c, json);
@@ -141,7 +150,7 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
     line_cloud_to_bytes(bad);
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("segment 0 has zero length"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("segment 0 has zero length"));
   }
   bad = c;
   bad.labels[0].i2 = 9;
@@ -152,7 +161,7 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
     line_cloud_to_bytes(bad);
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("support view 3 out of range"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("support view 3 out of range")) << e.what();
   }
 
   // Binary: truncated blob and a header length past the end.
@@ -172,12 +181,7 @@ TEST(LineCloudIo, BadInputsGiveNamedErrors) {
 // Regression: header counts are checked against the file size before allocating (a 224 KB file claiming
 // 10^8 segments reached 4.5 GB), and JSON numbers are exact (0.7 -> 0, true -> 1, 300 -> 44 in a byte).
 TEST(LineCloudIo, HostileHeadersAreRejectedBeforeAllocating) {
-  LineCloud c;
-  c.name = "t";
-  c.wireframe.junctions = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
-  c.wireframe.edges = {{0, 1}};
-  c.segments = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};
-  c.labels = {make_edge_label(c.segments[0], c.wireframe, 0, 1)};
+  const LineCloud c = one_labelled_segment();
   LineCloudWriteOptions text;
   text.binary = false;
   const nlohmann::json good = nlohmann::json::parse(line_cloud_to_bytes(c, text));
@@ -212,7 +216,7 @@ TEST(LineCloudIo, MissingFileIsNamed) {
     read_line_cloud("/nonexistent/a.lc2wf");
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent/a.lc2wf"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("/nonexistent/a.lc2wf"));
   }
 }
 
@@ -332,7 +336,7 @@ TEST(Labelling, OptionsCheckNamesField) {
     g.Check();
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("min_overlap"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("min_overlap"));
   }
 }
 

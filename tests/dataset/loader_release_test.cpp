@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,6 +9,8 @@
 #include "dataset/batch_loader.h"
 #include "dataset/errors.h"
 #include "dataset/release_json.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -119,8 +122,8 @@ TEST(ReleaseJson, BadInputsNameTheFile) {
       parse_release_line_cloud(text, "r.json");
       FAIL() << needle;
     } catch (const DataError& e) {
-      EXPECT_NE(std::string(e.what()).find("r.json"), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+      EXPECT_THAT(std::string(e.what()), HasSubstr("r.json")) << e.what();
+      EXPECT_THAT(std::string(e.what()), HasSubstr(needle)) << e.what();
     }
   };
   const std::string good = kRelease;

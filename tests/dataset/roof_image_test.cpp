@@ -1,4 +1,5 @@
-// Every Roof-Image building: parse, check, import; counts against data-sources.md section 1.4.
+// Every Roof-Image building: parse, check, import; counts against the published dataset statistics
+// (3,583 buildings; vertices 9 / 20 / 70, faces 9 / 16 / 51 min / median / max).
 #include <gtest/gtest.h>
 
 #include <algorithm>

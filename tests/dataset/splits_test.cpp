@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,8 @@
 #include "dataset/errors.h"
 #include "dataset/splits.h"
 #include "test_util.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -71,7 +74,7 @@ TEST(Splits, NameListErrors) {
     read_name_list(dir / "bad.txt");
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.txt:3:"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("bad.txt:3:")) << e.what();
   }
   EXPECT_THROW(read_name_list(dir / "missing.txt"), DataError);
   // Names that would address a folder or a path cut at NUL are refused with the line.

@@ -1,6 +1,7 @@
 // Hand-computed cases for the Building3D-style metrics and the assignment solver behind them.
 #include "infer/building3d_metric.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,8 @@
 
 #include "infer/building3d_io.h"
 #include "infer/hungarian.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -119,7 +122,7 @@ TEST(Building3dIo, SectionStatesFrameThresholdCutAndVariant) {
   const std::string md = building3d_markdown(r, "ours");
   for (const char* s : {"CP", "EF1", "ACO", "B3D-nWED", "line-cloud segment endpoints", "score > 0.7", "0.1 normalised",
                         "2023 calculator", "not the paper"})
-    EXPECT_NE(md.find(s), std::string::npos) << s;
+    EXPECT_THAT(md, HasSubstr(s)) << s;
   const nlohmann::json j = building3d_json(r);
   EXPECT_NEAR(j["cp"].get<double>(), 2.0 / 3, 1e-12);
   EXPECT_EQ(j["per_building"][0]["name"], "sq");

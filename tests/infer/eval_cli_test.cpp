@@ -1,4 +1,5 @@
 // Runs the lc2wf-eval binary on small generated cases.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
@@ -11,6 +12,8 @@
 #include "infer/prediction_io.h"
 #include "test_files.h"
 #include "tests/common/run_cli.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -37,14 +40,14 @@ TEST(EvalCli, HelpAndUsageErrors) {
   testing::ScratchDir dir("cli_usage");
   const CliResult help = run_eval(dir.path(), "--help");
   EXPECT_EQ(help.code, 0);
-  EXPECT_NE(help.out.find("Usage: lc2wf-eval"), std::string::npos);
-  for (const char* flag : {"--html", "--html-compare"}) EXPECT_NE(help.out.find(flag), std::string::npos) << flag;
+  EXPECT_THAT(help.out, HasSubstr("Usage: lc2wf-eval"));
+  for (const char* flag : {"--html", "--html-compare"}) EXPECT_THAT(help.out, HasSubstr(flag)) << flag;
   const CliResult none = run_eval(dir.path(), "--pred " + dir.path().string() + " --out x");
   EXPECT_EQ(none.code, 2);
-  EXPECT_NE(none.err.find("--gt"), std::string::npos);
+  EXPECT_THAT(none.err, HasSubstr("--gt"));
   const CliResult bad = run_eval(dir.path(), "--bogus");
   EXPECT_EQ(bad.code, 2);
-  EXPECT_NE(bad.err.find("--bogus"), std::string::npos);
+  EXPECT_THAT(bad.err, HasSubstr("--bogus"));
   const CliResult units = run_eval(dir.path(), "--pred . --gt . --out x --units feet");
   EXPECT_EQ(units.code, 2);
 }
@@ -59,9 +62,9 @@ TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {
   const CliResult r = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --split " +
                                          (dir.path() / "split.txt").string() + " --out " + out.string() +
                                          " --units raw --strict-wed --method box");
-  ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("| box | 50.0/50.0 |"), std::string::npos) << r.out;
-  EXPECT_NE(r.err.find("1 of 2 buildings have no prediction"), std::string::npos) << r.err;
+  ASSERT_EQ(r.code, 1) << r.err;  // scored, but one building had no prediction
+  EXPECT_THAT(r.out, HasSubstr("| box | 50.0/50.0 |")) << r.out;
+  EXPECT_THAT(r.err, HasSubstr("1 of 2 buildings have no prediction")) << r.err;
   const auto j = nlohmann::json::parse(testing::read_text(out / "metrics.json"));
   EXPECT_EQ(j["missing_predictions"], nlohmann::json::array({"b2"}));
   EXPECT_DOUBLE_EQ(j["vertex"][0]["ap"].get<double>(), 0.5);  // 8 of 16 GT vertices, all exact, scores 1
@@ -70,20 +73,20 @@ TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {
   EXPECT_DOUBLE_EQ(j["wed_strict"]["add_vertex"].get<double>(), 4.0);
   const std::string csv = testing::read_text(out / "per_building.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
-  EXPECT_NE(testing::read_text(out / "metrics.md").find("Building3D"), std::string::npos);
-  EXPECT_NE(j["building3d"]["frame"].get<std::string>().find("GT corners"), std::string::npos);  // no line cloud
+  EXPECT_THAT(testing::read_text(out / "metrics.md"), HasSubstr("Building3D"));
+  EXPECT_THAT(j["building3d"]["frame"].get<std::string>(), HasSubstr("GT corners"));  // no line cloud
   EXPECT_DOUBLE_EQ(j["building3d"]["cr"].get<double>(), 0.5);  // b1's 8 corners exact, b2 missing
   // --html without three.js: exit 1 naming the package; nothing half-written.
   const CliResult html = testing::run_cli("LC2WF_THREE_JS_DIR=" + (dir.path() / "none").string() + " " +
                                           LC2WF_EVAL_BIN + " --pred " + pred.string() + " --gt " + gt.string() +
                                           " --out " + (dir.path() / "out_html").string() + " --units raw --html --quiet");
-  EXPECT_EQ(html.code, 1);
-  EXPECT_NE(html.err.find("libjs-three"), std::string::npos) << html.err;
+  EXPECT_EQ(html.code, 3);
+  EXPECT_THAT(html.err, HasSubstr("libjs-three")) << html.err;
   EXPECT_FALSE(fs::exists(dir.path() / "out_html" / "report.html"));
   // Read in metres instead, the raw coordinates are 20x too large: nothing matches.
   const CliResult metres = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --out " +
                                               (dir.path() / "out_m").string() + " --quiet");
-  ASSERT_EQ(metres.code, 0) << metres.err;
+  ASSERT_EQ(metres.code, 1) << metres.err;  // b2 still has no prediction
   EXPECT_DOUBLE_EQ(nlohmann::json::parse(testing::read_text(dir.path() / "out_m" / "metrics.json"))["vertex"][2]["ap"]
                        .get<double>(),
                    0.0);
@@ -113,20 +116,20 @@ TEST(EvalCli, LineCloudGroundTruthWithScores) {
   EXPECT_NEAR(j["edge"][2]["ap"].get<double>(), 1.0, 1e-12);          // 0.50 m: the 0.3 m-off edges count
 }
 
-TEST(EvalCli, BadInputsExitOneAndNameTheProblem) {
+TEST(EvalCli, BadInputsAreDataErrorsNamingTheProblem) {
   testing::ScratchDir dir("cli_bad");
   const fs::path gt = dir.path() / "gt", pred = dir.path() / "pred";
   testing::write_text(gt / "b1.polyshape", testing::box_polyshape(0));
   testing::write_text(pred / "b1.obj", "v 0 0 zero\n");
   const std::string base = "--pred " + pred.string() + " --gt " + gt.string() + " --out " + (dir.path() / "o").string();
   const CliResult bad_pred = run_eval(dir.path(), base);
-  EXPECT_EQ(bad_pred.code, 1);
-  EXPECT_NE(bad_pred.err.find("b1.obj:1"), std::string::npos) << bad_pred.err;
+  EXPECT_EQ(bad_pred.code, 3);
+  EXPECT_THAT(bad_pred.err, HasSubstr("b1.obj:1")) << bad_pred.err;
   testing::write_text(dir.path() / "split.txt", "b1\nghost\n");
   testing::write_text(pred / "b1.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
   const CliResult no_gt = run_eval(dir.path(), base + " --split " + (dir.path() / "split.txt").string());
-  EXPECT_EQ(no_gt.code, 1);
-  EXPECT_NE(no_gt.err.find("ghost"), std::string::npos) << no_gt.err;
+  EXPECT_EQ(no_gt.code, 3);
+  EXPECT_THAT(no_gt.err, HasSubstr("ghost")) << no_gt.err;
   EXPECT_FALSE(fs::exists(dir.path() / "o" / "metrics.json"));
 }
 
@@ -137,27 +140,52 @@ TEST(EvalCli, SpecialFilesAreRefusedByNameWithoutBlocking) {
   testing::write_text(pred / "b1.obj", box_prediction_raw(0));
   // A FIFO under a building's name in the GT folder: reported as "no buildings (folder is empty)" before.
   ASSERT_EQ(::mkfifo((gt / "b1.polyshape").c_str(), 0600), 0);
-  const CliResult fifo = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " --out " + out.string());
-  EXPECT_EQ(fifo.code, 1);
-  EXPECT_NE(fifo.err.find((gt / "b1.polyshape").string() + ": is not a regular file"), std::string::npos) << fifo.err;
+  const CliResult fifo = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " -o " + out.string());
+  EXPECT_EQ(fifo.code, 3);
+  EXPECT_THAT(fifo.err, HasSubstr((gt / "b1.polyshape").string() + ": is not a regular file"));
   fs::remove(gt / "b1.polyshape");
   testing::write_text(gt / "b1.polyshape", testing::box_polyshape(0));
-  // --html-compare's metrics.json: a FIFO is refused with the command line, a JSON array escaped as a
+  // --html-compare's metrics.json: a FIFO is refused before anything is read, a JSON array escaped as a
   // type error naming no file.
   const fs::path other = dir.path() / "other";
   fs::create_directories(other);
   ASSERT_EQ(::mkfifo((other / "metrics.json").c_str(), 0600), 0);
-  const std::string html = "--pred " + pred.string() + " --gt " + gt.string() + " --units raw --out " + out.string() +
+  const std::string html = "--pred " + pred.string() + " --gt " + gt.string() + " --units raw -o " + out.string() +
                            " --quiet --html --html-compare " + other.string();
   CliResult r = run_eval(dir.path(), html);
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find((other / "metrics.json").string()), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.err, HasSubstr((other / "metrics.json").string() + ": is not a regular file"));
   fs::remove(other / "metrics.json");
   testing::write_text(other / "metrics.json", "[1, 2]");
   r = run_eval(dir.path(), html);
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find((other / "metrics.json").string() + ": not an lc2wf-eval metrics.json: expected a JSON object"),
-            std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.err, HasSubstr((other / "metrics.json").string() + ": not an lc2wf-eval metrics.json: expected a JSON object"));
+}
+
+// Regression: every prediction missing (a wrong --pred folder) was scored as empty and exited 0.
+TEST(EvalCli, NoPredictionAtAllIsNothingEvaluated) {
+  testing::ScratchDir dir("cli_none");
+  const fs::path gt = dir.path() / "gt", pred = dir.path() / "pred", out = dir.path() / "out";
+  testing::write_text(gt / "b1.polyshape", testing::box_polyshape(0));
+  fs::create_directories(pred);
+  const CliResult r = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " -o " + out.string() + " -q");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.err, HasSubstr("nothing to evaluate"));
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Regression: --weights created OUT/predictions before the other arguments were checked.
+TEST(EvalCli, NothingIsWrittenBeforeTheArgumentsAreValid) {
+  testing::ScratchDir dir("cli_early");
+  const fs::path out = dir.path() / "out";
+  fs::create_directories(dir.path() / "weights");
+  for (const std::string& args : {"--weights " + (dir.path() / "weights").string() + " --data " + (dir.path() / "none").string(),
+                                  "--weights " + (dir.path() / "weights").string() + " --data " + dir.path().string() + " --ties odd",
+                                  "--weights " + (dir.path() / "weights").string() + " --data " + dir.path().string()}) {
+    const CliResult r = run_eval(dir.path(), args + " -o " + out.string() + " -q");
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_FALSE(fs::exists(out)) << args << ": " << r.err;
+  }
 }
 
 fs::path shared_data_dir() {

@@ -1,8 +1,13 @@
 #include "infer/eval_report_io.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "core/util/version.h"
 #include "test_files.h"
+
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace lc2wf {
 namespace {
@@ -21,16 +26,15 @@ EvalReport small_report(bool strict) {
 
 TEST(EvalReportIo, MarkdownHasBothTablesInPaperShape) {
   const std::string md = eval_markdown(small_report(false), "ours");
-  EXPECT_NE(md.find("| method | v η=0.15 | v η=0.25 | v η=0.35 | v avg. | s η=0.25 | s η=0.35 | s η=0.50 | s avg. |"),
-            std::string::npos);
+  EXPECT_THAT(md, HasSubstr("| method | v η=0.15 | v η=0.25 | v η=0.35 | v avg. | s η=0.25 | s η=0.35 | s η=0.50 | s avg. |"));
   // Half of the GT found with perfect precision: AP = recall = 50 % at every threshold.
-  EXPECT_NE(md.find("| ours | 50.0/50.0 | 50.0/50.0 | 50.0/50.0 | 50.0/50.0 | 50.0/50.0 |"), std::string::npos);
-  EXPECT_NE(md.find("| method | +vertex | +edge | −edge | total |"), std::string::npos);
+  EXPECT_THAT(md, HasSubstr("| ours | 50.0/50.0 | 50.0/50.0 | 50.0/50.0 | 50.0/50.0 | 50.0/50.0 |"));
+  EXPECT_THAT(md, HasSubstr("| method | +vertex | +edge | −edge | total |"));
   // Mean over 2 buildings: the missing one adds 3 vertices and 3 edges of 12 m in total.
-  EXPECT_NE(md.find("| ours | 1.500 / 0.000 | 1.500 / 6.000 | 0.000 / 0.000 | 3.000 / 6.000 |"), std::string::npos);
-  EXPECT_NE(md.find("without a prediction: needs,quote"), std::string::npos);
-  EXPECT_EQ(md.find("Strict"), std::string::npos);
-  EXPECT_NE(eval_markdown(small_report(true), "ours").find("Strict WED"), std::string::npos);
+  EXPECT_THAT(md, HasSubstr("| ours | 1.500 / 0.000 | 1.500 / 6.000 | 0.000 / 0.000 | 3.000 / 6.000 |"));
+  EXPECT_THAT(md, HasSubstr("without a prediction: needs,quote"));
+  EXPECT_THAT(md, Not(HasSubstr("Strict")));
+  EXPECT_THAT(eval_markdown(small_report(true), "ours"), HasSubstr("Strict WED"));
 }
 
 TEST(EvalReportIo, JsonHoldsEveryNumber) {
@@ -52,8 +56,8 @@ TEST(EvalReportIo, CsvRowPerBuildingWithQuoting) {
   const std::string csv = eval_per_building_csv(small_report(false));
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3);
   EXPECT_EQ(csv.rfind("name,prediction_missing,gt_vertices", 0), 0u);
-  EXPECT_NE(csv.find("\nexact,0,3,3,3,3,3,3,3,3,3,3,0,0,0,0,0,0,0,0\n"), std::string::npos);
-  EXPECT_NE(csv.find("\n\"needs,quote\",1,"), std::string::npos);
+  EXPECT_THAT(csv, HasSubstr("\nexact,0,3,3,3,3,3,3,3,3,3,3,0,0,0,0,0,0,0,0\n"));
+  EXPECT_THAT(csv, HasSubstr("\n\"needs,quote\",1,"));
 }
 
 TEST(EvalReportIo, WritesThreeFiles) {
@@ -61,7 +65,12 @@ TEST(EvalReportIo, WritesThreeFiles) {
   write_eval_outputs(dir.path() / "out", small_report(false), "ours");
   for (const char* f : {"metrics.md", "metrics.json", "per_building.csv"})
     EXPECT_FALSE(testing::read_text(dir.path() / "out" / f).empty()) << f;
-  EXPECT_EQ(nlohmann::json::parse(testing::read_text(dir.path() / "out" / "metrics.json"))["method"], "ours");
+  const auto j = nlohmann::json::parse(testing::read_text(dir.path() / "out" / "metrics.json"));
+  EXPECT_EQ(j["method"], "ours");
+  // Which lc2wf made the numbers.
+  EXPECT_EQ(j["lc2wf_version"], lc2wf_version());
+  EXPECT_EQ(j["commit"], lc2wf_git_commit());
+  EXPECT_THAT(testing::read_text(dir.path() / "out" / "metrics.md"), HasSubstr(version_line()));
 }
 
 }  // namespace

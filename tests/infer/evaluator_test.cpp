@@ -1,9 +1,12 @@
 #include "infer/evaluator.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -105,7 +108,7 @@ TEST(Evaluator, RejectsBadInputAndOptions) {
     o.Check();
     FAIL() << "negative threshold accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("edge_thresholds"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("edge_thresholds"));
   }
 }
 

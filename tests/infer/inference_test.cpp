@@ -1,6 +1,7 @@
 // The inference pipeline with small randomly initialised networks: shapes and bookkeeping, degenerate
 // clouds (no segments, one segment, nothing above threshold) giving valid empty results with notes,
 // checkpoint loading errors, and the preview PNG.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "tests/common/tiny_weights.h"
@@ -16,6 +17,8 @@
 #include "infer/inference.h"
 #include "infer/preview.h"
 #include "nn/checkpoint.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -79,7 +82,7 @@ TEST_F(Inference, DegenerateCloudsGiveEmptyWireframesWithNotes) {
   EXPECT_TRUE(r.wireframe.wireframe.edges.empty());
   EXPECT_TRUE(r.junctions.positions.empty());
   ASSERT_FALSE(r.notes.empty());
-  EXPECT_NE(r.notes.front().find("no segments"), std::string::npos);
+  EXPECT_THAT(r.notes.front(), HasSubstr("no segments"));
 
   LineCloud one;
   one.name = "one";
@@ -125,7 +128,7 @@ TEST_F(Inference, WrongOrMissingWeightsAreNamed) {
     WireframePredictor(dir_ / "edge.safetensors", dir_ / "edge.safetensors");
     FAIL() << "a junction model was loaded from an edge checkpoint";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("edge.safetensors"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("edge.safetensors")) << e.what();
   }
   EXPECT_ANY_THROW(WireframePredictor(dir_ / "missing"));
 }

@@ -1,10 +1,13 @@
 #include "infer/post_process.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <map>
 #include <set>
 #include <stdexcept>
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -64,7 +67,7 @@ TEST(PostProcess, CleanSquareSurvivesWithNoIdenticalPairNote) {
     EXPECT_EQ(r.wireframe.junction_scores[1], .96);
     EXPECT_EQ(r.stats.candidate_edges, 4);
     ASSERT_EQ(r.notes.size(), 1u);  // the "no identical pair" case of the release is handled, not fatal
-    EXPECT_NE(r.notes[0].find("identical"), std::string::npos);
+    EXPECT_THAT(r.notes[0], HasSubstr("identical"));
   }
 }
 
@@ -199,7 +202,7 @@ TEST(PostProcess, FourReleaseCrashInputsGiveEmptyOrValidResults) {
                                  PostProcessOptions::release_quirks());
   EXPECT_TRUE(none.wireframe.wireframe.edges.empty());
   EXPECT_EQ(none.stats.candidate_edges, 0);
-  EXPECT_NE(none.notes.back().find("connected"), std::string::npos);
+  EXPECT_THAT(none.notes.back(), HasSubstr("connected"));
   // No identical pair: covered by CleanSquareSurvivesWithNoIdenticalPairNote; everything pruned here.
   const auto pruned = post_process(make_input({{0, 0, 0}, {0.1, 0, 0}}, {.9, .9}, {{{0, 1}, {1.0, 0.0}}}),
                                    PostProcessOptions{});
@@ -222,7 +225,7 @@ TEST(PostProcess, RejectsMalformedInputAndOptions) {
     o.Check();
     FAIL() << "bad threshold accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("connect_threshold"), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr("connect_threshold"));
   }
   o = PostProcessOptions{};
   o.pruned_junctions_in_merge = true;

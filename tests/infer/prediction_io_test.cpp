@@ -1,10 +1,13 @@
 #include "infer/prediction_io.h"
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "dataset/errors.h"
 #include "infer/eval_inputs.h"
 #include "test_files.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -35,7 +38,7 @@ TEST(PredictionIo, RoundTripInMetresAndRawUnits) {
             std::vector<std::string>{"note"});
   UnitTransform raw{20.0, {100, -50, 0}};
   write_prediction(dir.path(), "r", triangle(), {}, &raw);
-  EXPECT_NE(testing::read_text(dir.path() / "r.obj").find("v 100 -50 0"), std::string::npos);
+  EXPECT_THAT(testing::read_text(dir.path() / "r.obj"), HasSubstr("v 100 -50 0"));
   expect_near(read_prediction(dir.path() / "r.obj", &raw), triangle());
 }
 
@@ -68,8 +71,8 @@ TEST(PredictionIo, BadFilesNameTheFile) {
       FAIL() << "accepted " << json;
     } catch (const DataError& e) {
       const std::string msg = e.what();
-      EXPECT_NE(msg.find("a.json"), std::string::npos) << msg;
-      EXPECT_NE(msg.find(what), std::string::npos) << msg;
+      EXPECT_THAT(msg, HasSubstr("a.json")) << msg;
+      EXPECT_THAT(msg, HasSubstr(what)) << msg;
     }
   };
   expect_error("{\"format\": \"lc2wf-wireframe-scores\", \"version\": 1, \"edge_scores\": [0.5, 0.2]}", "edge scores");
@@ -91,7 +94,7 @@ TEST(EvalInputs, NameListSkipsCommentsAndRejectsDuplicates) {
     read_name_list(dir.path() / "d.txt");
     FAIL();
   } catch (const DataError& e) {
-    EXPECT_NE(std::string(e.what()).find("d.txt:3"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("d.txt:3")) << e.what();
   }
   EXPECT_THROW(read_name_list(dir.path() / "none.txt"), DataError);
 }

@@ -1,5 +1,6 @@
 // Module bookkeeping, checkpoint round trips, exact resume (weights, optimiser state and dropout
 // stream) and the errors for missing, unexpected and misshaped tensors.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,10 +8,14 @@
 #include <string>
 
 #include "core/ops.h"
+#include "core/util/version.h"
 #include "nn/checkpoint.h"
 #include "nn/junction_net.h"
 #include "nn/losses.h"
 #include "nn/safetensors.h"
+
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace lc2wf {
 namespace {
@@ -123,7 +128,31 @@ TEST(Checkpoint, RoundTripRestoresWeightsAndOutputs) {
   const ToyBatch t = toy_batch(7);
   EXPECT_EQ(a.forward(t.x, t.mask).logits.to_vector(), b.forward(t.x, t.mask).logits.to_vector());
   for (const auto& entry : fs::directory_iterator(dir))
-    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "temporary file left behind";
+    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp"))) << "temporary file left behind";
+  fs::remove_all(dir);
+}
+
+// Every checkpoint names the lc2wf version and commit that wrote it; files from before (no such keys) load.
+TEST(Checkpoint, RecordsVersionAndCommitAndLoadsFilesWithout) {
+  const fs::path dir = temp_dir("version");
+  JunctionNet a(tiny_config(), 1);
+  AdamW opt(a.named_parameters(), OptimConfig{});
+  save_checkpoint(dir / "m.safetensors", a, a.config().to_json(), a.dropout_rng(), &opt, {1, 2});
+  for (const fs::path& p : {dir / "m.safetensors", optimizer_state_path(dir / "m.safetensors")}) {
+    const SafetensorsFile file = read_safetensors(p);
+    EXPECT_EQ(file.metadata.at("lc2wf_version"), lc2wf_version()) << p;
+    EXPECT_EQ(file.metadata.at("commit"), lc2wf_git_commit()) << p;
+  }
+  for (const fs::path& p : {dir / "m.safetensors", optimizer_state_path(dir / "m.safetensors")}) {
+    SafetensorsFile file = read_safetensors(p);
+    file.metadata.erase("lc2wf_version");
+    file.metadata.erase("commit");
+    NamedTensors tensors(file.tensors.begin(), file.tensors.end());
+    write_safetensors(p, tensors, file.metadata);
+  }
+  JunctionNet b(tiny_config(), 9);
+  AdamW opt_b(b.named_parameters(), OptimConfig{});
+  EXPECT_EQ(load_checkpoint(dir / "m.safetensors", b, nullptr, &opt_b).position.step, 2);
   fs::remove_all(dir);
 }
 
@@ -175,22 +204,22 @@ TEST(Checkpoint, MissingExtraAndMisshapedTensorsAreNamed) {
   auto missing = file.tensors;
   missing.erase("lpt.enc1.norm.bias");
   rewrite(missing);
-  EXPECT_NE(load_error(path, net).find("missing tensor 'lpt.enc1.norm.bias'"), std::string::npos);
+  EXPECT_THAT(load_error(path, net), HasSubstr("missing tensor 'lpt.enc1.norm.bias'"));
 
   auto extra = file.tensors;
   extra["lpt.bogus"] = Tensor::zeros({1});
   rewrite(extra);
-  EXPECT_NE(load_error(path, net).find("unexpected tensor 'lpt.bogus'"), std::string::npos);
+  EXPECT_THAT(load_error(path, net), HasSubstr("unexpected tensor 'lpt.bogus'"));
 
   auto misshaped = file.tensors;
   misshaped["cls_head.out.weight"] = Tensor::zeros({3, 3});
   rewrite(misshaped);
   const std::string e = load_error(path, net);
-  EXPECT_NE(e.find("'cls_head.out.weight' has shape [3, 3]"), std::string::npos) << e;
-  EXPECT_NE(e.find(path.string()), std::string::npos) << e;
+  EXPECT_THAT(e, HasSubstr("'cls_head.out.weight' has shape [3, 3]")) << e;
+  EXPECT_THAT(e, HasSubstr(path.string())) << e;
 
   write_safetensors(path, NamedTensors(file.tensors.begin(), file.tensors.end()), {{"format", "other"}});
-  EXPECT_NE(load_error(path, net).find("not an lc2wf checkpoint"), std::string::npos);
+  EXPECT_THAT(load_error(path, net), HasSubstr("not an lc2wf checkpoint"));
   fs::remove_all(dir);
 }
 

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -6,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "nn/config.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -70,69 +73,47 @@ TEST(Config, EdgeKeepsItsOwnDefaultsUnderPartialJson) {
 }
 
 TEST(Config, UnknownKeysAndWrongTypesNameTheField) {
-  EXPECT_NE(error_of([] { JunctionNetConfig::from_json(nlohmann::json::parse(R"({"lpt": {"hiden_dim": 3}})")); })
-                .find("junction_net.lpt: unknown key 'hiden_dim'"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { OptimConfig::from_json(nlohmann::json::parse(R"({"lr": "fast"})")); }).find("optim.lr"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"num_heads": 2.5})")); })
-                .find("lpt.num_heads: expected an integer"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"mlp_dims": [8, "x"]})")); })
-                .find("lpt.mlp_dims[1]"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { HeadConfig::from_json(nlohmann::json::parse("[1]")); }).find("expected a JSON object"),
-            std::string::npos);
+  EXPECT_THAT(error_of([] { JunctionNetConfig::from_json(nlohmann::json::parse(R"({"lpt": {"hiden_dim": 3}})")); }), HasSubstr("junction_net.lpt: unknown key 'hiden_dim'"));
+  EXPECT_THAT(error_of([] { OptimConfig::from_json(nlohmann::json::parse(R"({"lr": "fast"})")); }), HasSubstr("optim.lr"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"num_heads": 2.5})")); }), HasSubstr("lpt.num_heads: expected an integer"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"mlp_dims": [8, "x"]})")); }), HasSubstr("lpt.mlp_dims[1]"));
+  EXPECT_THAT(error_of([] { HeadConfig::from_json(nlohmann::json::parse("[1]")); }), HasSubstr("expected a JSON object"));
 }
 
 // Regression: integers were narrowed without a word (patches 4294967298 trained with 2 patches; -1 in an
 // unsigned field) and absurd sizes in a checkpoint's config allocated gigabytes before failing.
 TEST(Config, IntegersAreExactAndSizesBounded) {
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 4294967298})")).Check(); })
-                .find("lpt.patches must be in [1, 8192]"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 18446744073709551615})")); })
-                .find("lpt.patches: 18446744073709551615 is out of range"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 0.7})")); })
-                .find("lpt.patches: expected an integer"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"hidden_dim": true})")); })
-                .find("lpt.hidden_dim: expected an integer"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"lines_per_patch": 100000})")).Check(); })
-                .find("lpt.lines_per_patch must be in [1, 1024]"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"line_layers": 1000000})")).Check(); })
-                .find("lpt.line_layers must be in [1, 32]"),
-            std::string::npos);
-  EXPECT_NE(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"mlp_dims": [64, 100000]})")).Check(); })
-                .find("lpt.mlp_dims"),
-            std::string::npos);
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 4294967298})")).Check(); }), HasSubstr("lpt.patches must be in [1, 8192]"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 18446744073709551615})")); }), HasSubstr("lpt.patches: 18446744073709551615 is out of range"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"patches": 0.7})")); }), HasSubstr("lpt.patches: expected an integer"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"hidden_dim": true})")); }), HasSubstr("lpt.hidden_dim: expected an integer"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"lines_per_patch": 100000})")).Check(); }), HasSubstr("lpt.lines_per_patch must be in [1, 1024]"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"line_layers": 1000000})")).Check(); }), HasSubstr("lpt.line_layers must be in [1, 32]"));
+  EXPECT_THAT(error_of([] { LptConfig::from_json(nlohmann::json::parse(R"({"mlp_dims": [64, 100000]})")).Check(); }), HasSubstr("lpt.mlp_dims"));
 }
 
 TEST(Config, CheckNamesTheBadField) {
   LptConfig l;
   l.num_heads = 7;
-  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.num_heads"), std::string::npos);
+  EXPECT_THAT(error_of([&] { l.Check(); }), HasSubstr("lpt.num_heads"));
   l = LptConfig{};
   l.mlp_dims = {64, 128};
-  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.mlp_dims"), std::string::npos);
+  EXPECT_THAT(error_of([&] { l.Check(); }), HasSubstr("lpt.mlp_dims"));
   l = LptConfig{};
   l.pool = "max";
-  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.pool"), std::string::npos);
+  EXPECT_THAT(error_of([&] { l.Check(); }), HasSubstr("lpt.pool"));
   l = LptConfig{};
   l.dropout = 1.0;
-  EXPECT_NE(error_of([&] { l.Check(); }).find("lpt.dropout"), std::string::npos);
+  EXPECT_THAT(error_of([&] { l.Check(); }), HasSubstr("lpt.dropout"));
   JunctionLossConfig jl;
   jl.kind = "focal";
-  EXPECT_NE(error_of([&] { jl.Check(); }).find("junction_loss.kind"), std::string::npos);
+  EXPECT_THAT(error_of([&] { jl.Check(); }), HasSubstr("junction_loss.kind"));
   OptimConfig o;
   o.milestones = {30, 15};
-  EXPECT_NE(error_of([&] { o.Check(); }).find("optim.milestones"), std::string::npos);
+  EXPECT_THAT(error_of([&] { o.Check(); }), HasSubstr("optim.milestones"));
   EdgeLossConfig el;
   el.class_weights = {1, -1};
-  EXPECT_NE(error_of([&] { el.Check(); }).find("edge_loss.class_weights"), std::string::npos);
+  EXPECT_THAT(error_of([&] { el.Check(); }), HasSubstr("edge_loss.class_weights"));
 }
 
 }  // namespace

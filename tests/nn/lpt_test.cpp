@@ -1,5 +1,6 @@
 // Behaviour of the Line-Patch Transformer beyond the golden fixtures: input validation, pooling modes,
 // loss validation and determinism of training-mode forward passes (dropout) across thread counts.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +11,8 @@
 #include "nn/edge_net.h"
 #include "nn/junction_net.h"
 #include "nn/losses.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -52,11 +55,10 @@ std::string error_of(JunctionNet& net, const Tensor& x, const Tensor& mask) {
 TEST(Lpt, RejectsBadInputsWithClearMessages) {
   JunctionNet net(small());
   const Tensor mask = mask_every(2, 4, 6, 3);
-  EXPECT_NE(error_of(net, inputs(2, 4, 5, 7, 1), mask_every(2, 4, 5, 3)).find("expected input (B, G, 6, 7)"),
-            std::string::npos);
-  EXPECT_NE(error_of(net, inputs(2, 4, 6, 6, 1), mask).find("got [2, 4, 6, 6]"), std::string::npos);
-  EXPECT_NE(error_of(net, inputs(2, 4, 6, 7, 1), Tensor::zeros({2, 4, 6})).find("Bool mask"), std::string::npos);
-  EXPECT_NE(error_of(net, inputs(2, 4, 6, 7, 1), Tensor()).find("undefined"), std::string::npos);
+  EXPECT_THAT(error_of(net, inputs(2, 4, 5, 7, 1), mask_every(2, 4, 5, 3)), HasSubstr("expected input (B, G, 6, 7)"));
+  EXPECT_THAT(error_of(net, inputs(2, 4, 6, 6, 1), mask), HasSubstr("got [2, 4, 6, 6]"));
+  EXPECT_THAT(error_of(net, inputs(2, 4, 6, 7, 1), Tensor::zeros({2, 4, 6})), HasSubstr("Bool mask"));
+  EXPECT_THAT(error_of(net, inputs(2, 4, 6, 7, 1), Tensor()), HasSubstr("undefined"));
   EXPECT_THROW(JunctionNet bad(small("max")), std::invalid_argument);
 }
 

@@ -1,5 +1,6 @@
 // Optimisers against PyTorch trajectories (tests/data/nn/optimizers.safetensors) plus clipping and the
 // learning-rate schedule.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,6 +8,8 @@
 #include "core/ops.h"
 #include "nn/optimizer.h"
 #include "test_util.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -75,7 +78,7 @@ TEST(Optimizer, StateRoundTripsAndRejectsWrongTensors) {
         try {
           opt2.load_state(bad, 1, "f.optim");
         } catch (const std::invalid_argument& e) {
-          EXPECT_NE(std::string(e.what()).find("exp_avg.w"), std::string::npos);
+          EXPECT_THAT(std::string(e.what()), HasSubstr("exp_avg.w"));
           throw;
         }
       },

@@ -1,3 +1,4 @@
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -5,6 +6,8 @@
 #include <string>
 
 #include "nn/safetensors.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -68,33 +71,33 @@ TEST(Safetensors, ReadsFilesWrittenByThePythonFixtureTool) {
       read_safetensors(std::string(LC2WF_SOURCE_DIR) + "/tests/data/nn/optimizers.safetensors");
   EXPECT_EQ(f.tensors.at("init.layer.weight").shape(), (Shape{3, 4}));
   EXPECT_EQ(f.tensors.at("init.layer.weight").dtype(), DType::F32);
-  EXPECT_NE(f.metadata.at("settings").find("AdamW"), std::string::npos);
+  EXPECT_THAT(f.metadata.at("settings"), HasSubstr("AdamW"));
 }
 
 TEST(Safetensors, MalformedFilesGiveClearErrors) {
   const fs::path dir = temp_dir("bad");
   const fs::path p = dir / "x.safetensors";
-  EXPECT_NE(read_error(dir / "missing.safetensors").find("cannot open"), std::string::npos);
+  EXPECT_THAT(read_error(dir / "missing.safetensors"), HasSubstr("cannot open"));
 
   { std::ofstream(p) << "abc"; }
-  EXPECT_NE(read_error(p).find("too short"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("too short"));
 
   write_raw(p, "{not json", "");
-  EXPECT_NE(read_error(p).find("not valid JSON"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("not valid JSON"));
 
   write_raw(p, R"({"w":{"dtype":"F32","shape":[2],"data_offsets":[0,8]}})", "1234");
-  EXPECT_NE(read_error(p).find("tensor 'w'"), std::string::npos);
-  EXPECT_NE(read_error(p).find("truncated"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("tensor 'w'"));
+  EXPECT_THAT(read_error(p), HasSubstr("truncated"));
 
   write_raw(p, R"({"w":{"dtype":"F32","shape":[3],"data_offsets":[0,8]}})", "12345678");
-  EXPECT_NE(read_error(p).find("needs 12"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("needs 12"));
 
   write_raw(p, R"({"w":{"dtype":"BF16","shape":[2],"data_offsets":[0,4]}})", "1234");
-  EXPECT_NE(read_error(p).find("unsupported dtype"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("unsupported dtype"));
 
   write_raw(p, R"({"a":{"dtype":"F32","shape":[2],"data_offsets":[0,8]},"b":{"dtype":"F32","shape":[1],"data_offsets":[4,8]}})",
             "12345678");
-  EXPECT_NE(read_error(p).find("overlap"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("overlap"));
 
   {  // header length pointing past the end of the file
     std::ofstream out(p, std::ios::binary);
@@ -102,7 +105,7 @@ TEST(Safetensors, MalformedFilesGiveClearErrors) {
     out.write(reinterpret_cast<const char*>(&n), 8);
     out << "{}";
   }
-  EXPECT_NE(read_error(p).find("exceeds the file size"), std::string::npos);
+  EXPECT_THAT(read_error(p), HasSubstr("exceeds the file size"));
   fs::remove_all(dir);
 }
 

@@ -11,6 +11,7 @@
 
 #include "core/rng.h"
 #include "core/tensor.h"
+#include "core/util/fnv1a.h"
 #include "nn/module.h"
 #include "nn/safetensors.h"
 
@@ -46,12 +47,6 @@ inline ::testing::AssertionResult close(const Tensor& actual, const Tensor& ref,
   }
   if (err <= rel * scale + abs) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << "max abs error " << err << " exceeds " << rel << " * " << scale << " + " << abs;
-}
-
-inline uint64_t fnv1a64(const std::string& text) {
-  uint64_t h = 0xCBF29CE484222325ull;
-  for (unsigned char c : text) h = (h ^ c) * 0x100000001B3ull;
-  return h;
 }
 
 // Same rule as hashed_value() in tools/make_golden.py.

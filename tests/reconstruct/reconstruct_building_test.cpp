@@ -24,14 +24,6 @@ using Json = nlohmann::json;
 
 const char* kBuilding = "BK39_500_016032_0019";  // configs/splits/test.txt
 
-Similarity similarity_from_json(const Json& j) {
-  Similarity s;
-  s.scale = j["scale"].get<double>();
-  for (int k = 0; k < 9; ++k) s.R(k / 3, k % 3) = j["R"][k].get<double>();
-  for (int k = 0; k < 3; ++k) s.t[k] = j["t"][k].get<double>();
-  return s;
-}
-
 double distance_to_edges(const Vec3& p, const Wireframe& gt) {
   double best = 1e9;
   for (const auto& e : gt.edges) {
@@ -90,7 +82,7 @@ TEST(ReconstructBuilding, PhotosOfAHeldOutBuildingGiveAMetricCloudOnItsEdges) {
   // The cloud, put into the building's frame by the camera similarity, covers the GT edges: a GT edge
   // counts when some segment has both endpoints within 0.15 m of it (photo-like textures also give many
   // clutter lines, so a median over all lines says little).
-  const Similarity to_ref = similarity_from_json(rep["reference"]["to_reference"]);
+  const Similarity to_ref = test::similarity_from_json(rep["reference"]["to_reference"]);
   const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
   int covered = 0;
   for (size_t e = 0; e < building.wireframe.edges.size(); ++e) {

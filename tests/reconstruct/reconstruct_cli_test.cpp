@@ -1,8 +1,11 @@
 // lc2wf-reconstruct's command line: help, usage errors (2), data errors naming the stage (3), OUT untouched.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "tests/common/run_cli.h"
 #include "test_scene.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -14,12 +17,12 @@ const std::string kBin = LC2WF_RECONSTRUCT_BIN;
 TEST(ReconstructCli, HelpAndUsageErrors) {
   const auto help = testing::run_cli(kBin + " --help");
   EXPECT_EQ(help.code, 0);
-  EXPECT_NE(help.out.find("--known-distance"), std::string::npos);
-  EXPECT_NE(help.out.find("Exit codes"), std::string::npos);
+  EXPECT_THAT(help.out, HasSubstr("--known-distance"));
+  EXPECT_THAT(help.out, HasSubstr("Exit codes"));
   const fs::path dir = test::scratch("cli");
   EXPECT_EQ(testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --frobnicate").code, 2);
   EXPECT_EQ(testing::run_cli(kBin + " " + dir.string() + " -o o").code, 2);  // no --weights
-  EXPECT_EQ(testing::run_cli(kBin + " /no/such/folder --weights w -o o").code, 2);
+  EXPECT_EQ(testing::run_cli(kBin + " /no/such/folder --weights w -o o").code, 3);  // a missing input is a data error
   EXPECT_EQ(testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --scale -1").code, 2);
   EXPECT_EQ(testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --known-distance a.png,3").code, 2);
   // sscanf reads nan and inf: they passed as a vector/intrinsics ("given_up is zero" came much later).
@@ -36,8 +39,8 @@ TEST(ReconstructCli, MissingWeightsIsADataErrorAndOutStaysUnwritten) {
   fs::create_directories(dir / "images");
   const auto r = testing::run_cli(kBin + " " + (dir / "images").string() + " --weights " + (dir / "none").string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.code, 3);
-  EXPECT_NE(r.err.find("error: weights: "), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("nothing was written to"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("error: weights: ")) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("nothing was written to")) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out"));
   fs::remove_all(dir);
 }
@@ -48,7 +51,7 @@ TEST(ReconstructCli, EmptyImageFolderNamesTheStage) {
   test::write_tiny_weights(dir / "w");
   const auto r = testing::run_cli(kBin + " " + (dir / "images").string() + " --weights " + (dir / "w").string() + " -o " + (dir / "out").string());
   EXPECT_EQ(r.code, 3);
-  EXPECT_NE(r.err.find("error: images: 0 readable image(s)"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("error: images: 0 readable image(s)")) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out"));
   fs::remove_all(dir);
 }

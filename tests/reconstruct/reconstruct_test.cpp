@@ -1,5 +1,6 @@
 // lc2wf-reconstruct's pipeline on raster renders of a synthetic building with known cameras (no COLMAP):
 // outputs, the metric frame from an arbitrary SfM frame, and every bad input the command must survive.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
@@ -7,11 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "core/util/version.h"
 #include "dataset/atomic_file.h"
 #include "dataset/line_cloud_io.h"
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"
 #include "test_scene.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -36,14 +40,6 @@ double median_edge_distance(const LineCloud& cloud, const Wireframe& gt, const S
     }
   std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
   return d[d.size() / 2];
-}
-
-Similarity similarity_from_json(const Json& j) {
-  Similarity s;
-  s.scale = j["scale"].get<double>();
-  for (int k = 0; k < 9; ++k) s.R(k / 3, k % 3) = j["R"][k].get<double>();
-  for (int k = 0; k < 3; ++k) s.t[k] = j["t"][k].get<double>();
-  return s;
 }
 
 class Reconstruct : public ::testing::Test {
@@ -85,11 +81,12 @@ TEST_F(Reconstruct, KnownCamerasGiveEveryOutputInTheirFrame) {
   EXPECT_GT(report["lines_3d"].get<int>(), 50);
   EXPECT_EQ(report["frame"]["up_source"], "input z");
   EXPECT_EQ(report["frame"]["scale_source"], "given");
+  EXPECT_EQ(report["commit"], lc2wf_git_commit());
   for (const char* stage : {"weights", "images", "cameras", "lsd", "triangulation", "frame", "inference", "outputs", "total"})
     EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
   // The cloud, taken back to the building frame, lies on the building's edges.
   const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
-  const Similarity to_gt = similarity_from_json(report["frame"]["to_metric"]).inverse();
+  const Similarity to_gt = test::similarity_from_json(report["frame"]["to_metric"]).inverse();
   EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
   EXPECT_TRUE(r.workspace.empty());  // the private workspace is gone
 }
@@ -125,7 +122,7 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   const ReconstructResult r = reconstruct(o);
   const Json& f = r.report["frame"];
   EXPECT_EQ(f["scale_source"], "estimate (typical height)");
-  const Similarity to_metric = similarity_from_json(f["to_metric"]);
+  const Similarity to_metric = test::similarity_from_json(f["to_metric"]);
   EXPECT_NEAR(to_metric.scale * sfm.scale, 1.0, 0.05);
   const Vec3 up = (to_metric.R * sfm.R).transpose() * Vec3::UnitZ();  // metric up seen in the building frame
   EXPECT_LT(std::acos(std::min(1.0, up.z())) * 180 / M_PI, 1.0);
@@ -148,7 +145,7 @@ void expect_stage_error(const ReconstructOptions& o, const std::string& stage, c
     ADD_FAILURE() << "no error";
   } catch (const StageError& e) {
     EXPECT_EQ(e.stage(), stage) << e.what();
-    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr(text)) << e.what();
   }
   EXPECT_FALSE(fs::exists(o.out)) << "nothing may be written to OUT";
 }

@@ -51,4 +51,12 @@ fs::path scratch(const std::string& name) {
   return dir;
 }
 
+Similarity similarity_from_json(const nlohmann::json& j) {
+  Similarity s;
+  s.scale = j["scale"].get<double>();
+  for (int k = 0; k < 9; ++k) s.R(k / 3, k % 3) = j["R"][k].get<double>();
+  for (int k = 0; k < 3; ++k) s.t[k] = j["t"][k].get<double>();
+  return s;
+}
+
 }  // namespace lc2wf::test

@@ -5,7 +5,10 @@
 #include <filesystem>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "dataset/building.h"
+#include "dataset/metric_frame.h"
 #include "tests/common/tiny_weights.h"  // write_tiny_weights
 
 namespace lc2wf::test {
@@ -20,6 +23,9 @@ struct RenderedFolder {
 // `views` raster renders (640x480, paper textures) of an L-shaped building into dir/images, the cameras
 // into dir/cameras.json (kept outside the image folder).
 RenderedFolder render_synthetic_folder(const std::filesystem::path& dir, int views);
+
+// A similarity as report.json stores it ({"scale", "R" row-major, "t"}).
+Similarity similarity_from_json(const nlohmann::json& j);
 
 // A fresh scratch folder per test and process.
 std::filesystem::path scratch(const std::string& name);

@@ -1,5 +1,6 @@
 // Blender path end to end (render -> lines -> cloud -> labels) on two small synthetic buildings, and the
 // OpenCV <-> Blender camera round trip. Skipped when `blender` is not installed.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -67,7 +70,7 @@ TEST(BlenderPipeline, AFailingBlenderIsReportedPerBuilding) {
   const auto r = render_with_blender({{&b, make_camera_ring(b.mesh.vertices, ring), dir / "rect", 0}}, o, dir);
   ASSERT_EQ(r.size(), 1u);
   EXPECT_TRUE(r[0].views.empty());
-  EXPECT_NE(r[0].error.find("/nonexistent/blender"), std::string::npos) << r[0].error;
+  EXPECT_THAT(r[0].error, HasSubstr("/nonexistent/blender")) << r[0].error;
 }
 
 }  // namespace

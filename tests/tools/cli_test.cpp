@@ -1,4 +1,5 @@
 // lc2wf-dataset and lc2wf-colmap-poses as a user runs them: help, argument errors, exit codes.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -9,6 +10,9 @@
 #include <vector>
 
 #include "tests/common/run_cli.h"
+
+using ::testing::HasSubstr;
+using ::testing::Not;
 
 namespace {
 namespace fs = std::filesystem;
@@ -28,21 +32,21 @@ const std::string kColmap = LC2WF_COLMAP_POSES_EXE;
 TEST(DatasetCli, HelpAndArgumentErrors) {
   CliResult r = run(kDataset + " --help");
   EXPECT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("--renderer raster|blender"), std::string::npos);
+  EXPECT_THAT(r.out, HasSubstr("--renderer raster|blender"));
   r = run(kDataset + " --meshes m --out o --views many");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.out.find("--views expects an integer"), std::string::npos) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("--views expects an integer")) << r.out;
   r = run(kDataset + " --meshes m --out o --shard 3/2");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.out.find("shard"), std::string::npos) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("shard")) << r.out;
   r = run(kDataset + " --out o");
   EXPECT_EQ(r.code, 2);
   r = run(kDataset + " --meshes m --out o --renderer blender --textures photo");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.out.find("--textures must be paper or sfm"), std::string::npos) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("--textures must be paper or sfm")) << r.out;
   r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out_" + std::to_string(getpid()));
   EXPECT_EQ(r.code, 3);
-  EXPECT_NE(r.out.find("/nonexistent/meshes"), std::string::npos) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("/nonexistent/meshes")) << r.out;
 }
 
 TEST(DatasetCli, FailedBuildingGivesExitCodeOneAndASummary) {
@@ -50,9 +54,9 @@ TEST(DatasetCli, FailedBuildingGivesExitCodeOneAndASummary) {
   fs::remove_all(dir);
   fs::create_directories(dir / "meshes");
   std::ofstream(dir / "meshes" / "bad.polyshape") << "# Number of verts: 2\n0,0,0\n";
-  const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " --no-progress");
+  const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " -q");
   EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_NE(r.out.find("\"failed\""), std::string::npos) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("\"failed\"")) << r.out;
   EXPECT_TRUE(fs::exists(dir / "out" / "status" / "bad.json"));
 }
 
@@ -70,13 +74,13 @@ TEST(DatasetCli, HostileMeshesFailAloneWithAStatus) {
   std::ofstream(dir / "meshes" / (names[1] + ".polyshape")) << bad;
   std::ofstream(dir / "meshes" / (names[2] + ".polyshape")) << far;
   ASSERT_EQ(::mkfifo((dir / "meshes" / "fifo.polyshape").c_str(), 0600), 0);
-  const std::string cmd = kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " --no-progress -j 2";
+  const std::string cmd = kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " -q -j 2";
   for (int pass = 0; pass < 2; ++pass) {  // a re-run redoes the failed buildings and fails the same way
     const CliResult r = run(cmd);
     EXPECT_EQ(r.code, 1) << r.out;
-    EXPECT_NE(r.out.find("\"failed\""), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("not a regular file"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("beyond +-1e9"), std::string::npos) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("\"failed\"")) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("not a regular file")) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("beyond +-1e9")) << r.out;
     for (const std::string& n : names) EXPECT_TRUE(fs::exists(dir / "out" / "status" / (n + ".json"))) << n;
   }
   fs::remove_all(dir);
@@ -92,7 +96,7 @@ TEST(DatasetCli, AValidMeshWhoseNameIsNotUtf8IsProcessed) {
   std::ifstream seed(std::string(LC2WF_SOURCE_DIR) + "/tests/fuzz/corpus/polyshape/gable_box.seed");
   std::ofstream(dir / "meshes" / (name + ".polyshape")) << seed.rdbuf();
   const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() +
-                          " --views 6 --size 128x96 -j 1 --no-progress");
+                          " --views 6 --size 128x96 -j 1 -q");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_GT(fs::file_size(dir / "out" / "clouds" / (name + ".lcloud")), 0u);
   fs::remove_all(dir);
@@ -102,27 +106,67 @@ TEST(DatasetCli, FloatFlagsRefuseNaN) {
   for (const char* v : {"nan", "inf", "-nan"}) {
     const CliResult r = run(kDataset + " --meshes m --out o --blur " + v);
     EXPECT_EQ(r.code, 2) << r.out;
-    EXPECT_NE(r.out.find("--blur expects a finite number"), std::string::npos) << r.out;
+    EXPECT_THAT(r.out, HasSubstr("--blur expects a finite number")) << r.out;
   }
 }
 
 TEST(ColmapPosesCli, HelpAndMissingInputs) {
   CliResult r = run(kColmap + " --help");
   EXPECT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("--intrinsics"), std::string::npos);
-  r = run(kColmap + " --views /nonexistent/views");
-  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.out, HasSubstr("--intrinsics"));
+  r = run(kColmap + " /nonexistent/views --intrinsics 600,600,319.5,239.5");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.out, HasSubstr("/nonexistent/views"));
   const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_colmap_" + std::to_string(getpid()));
   fs::create_directories(dir);
-  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5 --matcher vocab");
+  r = run(kColmap + " " + dir.string() + " --intrinsics 600,600,319.5,239.5 --matcher vocab");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.out.find("exhaustive or sequential"), std::string::npos) << r.out;
-  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5 --outlier-factor x");
+  EXPECT_THAT(r.out, HasSubstr("--matcher must be exhaustive or sequential"));
+  EXPECT_THAT(r.out, Not(HasSubstr("ColmapOptions")));  // the flag the user typed, not the struct field
+  r = run(kColmap + " " + dir.string() + " --intrinsics 600,600,319.5,239.5 --outlier-factor x");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.out.find("--outlier-factor expects a number"), std::string::npos) << r.out;
-  r = run(kColmap + " --views " + dir.string() + " --intrinsics 600,600,319.5,239.5");
+  EXPECT_THAT(r.out, HasSubstr("--outlier-factor expects a number"));
+  r = run(kColmap + " " + dir.string() + " --intrinsics 600,600,319.5,239.5");
   EXPECT_EQ(r.code, 3);
-  EXPECT_NE(r.out.find("fewer than 3 images"), std::string::npos) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("fewer than 3 images"));
+}
+
+// Regression: --workspace DIR was cleared with remove_all, so naming the photo folder deleted the photos.
+TEST(ColmapPosesCli, ANamedWorkspaceWithTheUsersFilesIsRefusedAndKept) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_colmap_ws_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const char* name : {"a.png", "b.png", "c.png"}) std::ofstream(dir / name) << "photo";
+  const CliResult r = run(kColmap + " " + dir.string() + " --intrinsics 600,600,319.5,239.5 --workspace " + dir.string());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.out, HasSubstr("not made by lc2wf"));
+  for (const char* name : {"a.png", "b.png", "c.png"}) EXPECT_TRUE(fs::exists(dir / name)) << name;
+  EXPECT_FALSE(fs::exists(dir / "cameras_colmap.json"));
+  fs::remove_all(dir);
+}
+
+// Regression: errors named the options struct (TriangulatorOptions.min_best_score) instead of the flag.
+TEST(DatasetCli, ErrorsNameTheFlagTheUserTyped) {
+  for (const auto& [args, flag] : std::vector<std::pair<std::string, std::string>>{
+           {"--min-score -1", "--min-score"}, {"--views 0", "--views"}, {"--lsd-scale 2", "--lsd-scale"},
+           {"--neighbour-max-angle 200", "--neighbour-max-angle"}, {"--label-min-views 0", "--label-min-views"},
+           {"--seed 12abc", "--seed"}}) {
+    const CliResult r = run(kDataset + " --meshes m -o o " + args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_THAT(r.out, HasSubstr(flag)) << args;
+    EXPECT_THAT(r.out, Not(HasSubstr("Options."))) << args;
+  }
+}
+
+TEST(DatasetCli, AnEmptyMeshFolderIsNothingToDo) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_empty_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " -o " + (dir / "out").string() + " -q");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.out, HasSubstr("nothing to do"));
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
 }
 
 }  // namespace

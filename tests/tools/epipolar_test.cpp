@@ -1,4 +1,4 @@
-// Exact two-view geometry of the line triangulator (line-cloud-extraction.md 4.2).
+// Exact two-view geometry of the line triangulator: epipolar lines, ray-plane intersection, orientation filter.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

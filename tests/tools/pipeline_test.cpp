@@ -1,5 +1,6 @@
 // Render -> LSD -> triangulation -> labels, end to end, and the lc2wf-dataset run engine (resume,
 // shards, failures).
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -7,11 +8,16 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
+#include "core/util/version.h"
+#include "dataset/atomic_file.h"
 #include "dataset/line_cloud_io.h"
 #include "dataset/synthetic_building.h"
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/pipeline/dataset_run.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -80,7 +86,7 @@ TEST(CloudBuilder, ReportsBuildingsWithoutSegmentsOrViews) {
     build_line_cloud(b, views, CloudBuilderOptions{});
     FAIL() << "expected an error";
   } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("no 2D segment"), std::string::npos) << e.what();
+    EXPECT_THAT(std::string(e.what()), HasSubstr("no 2D segment")) << e.what();
   }
   EXPECT_THROW(build_line_cloud(b, {}, CloudBuilderOptions{}), std::exception);
 }
@@ -115,9 +121,10 @@ TEST(DatasetRun, ShardsResumesAndReportsFailures) {
   EXPECT_EQ(first["done"], 2);
   ASSERT_EQ(first["failed"].size(), 1u);
   EXPECT_EQ(first["failed"][0]["name"], "c_broken");
-  EXPECT_NE(first["failed"][0]["error"].get<std::string>().find("c_broken.polyshape"), std::string::npos)
+  EXPECT_THAT(first["failed"][0]["error"].get<std::string>(), HasSubstr("c_broken.polyshape"))
       << first["failed"][0]["error"];
   EXPECT_TRUE(fs::exists(o.out / "summary.json"));
+  EXPECT_EQ(nlohmann::json::parse(read_file(o.out / "summary.json"))["commit"], lc2wf_git_commit());
   const LineCloud cloud = read_line_cloud(o.out / "clouds" / "a_rect.lcloud");
   EXPECT_EQ(cloud.cameras.size(), 14u);
   EXPECT_EQ(cloud.labels.size(), cloud.segments.size());

@@ -1,5 +1,6 @@
 // Command-line contracts of lc2wf-synthetic-data and lc2wf-infer: --help, usage errors (exit 2, naming the
 // flag), data errors (exit 1, naming the file), and a deterministic synthetic dataset.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,6 +9,8 @@
 #include <string>
 
 #include "tests/common/run_cli.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -39,19 +42,19 @@ class CliContract : public ::testing::Test {
 TEST_F(CliContract, SyntheticDataUsage) {
   auto r = run_cli(kSynthetic + " --help");
   EXPECT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("Usage: lc2wf-synthetic-data"), std::string::npos);
+  EXPECT_THAT(r.out, HasSubstr("Usage: lc2wf-synthetic-data"));
   r = run_cli(kSynthetic);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--out DIR is required"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("-o OUT is required")) << r.err;
   r = run_cli(kSynthetic + " --out x --count 5x");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--count needs a non-negative integer, got '5x'"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--count needs a non-negative integer, got '5x'")) << r.err;
   r = run_cli(kSynthetic + " --out x --count 4 --val 2 --test 2");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--count must exceed"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--count must exceed")) << r.err;
   r = run_cli(kSynthetic + " --out x --colour red");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown option '--colour'"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("unknown option '--colour'")) << r.err;
 }
 
 TEST_F(CliContract, SyntheticDataIsDeterministicAndSplitsAsAsked) {
@@ -73,21 +76,22 @@ TEST_F(CliContract, SyntheticDataIsDeterministicAndSplitsAsAsked) {
 TEST_F(CliContract, InferUsageAndDataErrors) {
   auto r = run_cli(kInfer + " --help");
   EXPECT_EQ(r.code, 0);
-  EXPECT_NE(r.out.find("Usage: lc2wf-infer"), std::string::npos);
+  EXPECT_THAT(r.out, HasSubstr("Usage: lc2wf-infer"));
   r = run_cli(kInfer + " --weights w -o out");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("no line cloud given"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("no line cloud given")) << r.err;
   r = run_cli(kInfer + " --weights w -o out --threads two c.lcloud");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--threads needs a non-negative integer"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--threads needs a non-negative integer")) << r.err;
   r = run_cli(kInfer + " --weights w -o out --format ply c.lcloud");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--format"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--format")) << r.err;
   const fs::path weights = dir_ / "no_weights";
   fs::create_directories(weights);
   r = run_cli(kInfer + " --quiet --weights " + weights.string() + " -o " + (dir_ / "out").string() + " c.lcloud");
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find((weights / "junction.safetensors").string()), std::string::npos) << r.err;
+  EXPECT_EQ(r.code, 3);
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_THAT(r.err, HasSubstr((weights / "junction.safetensors").string())) << r.err;
 }
 
 }  // namespace

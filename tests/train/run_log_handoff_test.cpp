@@ -1,4 +1,5 @@
 // The training log's rewind on resume and the predicted-junction hand-off files.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include "dataset/errors.h"
 #include "train/junction_handoff.h"
 #include "train/run_log.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -106,7 +109,7 @@ TEST(JunctionHandoff, RejectsBadFilesNamingThem) {
       read_predicted_junctions(bad);
       ADD_FAILURE() << "accepted: " << text;
     } catch (const DataError& e) {
-      EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
+      EXPECT_THAT(std::string(e.what()), HasSubstr(bad.string())) << e.what();
     }
   }
 }

@@ -1,4 +1,5 @@
 // The configs in configs/ parse, share one key set, and bad keys/values are rejected by name.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -9,6 +10,8 @@
 
 #include "train/stage_loop.h"
 #include "train/train_config.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
@@ -48,6 +51,8 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.junction.schedule.batch_size, 16);
   EXPECT_EQ(c.edge.schedule.batch_size, 32);
   EXPECT_EQ(c.edge.schedule.micro_batch, 4);  // same batch and steps; bounds the edge step's memory
+  EXPECT_FALSE(c.junction.schedule.cloud_augment.enabled);  // the paper has no cloud augmentation
+  EXPECT_FALSE(c.edge.schedule.cloud_augment.enabled);
   EXPECT_EQ(c.junction.schedule.epochs, 41);
   EXPECT_EQ(c.edge.schedule.epochs, 31);
   EXPECT_EQ(c.junction.optim.milestones, (std::vector<int64_t>{15, 30, 41}));
@@ -63,7 +68,7 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
 TEST(TrainConfig, EveryConfigHasTheSameKeys) {
   std::set<std::string> base_keys;
   collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
-  for (const char* name : {"small.json", "demo.json"}) {
+  for (const char* name : {"small.json", "demo.json", "reconstruct-quick.json", "robust.json"}) {
     std::set<std::string> keys;
     collect_keys(read_json(kConfigs / name), "", keys);
     EXPECT_EQ(keys, base_keys) << name;
@@ -79,11 +84,11 @@ TEST(TrainConfig, RoundTripsThroughJson) {
 TEST(TrainConfig, RejectsUnknownKeysByName) {
   nlohmann::json j = read_json(kConfigs / "base.json");
   j["junction"]["optim"]["learning_rate"] = 0.1;
-  EXPECT_NE(error_of(j).find("junction.optim"), std::string::npos) << error_of(j);
-  EXPECT_NE(error_of(j).find("learning_rate"), std::string::npos);
+  EXPECT_THAT(error_of(j), HasSubstr("junction.optim")) << error_of(j);
+  EXPECT_THAT(error_of(j), HasSubstr("learning_rate"));
   j = read_json(kConfigs / "base.json");
   j["epochs"] = 3;
-  EXPECT_NE(error_of(j).find("'epochs'"), std::string::npos) << error_of(j);
+  EXPECT_THAT(error_of(j), HasSubstr("'epochs'")) << error_of(j);
 }
 
 TEST(TrainConfig, RejectsBadValuesByName) {
@@ -100,6 +105,8 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"junction", "net", "lpt", "hidden_dim"}, "wide", "junction.net.lpt.hidden_dim"},
       {{"edge", "net", "lpt", "lines_per_patch"}, 63, "edge.net.lpt.lines_per_patch"},
       {{"junction", "net", "lpt", "input_dim"}, 6, "junction.net.lpt.input_dim"},
+      {{"edge", "cloud_augment", "drop_max"}, 1.5, "edge.cloud_augment.drop_max"},
+      {{"junction", "cloud_augment", "enabled"}, "yes", "junction.cloud_augment.enabled"},
   };
   for (const Case& c : cases) {
     nlohmann::json j = read_json(kConfigs / "base.json");
@@ -107,7 +114,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
     for (const auto& key : c.path) node = &(*node)[key];
     *node = c.value;
     const std::string err = error_of(j);
-    EXPECT_NE(err.find(c.expected), std::string::npos) << "expected '" << c.expected << "' in: " << err;
+    EXPECT_THAT(err, HasSubstr(c.expected)) << "expected '" << c.expected << "' in: " << err;
   }
 }
 
@@ -126,7 +133,7 @@ TEST(TrainConfig, FileErrorsNameTheFile) {
     TrainConfig::from_file(p);
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos);
+    EXPECT_THAT(std::string(e.what()), HasSubstr(p.string()));
   }
   fs::remove(p);
 }

@@ -2,6 +2,7 @@
 // checkpoints and a log whose loss goes down; a run killed with SIGKILL and resumed logs exactly the
 // losses of an uninterrupted run; lc2wf-infer and lc2wf-eval --weights produce files that parse; and
 // inference survives degenerate clouds.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -22,12 +23,19 @@
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "infer/prediction_io.h"
+#include "core/util/version.h"
 #include "tests/common/run_cli.h"
+#include "tests/common/tiny_lpt.h"
+#include "tests/train/train_log.h"
+
+using ::testing::HasSubstr;
 
 namespace lc2wf {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::log_lines;
+using testing::step_losses;
 
 std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
@@ -44,24 +52,6 @@ int run(const std::string& command) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 std::string command_output() { return read_text(kCommandLog); }
-
-std::vector<nlohmann::json> log_lines(const fs::path& p, const std::string& type) {
-  std::vector<nlohmann::json> out;
-  std::ifstream in(p);
-  std::string line;
-  while (std::getline(in, line)) {
-    const nlohmann::json j = nlohmann::json::parse(line);
-    if (j["type"] == type) out.push_back(j);
-  }
-  return out;
-}
-
-// (stage, step, loss) of every optimiser step, compared bit for bit.
-std::vector<std::tuple<std::string, int64_t, double>> step_losses(const fs::path& log) {
-  std::vector<std::tuple<std::string, int64_t, double>> out;
-  for (const auto& j : log_lines(log, "step")) out.emplace_back(j["stage"], j["step"], j["loss"]);
-  return out;
-}
 
 // (stage, epoch, train_loss) of every "epoch" line: a mid-epoch resume must log the same means.
 std::vector<std::tuple<std::string, int64_t, double>> epoch_losses(const fs::path& log) {
@@ -87,13 +77,8 @@ class TrainIntegration : public ::testing::Test {
     std::ofstream(dir_ / "train.txt") << "rect\nell\n";
     std::ofstream(dir_ / "val.txt") << "ell\n";
 
-    nlohmann::json lpt = {{"mlp_dims", {16, 16, 24}}, {"hidden_dim", 24}, {"num_heads", 2}, {"ffn_dim", 24},
-                          {"dropout", 0.1},           {"attn_dropout", 0.1}};
-    nlohmann::json junction_lpt = lpt, edge_lpt = lpt;
-    junction_lpt["patches"] = 24;
-    junction_lpt["lines_per_patch"] = 8;
-    edge_lpt["patches"] = 32;
-    edge_lpt["lines_per_patch"] = 16;
+    const testing::TinyLpt tiny = testing::tiny_lpt();
+    const nlohmann::json &junction_lpt = tiny.junction, &edge_lpt = tiny.edge;
     config_ = {{"seed", 7},
                {"threads", 2},
                {"data", {{"format", "lc2wf"}, {"dir", (dir_ / "clouds").string()},
@@ -127,8 +112,14 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   for (const char* f : {"junction.safetensors", "edge.safetensors", "checkpoints/junction_last_0.safetensors", "checkpoints/junction_last_1.safetensors",
                         "checkpoints/junction_last_0.optim.safetensors", "checkpoints/edge_last_0.safetensors",
                         "predicted_junctions/ell.json", "predicted_junctions/rect.json", "predicted_junctions/manifest.json",
-                        "config.json", "log.jsonl"})
+                        "config.json", "log.jsonl", "README.md"})
     EXPECT_TRUE(fs::exists(straight / f)) << f;
+  // The model card says which lc2wf trained the weights and what was kept.
+  std::ifstream card_file(straight / "README.md");
+  const std::string card((std::istreambuf_iterator<char>(card_file)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(card, HasSubstr(std::string("commit ") + lc2wf_git_commit()));
+  EXPECT_THAT(card, HasSubstr("| junction | `junction.safetensors` |"));
+  EXPECT_THAT(card, HasSubstr("| edge | `edge.safetensors` |"));
 
   // The loss goes down in both stages (mean of the first vs the last epoch).
   const auto epochs = log_lines(straight / "log.jsonl", "epoch");
@@ -232,18 +223,36 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
                                                 quote(hostile / "in" / "named.lcloud") + " " + quote(hostile / "in" / "fifo.lcloud") +
                                                 " " + quote(hostile / "in" / "far.lcloud") + " -o " + quote(hostile / "out"));
   EXPECT_EQ(r.code, 1) << r.err;  // the FIFO could not be read
-  EXPECT_NE(r.err.find("fifo.lcloud: is not a regular file"), std::string::npos) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("fifo.lcloud: is not a regular file")) << r.err;
   EXPECT_TRUE(fs::exists(hostile / "out" / "named.obj"));
   EXPECT_TRUE(fs::exists(hostile / "out" / "far.obj")) << r.err;
   EXPECT_FALSE(fs::exists(hostile / "escape.obj"));
   EXPECT_FALSE(fs::exists(hostile / "out" / "escape.obj"));
 
+  // Fine-tuning (config "init_weights"): both stages start from the trained weights, so their first
+  // step's loss is far below the first step from random weights; another network config is refused.
+  nlohmann::json finetune = config_;
+  finetune["init_weights"] = straight.string();
+  finetune["junction"]["epochs"] = 1;
+  finetune["edge"]["epochs"] = 1;
+  std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
+  const std::string finetune_cmd = std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "finetune.json") + " --quiet --out ";
+  ASSERT_EQ(run(finetune_cmd + quote(dir_ / "finetuned")), 0) << command_output();
+  const auto tuned_losses = step_losses(dir_ / "finetuned" / "log.jsonl");
+  ASSERT_EQ(tuned_losses.size(), 2u + 1u);
+  EXPECT_LT(std::get<2>(tuned_losses[0]), 0.5 * std::get<2>(straight_losses[0]));   // junction
+  EXPECT_LT(std::get<2>(tuned_losses[2]), 0.7 * std::get<2>(straight_losses[80]));  // edge (0.54 x measured)
+  finetune["junction"]["net"]["head"]["dims"] = {24};
+  std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
+  EXPECT_EQ(run(finetune_cmd + quote(dir_ / "mismatch")), 3);  // a data error (README: exit codes)
+  EXPECT_NE(command_output().find("init_weights"), std::string::npos) << command_output();
+
   // An --out that cannot be created is an error naming it, not an abort.
   const testing::CliResult e = testing::run_cli(std::string(LC2WF_EVAL_BIN) + " --quiet --weights " + quote(straight) + " --data " +
                                                 quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " +
                                                 quote(dir_ / "tiny.json" / "eval"));
-  EXPECT_EQ(e.code, 1) << e.err;
-  EXPECT_NE(e.err.find("tiny.json"), std::string::npos) << e.err;
+  EXPECT_EQ(e.code, 3) << e.err;
+  EXPECT_THAT(e.err, HasSubstr("tiny.json")) << e.err;
 }
 
 TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {
@@ -253,8 +262,9 @@ TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {
   const testing::CliResult r =
       testing::run_cli(std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "bad.json") + " --out " + quote(dir_ / "bad"));
   const std::string output = r.out + r.err;
-  EXPECT_EQ(r.code, 1);
-  EXPECT_NE(output.find("junction.optim.lr"), std::string::npos) << output;
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(output, HasSubstr("junction.optim.lr")) << output;
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));  // nothing written for a bad config
 }
 
 }  // namespace

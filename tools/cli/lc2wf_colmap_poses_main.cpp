@@ -6,10 +6,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/util/cli.h"
+#include "core/util/version_json.h"
+#include "core/util/workspace.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "tools/colmap/colmap_poses.h"
@@ -20,18 +23,22 @@ using lc2wf::UsageError;
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: lc2wf-colmap-poses --views DIR [options]
+constexpr const char* kUsage = R"(Usage: lc2wf-colmap-poses IMAGES_DIR [-o OUT] [options]
 
-Runs COLMAP (feature_extractor, exhaustive or sequential matcher, mapper; CPU) on the images of DIR
-(*.png, *.jpg, in name order) with fixed pinhole intrinsics and writes DIR/cameras_colmap.json (K, R, t
-per image in the OpenCV convention, null for unregistered images). Intrinsics come from --intrinsics or
-DIR/cameras.json; with DIR/cameras.json the poses are aligned to those cameras (similarity) and the
-errors are printed (per view and median/max, centre errors also relative to the camera distance),
-together with the wall time of each COLMAP step.
+Runs COLMAP (feature_extractor, exhaustive or sequential matcher, mapper; CPU) on the images of IMAGES_DIR
+(*.png, *.jpg, in name order) with fixed pinhole intrinsics and writes their cameras (K, R, t per image in
+the OpenCV convention, null for unregistered images). Intrinsics come from --intrinsics or
+IMAGES_DIR/cameras.json; with IMAGES_DIR/cameras.json the poses are aligned to those cameras (similarity)
+and the errors go into the report (per view and median/max, centre errors also relative to the camera
+distance), together with the wall time of each COLMAP step. The report (JSON) goes to stdout.
+COLMAP works in a private temporary folder, removed at the end (kept, and named, when COLMAP fails).
 
 options:
+  -o, --out OUT               cameras JSON to write (default IMAGES_DIR/cameras_colmap.json)
   --intrinsics fx,fy,cx,cy    OpenCV pixel convention (centre of the top-left pixel = 0,0)
-  --workspace DIR             COLMAP working folder (default DIR/colmap)
+  --workspace DIR             COLMAP's folder instead of a private one: it must be new, empty or one an
+                              earlier run made (it holds .lc2wf-workspace); it is never deleted
+  --keep                      keep the private workspace (its path is printed)
   --colmap PATH               COLMAP executable (default colmap)
   --matcher exhaustive|sequential
                               all image pairs (default) or only views close in name order
@@ -41,15 +48,15 @@ options:
   --abs-pose-min-inliers N    mapper: 2D-3D inliers to register a view (default 30)
   --outlier-factor F          alignment: leave views whose centre error exceeds F x the median out of
                               the similarity fit (e.g. 3; default 0 = fit all registered views)
-  --threads N                 threads of every COLMAP step (default: all cores)
-  -h, --help                  this text
-
-exit codes: 0 ok, 2 bad arguments, 3 COLMAP or I/O failure
+  -j, --threads N             threads of every COLMAP step (default: all cores)
+  -q, --quiet                 no summary line on stderr
+Exit code 3: fewer than 3 images, COLMAP failed (its log is named), or an I/O error.
 )";
 
 struct Args {
-  fs::path views, workspace;
-  std::string intrinsics;
+  fs::path views, workspace, out;
+  bool keep = false, quiet = false;
+  std::optional<Eigen::Vector4d> intrinsics;
   lc2wf::ColmapOptions colmap;
   lc2wf::AlignOptions align;
 };
@@ -59,34 +66,41 @@ Args parse_args(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     auto value = [&] { return lc2wf::flag_value(argc, argv, i); };
-    if (f == "--views") a.views = value();
+    if (f == "-o" || f == "--out") a.out = value();
     else if (f == "--workspace") a.workspace = value();
-    else if (f == "--intrinsics") a.intrinsics = value();
-    else if (f == "--colmap") a.colmap.executable = value();
+    else if (f == "--keep") a.keep = true;
+    else if (f == "-q" || f == "--quiet") a.quiet = true;
+    else if (f == "--intrinsics") {
+      const std::string v = value();
+      double fx, fy, cx, cy;
+      char tail;
+      if (std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf%c", &fx, &fy, &cx, &cy, &tail) != 4)
+        throw UsageError("--intrinsics expects fx,fy,cx,cy, got '" + v + "'");
+      a.intrinsics = Eigen::Vector4d(fx, fy, cx, cy);
+    } else if (f == "--colmap") a.colmap.executable = value();
     else if (f == "--matcher") a.colmap.matcher = value();
     else if (f == "--overlap") a.colmap.sequential_overlap = lc2wf::int_flag(f, value());
     else if (f == "--max-features") a.colmap.max_features = lc2wf::int_flag(f, value());
     else if (f == "--init-min-inliers") a.colmap.init_min_inliers = lc2wf::int_flag(f, value());
     else if (f == "--abs-pose-min-inliers") a.colmap.abs_pose_min_inliers = lc2wf::int_flag(f, value());
     else if (f == "--outlier-factor") a.align.outlier_factor = lc2wf::number_flag(f, value());
-    else if (f == "--threads") a.colmap.threads = lc2wf::int_flag(f, value());
-    else throw UsageError("unknown argument '" + f + "'");
+    else if (f == "-j" || f == "--threads") a.colmap.threads = lc2wf::threads_flag(f, value());
+    else if (!f.empty() && f[0] == '-') throw UsageError("unknown option '" + f + "'");
+    else if (a.views.empty()) a.views = f;
+    else throw UsageError("one image folder only, got '" + f + "' too");
   }
-  if (a.views.empty()) throw UsageError("--views DIR is required");
-  if (!fs::is_directory(a.views)) throw UsageError("not a folder: " + a.views.string());
-  if (a.workspace.empty()) a.workspace = a.views / "colmap";
-  try {
-    a.colmap.Check();
-    a.align.Check();
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
-  if (!a.intrinsics.empty()) {
-    double fx, fy, cx, cy;
-    if (std::sscanf(a.intrinsics.c_str(), "%lf,%lf,%lf,%lf", &fx, &fy, &cx, &cy) != 4) throw UsageError("--intrinsics expects fx,fy,cx,cy");
-  } else if (!fs::exists(a.views / "cameras.json")) {
-    throw UsageError("no intrinsics: pass --intrinsics or provide DIR/cameras.json");
-  }
+  if (a.views.empty()) throw UsageError("IMAGES_DIR is required");
+  lc2wf::check_options([&] { a.colmap.Check(); a.align.Check(); },
+                       {{"ColmapOptions.executable", "--colmap"}, {"ColmapOptions.max_features", "--max-features"},
+                        {"ColmapOptions.matcher", "--matcher"}, {"ColmapOptions.sequential_overlap", "--overlap"},
+                        {"ColmapOptions.init_min_inliers", "--init-min-inliers"},
+                        {"ColmapOptions.abs_pose_min_inliers", "--abs-pose-min-inliers"},
+                        {"AlignOptions.outlier_factor", "--outlier-factor"}});
+  // Inputs next (data errors, exit 3), before anything is written.
+  if (!fs::is_directory(a.views)) throw std::runtime_error("'" + a.views.string() + "' is not a folder");
+  if (!a.intrinsics && !fs::exists(a.views / "cameras.json"))
+    throw UsageError("no intrinsics: pass --intrinsics or provide IMAGES_DIR/cameras.json");
+  if (a.out.empty()) a.out = a.views / "cameras_colmap.json";
   return a;
 }
 
@@ -111,56 +125,60 @@ Json comparison_report(const lc2wf::PoseComparison& pc) {
 }
 
 int run(const Args& a) {
-  try {
-    std::vector<fs::path> images;
-    for (const auto& e : fs::directory_iterator(a.views)) {
-      const std::string ext = e.path().extension().string();
-      if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg")) images.push_back(e.path());
-    }
-    std::sort(images.begin(), images.end());
-    if (images.size() < 3) throw std::runtime_error(a.views.string() + ": fewer than 3 images");
-    std::vector<lc2wf::Camera> reference;
-    const fs::path cameras = a.views / "cameras.json";
-    if (fs::exists(cameras)) {
-      Json list;
-      try {
-        list = Json::parse(lc2wf::read_file(cameras));
-      } catch (const Json::exception& e) {  // e.g. "number overflow parsing '1e400'": name the file
-        throw std::runtime_error(cameras.string() + ": not valid JSON: " + e.what());
-      }
-      for (const Json& j : list) reference.push_back(lc2wf::camera_from_json(j, cameras.string()));
-      if (reference.size() != images.size())
-        throw std::runtime_error(a.views.string() + ": cameras.json has " + std::to_string(reference.size()) + " cameras for " +
-                                 std::to_string(images.size()) + " images");
-    }
-    Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-    if (!a.intrinsics.empty()) {
-      double fx, fy, cx, cy;
-      std::sscanf(a.intrinsics.c_str(), "%lf,%lf,%lf,%lf", &fx, &fy, &cx, &cy);
-      K << fx, 0, cx, 0, fy, cy, 0, 0, 1;
-    } else {
-      K = reference.front().K;
-    }
-    auto result = lc2wf::estimate_poses_with_colmap(images, K, a.workspace, a.colmap);
-    auto& poses = result.cameras;
-    Json report;
-    report["images"] = images.size();
-    report["registered"] = std::count_if(poses.begin(), poses.end(), [](const auto& p) { return p.has_value(); });
-    Json seconds = Json::object();
-    for (const auto& [step, s] : result.step_seconds) seconds[step] = s;
-    report["seconds"] = seconds;
-    if (!reference.empty()) report["comparison"] = comparison_report(lc2wf::align_to_reference(reference, poses, a.align));
-    Json out = Json::array();
-    for (const auto& p : poses) out.push_back(p ? lc2wf::camera_to_json(*p) : Json(nullptr));
-    lc2wf::write_file_atomic(a.views / "cameras_colmap.json", out.dump());
-    std::cout << report.dump(2) << std::endl;
-    return 0;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lc2wf-colmap-poses: %s\n", e.what());
-    return 3;
+  std::vector<fs::path> images;
+  for (const auto& e : fs::directory_iterator(a.views)) {
+    const std::string ext = e.path().extension().string();
+    if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg")) images.push_back(e.path());
   }
+  std::sort(images.begin(), images.end());
+  if (images.size() < 3) throw std::runtime_error(a.views.string() + ": fewer than 3 images");
+  std::vector<lc2wf::Camera> reference;
+  const fs::path cameras = a.views / "cameras.json";
+  if (fs::exists(cameras)) {
+    Json list;
+    try {
+      list = Json::parse(lc2wf::read_file(cameras));
+    } catch (const Json::exception& e) {  // e.g. "number overflow parsing '1e400'": name the file
+      throw std::runtime_error(cameras.string() + ": not valid JSON: " + e.what());
+    }
+    for (const Json& j : list) reference.push_back(lc2wf::camera_from_json(j, cameras.string()));
+    if (reference.size() != images.size())
+      throw std::runtime_error(a.views.string() + ": cameras.json has " + std::to_string(reference.size()) + " cameras for " +
+                               std::to_string(images.size()) + " images");
+  }
+  Eigen::Matrix3d K = reference.empty() ? Eigen::Matrix3d::Identity() : reference.front().K;
+  if (a.intrinsics) {
+    const Eigen::Vector4d& p = *a.intrinsics;
+    K << p(0), 0, p(2), 0, p(1), p(3), 0, 0, 1;
+  }
+  lc2wf::Workspace workspace(a.workspace, a.keep);
+  lc2wf::ColmapRun result;
+  try {
+    result = lc2wf::estimate_poses_with_colmap(images, K, workspace.root(), a.colmap);
+  } catch (const std::exception& e) {
+    workspace.keep();  // its colmap.log says why
+    throw std::runtime_error(std::string(e.what()) + " (workspace kept: " + workspace.root().string() + ")");
+  }
+  auto& poses = result.cameras;
+  Json report;
+  report["images"] = images.size();
+  report["registered"] = std::count_if(poses.begin(), poses.end(), [](const auto& p) { return p.has_value(); });
+  Json seconds = Json::object();
+  for (const auto& [step, s] : result.step_seconds) seconds[step] = s;
+  report["seconds"] = seconds;
+  if (!reference.empty()) report["comparison"] = comparison_report(lc2wf::align_to_reference(reference, poses, a.align));
+  report["cameras"] = a.out.string();
+  lc2wf::add_version_fields(report);
+  Json out = Json::array();
+  for (const auto& p : poses) out.push_back(p ? lc2wf::camera_to_json(*p) : Json(nullptr));
+  lc2wf::write_file_atomic(a.out, out.dump());
+  std::cout << report.dump(2) << std::endl;
+  if (!a.quiet)
+    std::fprintf(stderr, "lc2wf-colmap-poses: %d of %zu images registered -> %s%s\n", report["registered"].get<int>(), images.size(),
+                 a.out.string().c_str(), workspace.removed_at_exit() ? "" : (" (workspace " + workspace.root().string() + ")").c_str());
+  return lc2wf::kExitDone;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return lc2wf::cli_main("lc2wf-colmap-poses", kUsage, argc, argv, parse_args, run); }
+int main(int argc, char** argv) { return lc2wf::cli_main({"lc2wf-colmap-poses", kUsage, {}}, argc, argv, parse_args, run); }

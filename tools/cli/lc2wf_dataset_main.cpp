@@ -9,7 +9,7 @@
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: lc2wf-dataset --meshes DIR --out DIR [options]
+constexpr const char* kUsage = R"(Usage: lc2wf-dataset --meshes DIR -o OUT [options]
 
 Renders every building of DIR (*.polyshape, Roof-Image format) from a ring of oblique views, detects 2D
 segments (LSD), triangulates a 3D line cloud across the views and labels each 3D segment (f, i1, d1, i2,
@@ -17,6 +17,7 @@ d2) against the GT wireframe. Writes OUT/clouds/<name>.lcloud, OUT/status/<name>
 (OUT/summary.json, or OUT/summary-shard-<i>-of-<n>.json). Finished buildings are skipped on re-runs.
 
 options:
+  -o, --out OUT               output folder
   --renderer raster|blender   built-in software rasteriser (default) or Blender 3.4
   --views N                   views per building (default 20)
   --size WxH                  image size (default 640x480)
@@ -44,10 +45,9 @@ options:
   --min-ray-plane-angle DEG   a source ray this close to the target segment's plane gives no hypothesis (default 1)
   --neighbour-max-angle DEG   widest triangulation angle of a neighbour at the scene centre (default 60)
   --sigma-p PX                positional regulariser of the scoring, pixels (default 2.5)
-  --no-progress               no progress bar
-  -h, --help                  this text
-
-exit codes: 0 every building done, 1 some buildings failed (see the summary), 2 bad arguments, 3 fatal error
+  -q, --quiet                 no progress bar
+The summary (JSON) goes to stdout. Exit code 1: some buildings failed (each with its reason in the summary
+and in OUT/status/); 3: no building to process (an empty mesh folder or shard) or a fatal error.
 )";
 
 using lc2wf::UsageError;
@@ -66,7 +66,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
     auto value = [&] { return lc2wf::flag_value(argc, argv, i); };
     if (a == "--meshes") {
       o.meshes = value();
-    } else if (a == "--out") {
+    } else if (a == "-o" || a == "--out") {
       o.out = value();
     } else if (a == "--renderer") {
       const std::string r = value();
@@ -78,13 +78,13 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
     } else if (a == "--size") {
       std::tie(o.cameras.width, o.cameras.height) = split_pair(a, value(), 'x');
     } else if (a == "-j" || a == "--threads") {
-      o.threads = lc2wf::int_flag(a, value());
+      o.threads = lc2wf::threads_flag(a, value());
     } else if (a == "--shard") {
       std::tie(o.shard_index, o.shard_count) = split_pair(a, value(), '/');
     } else if (a == "--limit") {
       o.limit = lc2wf::int_flag(a, value());
     } else if (a == "--seed") {
-      o.seed = static_cast<uint64_t>(lc2wf::int_flag(a, value()));
+      o.seed = static_cast<uint64_t>(lc2wf::parse_count_flag(a, value()));
     } else if (a == "--keep-views") {
       o.keep_views = true;
     } else if (a == "--supersample") {
@@ -128,33 +128,48 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       o.cloud.triangulator.neighbours.max_angle_deg = lc2wf::number_flag(a, value());
     } else if (a == "--sigma-p") {
       o.cloud.triangulator.sigma_p_px = lc2wf::number_flag(a, value());
-    } else if (a == "--no-progress") {
+    } else if (a == "-q" || a == "--quiet") {
       o.progress = false;
     } else {
       throw UsageError("unknown argument '" + a + "'");
     }
   }
   if (o.meshes.empty()) throw UsageError("--meshes DIR is required");
-  if (o.out.empty()) throw UsageError("--out DIR is required");
-  try {
-    o.Check();
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(e.what());
-  }
+  if (o.out.empty()) throw UsageError("-o OUT is required");
+  lc2wf::check_options([&] { o.Check(); }, {{"CameraRingOptions.views", "--views"},
+                                            {"CameraRingOptions.width/height", "--size"},
+                                            {"RasterOptions.supersample", "--supersample"},
+                                            {"RasterOptions.blur_sigma_px", "--blur"},
+                                            {"BlenderOptions.engine", "--engine"},
+                                            {"BlenderOptions.samples", "--samples"},
+                                            {"BlenderOptions.executable", "--blender"},
+                                            {"DatasetRunOptions.blender_batch", "--blender-batch"},
+                                            {"DatasetRunOptions.threads", "-j"},
+                                            {"DatasetRunOptions.shard_index/shard_count", "--shard i/n"},
+                                            {"DatasetRunOptions.limit", "--limit"},
+                                            {"LsdOptions.min_length_frac", "--lsd-min-length"},
+                                            {"LsdOptions.max_segments", "--max-segments"},
+                                            {"LsdOptions.scale", "--lsd-scale"},
+                                            {"TriangulatorOptions.min_best_score", "--min-score"},
+                                            {"TriangulatorOptions.min_ray_plane_angle_deg", "--min-ray-plane-angle"},
+                                            {"TriangulatorOptions.sigma_p_px", "--sigma-p"},
+                                            {"NeighbourOptions.count", "--neighbours"},
+                                            {"NeighbourOptions.min/max_angle_deg", "--neighbour-max-angle"},
+                                            {"SupportLabelOptions.min_views", "--label-min-views"}});
   return o;
 }
 
 int run(const lc2wf::DatasetRunOptions& o) {
-  try {
-    const auto summary = lc2wf::run_dataset(o);
-    std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // names need not be UTF-8
-    return summary["failed"].empty() ? 0 : 1;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "lc2wf-dataset: %s\n", e.what());
-    return 3;  // fatal, distinct from 1 = some buildings failed
-  }
+  const auto summary = lc2wf::run_dataset(o);
+  std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // names need not be UTF-8
+  return summary["failed"].empty() ? lc2wf::kExitDone : lc2wf::kExitPartly;
 }
 
 }  // namespace
 
-int main(int argc, char** argv) { return lc2wf::cli_main("lc2wf-dataset", kUsage, argc, argv, parse_args, run); }
+int main(int argc, char** argv) {
+  return lc2wf::cli_main({"lc2wf-dataset", kUsage,
+                          {lc2wf::kEnvOmpThreads,
+                           {"LC2WF_BLENDER_SCRIPT", "--renderer blender: the Blender script (default: tools/blender/render_building.py of the source tree)"}}},
+                         argc, argv, parse_args, run);
+}

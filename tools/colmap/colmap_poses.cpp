@@ -12,22 +12,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/util/median.h"
 #include "dataset/errors.h"
 #include "dataset/line_meeting_point.h"
 #include "tools/process/run_process.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;
-
-namespace {
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-
-}  // namespace
 
 Vec3 common_aim_point(const std::vector<Camera>& cameras) {
   LineMeetingPoint meeting;
@@ -152,12 +143,21 @@ double run_step(const std::vector<std::string>& argv, const fs::path& log, const
   return r.seconds;
 }
 
+// What an earlier run in the same workspace left (re-runs must not mix with it): only the entries this
+// file creates, never the folder or anything else in it.
+void clear_colmap_outputs(const fs::path& workspace) {
+  if (!fs::is_directory(workspace)) return;
+  for (const char* name : {"images", "database.db", "sparse", "colmap.log"}) fs::remove_all(workspace / name);
+  for (const auto& e : fs::directory_iterator(workspace))
+    if (e.path().filename().string().rfind("model_txt_", 0) == 0) fs::remove_all(e.path());
+}
+
 }  // namespace
 
 ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
                                      const ColmapOptions& o) {
   o.Check();
-  fs::remove_all(workspace);
+  clear_colmap_outputs(workspace);
   fs::create_directories(workspace / "images");
   std::vector<std::string> names;
   for (const fs::path& p : images) {

@@ -60,7 +60,8 @@ struct ColmapRun {
 };
 
 // Runs feature_extractor, the matcher, mapper and model_converter in `workspace` on `images` (one
-// camera: intrinsics K, fixed during mapping). The mapper may build several models; the one with the
+// camera: intrinsics K, fixed during mapping). `workspace` belongs to the caller (core/util/workspace.h):
+// only what a previous call wrote there (images/, database.db, sparse/, model_txt_*, colmap.log) is replaced. The mapper may build several models; the one with the
 // most registered images is used. Throws std::runtime_error naming the failing step and its log.
 ColmapRun estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images, const Eigen::Matrix3d& K,
                                      const std::filesystem::path& workspace, const ColmapOptions& options);

@@ -12,8 +12,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
+#include "core/util/fnv1a.h"
+#include "core/util/median.h"
 #include "core/util/progress.h"
-#include "core/util/version.h"
+#include "core/util/version_json.h"
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "dataset/errors.h"
@@ -216,12 +218,6 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
   }
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 }  // namespace
 
 void DatasetRunOptions::Check() const {
@@ -240,9 +236,7 @@ void DatasetRunOptions::Check() const {
 }
 
 uint64_t building_seed(const std::string& name, uint64_t seed) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
-  return h ^ (seed * 0x9E3779B97F4A7C15ull);
+  return fnv1a64(name) ^ (seed * 0x9E3779B97F4A7C15ull);
 }
 
 std::vector<std::string> shard_names(const std::vector<std::string>& sorted, int shard_index, int shard_count, int limit) {
@@ -322,7 +316,12 @@ Json summarise(const std::vector<Json>& statuses) {
 Json run_dataset(const DatasetRunOptions& o) {
   o.Check();
   if (!fs::is_directory(o.meshes)) throw DataError(o.meshes.string(), "mesh folder does not exist");
-  const auto names = shard_names(list_polyshape_names(o.meshes), o.shard_index, o.shard_count, o.limit);
+  const std::vector<std::string> all = list_polyshape_names(o.meshes);
+  if (all.empty()) throw DataError(o.meshes.string(), "no .polyshape file: nothing to do");
+  const auto names = shard_names(all, o.shard_index, o.shard_count, o.limit);
+  if (names.empty())
+    throw DataError(o.meshes.string(), "shard " + std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count) + " of its " +
+                                           std::to_string(all.size()) + " buildings is empty: nothing to do");
   fs::create_directories(o.out / "clouds");
   fs::create_directories(o.out / "status");
   if (o.threads > 0) omp_set_num_threads(o.threads);
@@ -410,8 +409,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
   summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
   summary["command"] = o.command_line;
-  summary["lc2wf_version"] = lc2wf_version();
-  summary["commit"] = lc2wf_git_commit();
+  add_version_fields(summary);
   summary["processed_this_run"] = todo.size();
   summary["skipped_already_done"] = names.size() - todo.size();
   summary["wall_seconds_this_run"] = seconds_since(start);

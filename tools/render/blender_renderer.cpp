@@ -1,17 +1,15 @@
 #include "tools/render/blender_renderer.h"
 
-#include <sys/wait.h>
-
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
-#include <sstream>
 #include <stdexcept>
 
 #include "dataset/atomic_file.h"
 #include "dataset/camera_json.h"
 #include "dataset/errors.h"
+#include "tools/process/run_process.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;
@@ -26,12 +24,6 @@ std::string last_line(const fs::path& p) {
   while (std::getline(in, line))
     if (!line.empty()) last = line;
   return last;
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 }  // namespace
@@ -117,22 +109,20 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
   const fs::path job_path = work_dir / "job.json", log_path = work_dir / "blender.log";
   write_file_atomic(job_path, job.dump());
   const fs::path script = options.script.empty() ? default_blender_script() : options.script;
-  std::ostringstream cmd;
-  cmd << shell_quote(options.executable) << " -b --factory-startup";
-  if (options.threads > 0) cmd << " -t " << options.threads;
-  cmd << " --python-exit-code 1 --python " << shell_quote(script.string()) << " -- " << shell_quote(job_path.string()) << " > "
-      << shell_quote(log_path.string()) << " 2>&1";
-  const int status = std::system(cmd.str().c_str());
+  // An argument vector, no shell: paths with spaces or quotes reach Blender as they are.
+  std::vector<std::string> argv = {options.executable, "-b", "--factory-startup"};
+  if (options.threads > 0) argv.insert(argv.end(), {"-t", std::to_string(options.threads)});
+  argv.insert(argv.end(), {"--python-exit-code", "1", "--python", script.string(), "--", job_path.string()});
+  std::ofstream(log_path, std::ios::trunc).close();  // one batch per log, as before
+  const ProcessResult run = run_process(argv, log_path);
   std::string process_error;
-  if (status == -1) {
-    process_error = "could not start Blender (" + options.executable + ")";
-  } else if (WIFSIGNALED(status)) {
-    process_error = "Blender was killed by signal " + std::to_string(WTERMSIG(status)) + " (log: " + log_path.string() + ")";
-  } else if (WEXITSTATUS(status) == 127) {
-    process_error = "Blender executable not found: " + options.executable;
-  } else if (WEXITSTATUS(status) != 0) {
-    process_error = "Blender exited with code " + std::to_string(WEXITSTATUS(status)) + ": " + last_line(log_path) +
-                    " (log: " + log_path.string() + ")";
+  if (run.signal) {
+    process_error = "Blender was killed by signal " + std::to_string(run.signal) + " (log: " + log_path.string() + ")";
+  } else if (run.exit_code < 0) {
+    process_error = "could not start Blender (" + options.executable + ": not found or not executable)";
+  } else if (run.exit_code != 0) {
+    process_error = "Blender exited with code " + std::to_string(run.exit_code) + ": " + last_line(log_path) + " (log: " +
+                    log_path.string() + ")";
   }
   for (size_t i = 0; i < batch.size(); ++i) {
     const fs::path& dir = batch[i].out_dir;

@@ -11,7 +11,7 @@
 #include "dataset/line_obj_io.h"
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
-#include "infer/cloud_input.h"
+#include "dataset/cloud_input.h"
 
 namespace lc2wf {
 namespace {

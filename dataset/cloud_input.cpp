@@ -1,5 +1,6 @@
-#include "infer/cloud_input.h"
+#include "dataset/cloud_input.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -66,18 +67,24 @@ LineCloud load_line_cloud(const fs::path& path, CloudFormat format, double raw_p
   return cloud;
 }
 
-fs::path find_cloud_file(const fs::path& dir, const std::string& name) {
+std::optional<fs::path> find_cloud_file_if_any(const fs::path& dir, const std::string& name) {
   std::vector<fs::path> hits;
   std::error_code ec, type_ec;
   // Not only regular files: a FIFO or device under the name is then refused by the reader, naming it.
   for (const auto& entry : fs::directory_iterator(dir, ec))
     if ((!entry.is_directory(type_ec) || is_limap_tracks_dir(entry.path())) && entry.path().stem() == name) hits.push_back(entry.path());
   if (ec) throw DataError(dir.string(), "cannot list folder: " + ec.message());
-  if (hits.empty()) throw DataError(dir.string(), "no line-cloud file for building '" + name + "'");
+  std::sort(hits.begin(), hits.end());
   if (hits.size() > 1)
     throw DataError(dir.string(), "building '" + name + "' has several files (" + hits[0].filename().string() + ", " +
-                                      hits[1].filename().string() + ")");
+                                      hits[1].filename().string() + "); keep one line cloud per building");
+  if (hits.empty()) return std::nullopt;
   return hits[0];
+}
+
+fs::path find_cloud_file(const fs::path& dir, const std::string& name) {
+  if (auto path = find_cloud_file_if_any(dir, name)) return *path;
+  throw DataError(dir.string(), "no line-cloud file for building '" + name + "'");
 }
 
 }  // namespace lc2wf

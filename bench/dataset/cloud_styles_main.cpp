@@ -1,0 +1,77 @@
+// lc2wf-cloud-styles: the same held-out buildings as clouds of three kinds, to measure how a model
+// trained on one extractor's clouds serves others (bench/robustness.sh scores a model on each).
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "core/util/cli.h"
+#include "dataset/line3dpp_io.h"
+#include "dataset/line_cloud_io.h"
+#include "dataset/long_fragment_cloud.h"
+#include "dataset/mesh_io.h"
+#include "dataset/rng.h"
+#include "dataset/splits.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace lc2wf;
+
+const char* kUsage = R"(Usage: lc2wf-cloud-styles --data DIR --split FILE -o OUT [--seed S] [-q]
+
+For every building of FILE, reads DIR/<name>.lcloud (a labelled cloud of lc2wf-dataset) and writes
+  OUT/own/<name>.lcloud       the cloud as it is
+  OUT/line3dpp/<name>.txt     the same segments through the Line3D++ .txt writer and reader path
+  OUT/long/<name>.lcloud      every GT edge as 2-5 long fragments with 2 cm noise, plus half of the
+                              cloud's non-edge lines (dataset/long_fragment_cloud.h)
+  OUT/gt/<name>.obj           the ground truth in metres, for lc2wf-eval --gt
+Deterministic for a seed and the split's order.
+
+  --data DIR     labelled line clouds
+  --split FILE   building names, one per line
+  -o, --out DIR  output folder
+  --seed S       seed of the long fragments (default 1555)
+  -q, --quiet    no summary line
+)";
+
+struct Args {
+  fs::path data, split, out;
+  uint64_t seed = 1555;
+  bool quiet = false;
+};
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    if (f == "--data") a.data = flag_value(argc, argv, i);
+    else if (f == "--split") a.split = flag_value(argc, argv, i);
+    else if (f == "-o" || f == "--out") a.out = flag_value(argc, argv, i);
+    else if (f == "-q" || f == "--quiet") a.quiet = true;
+    else if (f == "--seed") a.seed = static_cast<uint64_t>(parse_count_flag(f, flag_value(argc, argv, i)));
+    else throw UsageError("unknown option '" + f + "'");
+  }
+  if (a.data.empty() || a.split.empty() || a.out.empty()) throw UsageError("--data, --split and -o are required");
+  return a;
+}
+
+int run(const Args& a) {
+  const auto names = read_name_list(a.split);  // before OUT is made: a bad split writes nothing
+  if (names.empty()) throw std::runtime_error(a.split.string() + ": names no building (nothing to do)");
+  for (const char* kind : {"own", "line3dpp", "long", "gt"}) fs::create_directories(a.out / kind);
+  for (size_t i = 0; i < names.size(); ++i) {
+    const std::string& name = names[i];
+    const LineCloud cloud = read_line_cloud(a.data / (name + ".lcloud"));
+    write_line_cloud(a.out / "own" / (name + ".lcloud"), cloud);
+    write_line3dpp_txt(a.out / "line3dpp" / (name + ".txt"), cloud);
+    write_line_cloud(a.out / "long" / (name + ".lcloud"), make_long_fragment_cloud(cloud, LongFragmentOptions{}, mix_seed(a.seed, i)));
+    write_obj_wireframe(a.out / "gt" / (name + ".obj"), cloud.wireframe);
+  }
+  if (!a.quiet) std::fprintf(stderr, "lc2wf-cloud-styles: %zu buildings -> %s\n", names.size(), a.out.string().c_str());
+  return kExitDone;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return lc2wf::cli_main({"lc2wf-cloud-styles", kUsage, {}}, argc, argv, parse_args, run); }

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# How one model serves clouds of other statistics (issue: robust to the cloud's statistics). For the
+# buildings of SPLIT, makes three kinds of cloud with lc2wf-cloud-styles (our own; the same segments
+# through the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter), scores
+# WEIGHTS on each with lc2wf-eval and prints a Markdown table (vAP/sAP avg, WED, mean junctions/edges).
+#
+#   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS]     CLOUDS: labelled clouds (default runs/dataset/clouds)
+#
+# Run it on held-out buildings (e.g. configs/splits/test.txt or a subset) for each model to compare.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${LC2WF_BUILD_DIR:-$root/build}
+[[ $# -ge 3 ]] || { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+weights=$1 split=$2 out=$3 clouds=${4:-$root/runs/dataset/clouds}
+
+"$build/bench/dataset/lc2wf-cloud-styles" --data "$clouds" --split "$split" -o "$out/clouds"
+eval_style() {  # eval_style STYLE [extra lc2wf-eval flags]
+  local style=$1
+  shift
+  "$build/infer/lc2wf-eval" --weights "$weights" --data "$out/clouds/$style" --split "$split" --out "$out/$style" \
+    --method "$style" --quiet "$@" >/dev/null
+}
+eval_style own
+eval_style line3dpp --format line3dpp --gt "$out/clouds/gt"
+eval_style long
+
+/usr/bin/python3 - "$out" <<'PY'
+import csv, json, statistics, sys
+from pathlib import Path
+out = Path(sys.argv[1])
+labels = {"own": "our clouds (lc2wf-dataset)", "line3dpp": "same segments via Line3D++ .txt",
+          "long": "long fragments from the GT + clutter"}
+print("| clouds | vAP avg | sAP avg | WED total (Dist) | junctions / building | edges / building |")
+print("|---|---|---|---|---|---|")
+for style, label in labels.items():
+    m = json.load(open(out / style / "metrics.json"))
+    rows = list(csv.DictReader(open(out / style / "per_building.csv")))
+    def mean_of(key):
+        return statistics.mean(float(r[key]) for r in rows) if rows else float("nan")
+    print(f"| {label} | {100 * m['vertex_avg']['ap']:.1f} | {100 * m['edge_avg']['ap']:.1f} | {m['wed']['total_dist']:.3f} | "
+          f"{mean_of('pred_vertices'):.1f} | {mean_of('pred_edges'):.1f} |")
+PY
