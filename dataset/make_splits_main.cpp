@@ -61,6 +61,10 @@ Args parse_args(int argc, char** argv) {
 int run(const Args& a) {
   const auto names = list_polyshape_names(a.meshes);
   if (names.empty()) throw std::runtime_error(a.meshes.string() + ": no .polyshape file: nothing to split");
+  // Checked here to name the folder and the flags (make_splits can only name its own fields).
+  if (names.size() < static_cast<size_t>(a.rule.test_count) + static_cast<size_t>(a.rule.val_count))
+    throw std::runtime_error(a.meshes.string() + ": " + std::to_string(names.size()) + " building(s), fewer than --test " +
+                             std::to_string(a.rule.test_count) + " + --val " + std::to_string(a.rule.val_count));
   const Splits s = make_splits(names, a.rule);
   fs::create_directories(a.out);
   write_name_list(a.out / "train.txt", s.train);

@@ -171,9 +171,11 @@ int run(const Args& a) {
   const std::vector<std::string> names = a.split.empty() ? list_ground_truth_names(source) : read_name_list(a.split);
   if (names.empty())
     throw std::runtime_error("no buildings to evaluate (" + (a.split.empty() ? source.dir : a.split).string() + " lists none)");
+  // Where the names came from, for the errors about them: a name from a split list is the list's problem.
+  const std::string listed = a.split.empty() ? std::string() : " listed in " + a.split.string();
   if (a.weights.empty() && std::none_of(names.begin(), names.end(), [&](const std::string& n) { return fs::exists(a.pred / (n + ".obj")); }))
-    throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings has a prediction in " +
-                             a.pred.string());
+    throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings" + listed +
+                             " has a prediction in " + a.pred.string());
 
 #if LC2WF_EVAL_WITH_WEIGHTS
   if (!a.weights.empty()) {
@@ -213,7 +215,7 @@ int run(const Args& a) {
     const auto gt_path = find_ground_truth(source, name);
     if (!gt_path) {
       if (progress) progress->finish();
-      throw std::runtime_error("no ground truth for building '" + name + "' in " + source.dir.string());
+      throw std::runtime_error("no ground truth for building '" + name + "'" + listed + " in " + source.dir.string());
     }
     const GroundTruth gt = load_ground_truth(source, *gt_path);
     const fs::path pred_path = a.pred / (name + ".obj");
@@ -235,9 +237,14 @@ int run(const Args& a) {
                              names, building3d};
   write_eval_outputs(a.out, report, a.method, &b3d);
   const auto missing = report.missing_predictions();
-  if (!missing.empty())
-    std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings have no prediction in %s (scored as empty)\n",
-                 missing.size(), names.size(), a.pred.string().c_str());
+  if (!missing.empty()) {
+    // Exit 1 names what was skipped (the first 20; metrics.json lists them all).
+    std::string shown;
+    for (size_t k = 0; k < std::min<size_t>(missing.size(), 20); ++k) shown += " '" + missing[k] + "'";
+    if (missing.size() > 20) shown += " ...";
+    std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings%s have no prediction in %s (scored as empty):%s\n",
+                 missing.size(), names.size(), listed.c_str(), a.pred.string().c_str(), shown.c_str());
+  }
   std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method)).c_str(), stdout);
   std::fprintf(stderr, "lc2wf-eval: wrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),
                (a.out / "metrics.json").string().c_str(), (a.out / "per_building.csv").string().c_str());

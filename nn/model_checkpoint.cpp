@@ -1,6 +1,8 @@
 #include "nn/model_checkpoint.h"
 
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "nn/checkpoint.h"
 
@@ -18,12 +20,26 @@ void check_stored(const Config& config, const std::filesystem::path& path) {
   }
 }
 
+// A weight that is NaN or inf makes every prediction non-finite: refused here, naming the file and the
+// tensor, instead of failing later on each cloud with a message about junction candidates.
+void check_finite(const Module& net, const std::filesystem::path& path) {
+  for (const auto& [name, tensor] : net.named_parameters()) {
+    if (tensor.dtype() != DType::F32) continue;
+    const float* v = tensor.data<float>();
+    for (int64_t i = 0; i < tensor.numel(); ++i)
+      if (!std::isfinite(v[i]))
+        throw std::runtime_error(path.string() + ": tensor '" + name + "' holds a non-finite value (element " + std::to_string(i) +
+                                 "): not a usable model");
+  }
+}
+
 template <class Net, class Config>
 std::unique_ptr<Net> load_net(const std::filesystem::path& path, const std::string& stage) {
   const Config config = Config::from_json(stored_net_config(path, stage), path.string() + ": net");
   check_stored(config, path);
   auto net = std::make_unique<Net>(config);
   load_checkpoint(path, *net, nullptr, nullptr);
+  check_finite(*net, path);
   net->eval();
   return net;
 }

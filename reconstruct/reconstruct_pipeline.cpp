@@ -201,7 +201,9 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   }
   for (const Segment3& s : cloud.segments)
     if (!within_coordinate_limit(s.a) || !within_coordinate_limit(s.b))  // e.g. --scale 1e20
-      throw StageError("frame", "the scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source +
+      throw StageError("frame", "the scale " + std::to_string(frame.to_metric.scale) + " m/unit (" +
+                                    (frame.scale_source == "given" ? std::string("--scale") :
+                                     frame.scale_source == "known distance" ? std::string("--known-distance") : frame.scale_source) +
                                     ") puts the cloud beyond +-1e9 m");
   report["frame"] = {{"to_metric", similarity_json(frame.to_metric)}, {"up_input", vec_json(frame.up_input)},
                      {"up_source", frame.up_source}, {"vertical_lines", frame.vertical_lines},

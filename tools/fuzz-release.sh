@@ -13,7 +13,7 @@ LC2WF_WITH_SANITIZERS=1 "$root/tools/setup-deps.sh"
 generator=()
 [[ ! -f "$build/CMakeCache.txt" ]] && command -v ninja >/dev/null && generator=(-G Ninja)
 cmake -S "$root" -B "$build" "${generator[@]}" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DLC2WF_FUZZ=ON -DLC2WF_BUILD_TESTS=OFF -DLC2WF_BUILD_BENCH=OFF -DLC2WF_ONLY="core;nn;dataset;infer;train" >/dev/null
+  -DLC2WF_FUZZ=ON -DLC2WF_BUILD_TESTS=OFF -DLC2WF_BUILD_BENCH=OFF -DLC2WF_ONLY=core >/dev/null
 nice -n 10 cmake --build "$build" -j "$(nproc)" --target lc2wf_fuzzers
 if [[ -n "${LC2WF_FUZZ_ONLY:-}" ]]; then
   # run.sh runs every fuzz_* in its folder: give it a folder holding only the chosen one.

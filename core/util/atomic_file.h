@@ -14,12 +14,21 @@
 
 namespace lc2wf {
 
-// Calls write(stream) on a temporary sibling of `path`, then renames it to `path`.
+// Calls write(stream) on a temporary sibling of `path`, then renames it to `path`. A `path` that is a folder,
+// FIFO, socket or device is refused: it is never replaced.
 inline void write_file_atomically(const std::filesystem::path& path,
                                   const std::function<void(std::ostream&)>& write,
                                   std::ios::openmode mode = std::ios::binary) {
   namespace fs = std::filesystem;
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
+  // The rename below replaces whatever has the name: as root, `-o /dev/null` turned the device into a file.
+  std::error_code type_ec;
+  const fs::file_type existing = fs::symlink_status(path, type_ec).type();
+  if (existing == fs::file_type::directory)
+    throw std::runtime_error(path.string() + ": is a directory, not replaced by a file");
+  if (existing != fs::file_type::not_found && existing != fs::file_type::none && existing != fs::file_type::regular &&
+      existing != fs::file_type::symlink)
+    throw std::runtime_error(path.string() + ": is not a regular file (a FIFO, socket or device), not replaced");
   // Unique per process and call, so threads writing different files never share a temporary name.
   static std::atomic<unsigned> counter{0};
   // The target's name is cut so the temporary name stays within the 255-byte NAME_MAX of a long target name.

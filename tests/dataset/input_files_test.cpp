@@ -83,6 +83,30 @@ TEST(InputFiles, AtomicWriteOfAMaximalFileName) {
   fs::remove_all(dir);
 }
 
+// An output path that is a FIFO or a folder is refused and left as it was: the rename of the temporary
+// replaced it (as root, `lc2wf-cloud-convert -o /dev/null` turned the device into a regular file).
+TEST(InputFiles, AtomicWriteNeverReplacesAFifoOrAFolder) {
+  const fs::path dir = test::scratch_dir("atomic_special");
+  const fs::path fifo = dir / "out.txt", folder = dir / "out";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_directories(folder);
+  for (const fs::path& target : {fifo, folder}) {
+    try {
+      write_file_atomic(target, "data");
+      ADD_FAILURE() << target << " was replaced";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(target.string()), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("not replaced"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_directory(folder));
+  int entries = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+  EXPECT_EQ(entries, 2) << "temporary file left behind";
+  fs::remove_all(dir);
+}
+
 // A full disk (here a file-size limit, EFBIG like ENOSPC) fails the write, keeps the previous file intact
 // and leaves no temporary behind: the promise behind every "no partial file after a crash" in RELIABILITY.md.
 TEST(InputFiles, AtomicWriteOnAFullDiskKeepsThePreviousFile) {

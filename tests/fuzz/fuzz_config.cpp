@@ -1,12 +1,9 @@
-// JSON configs: the network, loss and optimiser sections (nn) and, when train is built, the whole
-// lc2wf-train config.
+// JSON configs: the network, loss and optimiser sections (nn) and the whole lc2wf-train config.
 #include <nlohmann/json.hpp>
 
 #include "fuzz_common.h"
 #include "nn/config.h"
-#if LC2WF_FUZZ_WITH_TRAIN
 #include "train/train_config.h"
-#endif
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   lc2wf::fuzz::expect_clean_rejection([&] {
@@ -14,9 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     lc2wf::fuzz::expect_clean_rejection([&] { lc2wf::JunctionNetConfig::from_json(j, "net").Check(); });
     lc2wf::fuzz::expect_clean_rejection([&] { lc2wf::EdgeNetConfig::from_json(j, "net").Check(); });
     lc2wf::fuzz::expect_clean_rejection([&] { lc2wf::OptimConfig::from_json(j, "optim").Check(); });
-#if LC2WF_FUZZ_WITH_TRAIN
     lc2wf::fuzz::expect_clean_rejection([&] { (void)lc2wf::TrainConfig::from_json(j); });
-#endif
   });
   return 0;
 }

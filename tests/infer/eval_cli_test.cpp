@@ -64,7 +64,9 @@ TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {
                                          " --units raw --strict-wed --method box");
   ASSERT_EQ(r.code, 1) << r.err;  // scored, but one building had no prediction
   EXPECT_THAT(r.out, HasSubstr("| box | 50.0/50.0 |")) << r.out;
-  EXPECT_THAT(r.err, HasSubstr("1 of 2 buildings have no prediction")) << r.err;
+  // Exit 1 names what it skipped and where the name came from (it named neither before).
+  EXPECT_THAT(r.err, HasSubstr("1 of 2 buildings listed in " + (dir.path() / "split.txt").string() + " have no prediction in " +
+                               pred.string() + " (scored as empty): 'b2'"));
   const auto j = nlohmann::json::parse(testing::read_text(out / "metrics.json"));
   EXPECT_EQ(j["missing_predictions"], nlohmann::json::array({"b2"}));
   EXPECT_DOUBLE_EQ(j["vertex"][0]["ap"].get<double>(), 0.5);  // 8 of 16 GT vertices, all exact, scores 1
@@ -129,7 +131,7 @@ TEST(EvalCli, BadInputsAreDataErrorsNamingTheProblem) {
   testing::write_text(pred / "b1.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
   const CliResult no_gt = run_eval(dir.path(), base + " --split " + (dir.path() / "split.txt").string());
   EXPECT_EQ(no_gt.code, 3);
-  EXPECT_THAT(no_gt.err, HasSubstr("ghost")) << no_gt.err;
+  EXPECT_THAT(no_gt.err, HasSubstr("no ground truth for building 'ghost' listed in " + (dir.path() / "split.txt").string()));
   EXPECT_FALSE(fs::exists(dir.path() / "o" / "metrics.json"));
 }
 

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <string>
@@ -12,6 +13,7 @@
 #include "nn/checkpoint.h"
 #include "nn/junction_net.h"
 #include "nn/losses.h"
+#include "nn/model_checkpoint.h"
 #include "nn/safetensors.h"
 
 using ::testing::HasSubstr;
@@ -220,6 +222,28 @@ TEST(Checkpoint, MissingExtraAndMisshapedTensorsAreNamed) {
 
   write_safetensors(path, NamedTensors(file.tensors.begin(), file.tensors.end()), {{"format", "other"}});
   EXPECT_THAT(load_error(path, net), HasSubstr("not an lc2wf checkpoint"));
+  fs::remove_all(dir);
+}
+
+// Regression: junction weights holding a NaN loaded fine; every cloud then failed in lc2wf-infer with
+// "select_junctions: candidate 0 has a non-finite value", naming the cloud, not the weights (found by
+// the adversarial corpus).
+TEST(Checkpoint, AModelWithANonFiniteWeightIsRefusedNamingTheTensor) {
+  const fs::path dir = temp_dir("non_finite");
+  const JunctionNetConfig config = tiny_config();
+  JunctionNet net(config, 1);
+  const fs::path path = dir / "junction.safetensors";
+  save_checkpoint(path, net, {{"stage", "junction"}, {"net", config.to_json()}}, net.dropout_rng(), nullptr, {});
+  EXPECT_NO_THROW(load_junction_net(path));
+  SafetensorsFile file = read_safetensors(path);
+  file.tensors.at("cls_head.out.weight").data<float>()[1] = std::nanf("");
+  write_safetensors(path, NamedTensors(file.tensors.begin(), file.tensors.end()), file.metadata);
+  try {
+    load_junction_net(path);
+    ADD_FAILURE() << "a NaN weight was loaded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(e.what(), HasSubstr(path.string() + ": tensor 'cls_head.out.weight' holds a non-finite value (element 1)"));
+  }
   fs::remove_all(dir);
 }
 

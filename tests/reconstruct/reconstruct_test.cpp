@@ -185,7 +185,8 @@ TEST_F(Reconstruct, AScaleThatLeavesTheCoordinateLimitIsAFrameError) {
   o.cameras = scene_->cameras_json;
   o.frame.scale = 1e20;
   o.scale_given = true;
-  expect_stage_error(o, "frame", "m/unit (given) puts the cloud beyond +-1e9 m");
+  // The message names the flag the user typed (it said "given").
+  expect_stage_error(o, "frame", "m/unit (--scale) puts the cloud beyond +-1e9 m");
 }
 
 TEST_F(Reconstruct, HostileCameraFilesAreNamed) {

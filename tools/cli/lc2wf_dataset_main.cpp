@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/util/cli.h"
+#include "core/util/json_text.h"
 #include "tools/pipeline/dataset_run.h"
 
 namespace {
@@ -161,7 +162,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
 
 int run(const lc2wf::DatasetRunOptions& o) {
   const auto summary = lc2wf::run_dataset(o);
-  std::cout << summary.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << std::endl;  // names need not be UTF-8
+  std::cout << lc2wf::json_text(summary, 2) << std::endl;  // names need not be UTF-8
   return summary["failed"].empty() ? lc2wf::kExitDone : lc2wf::kExitPartly;
 }
 

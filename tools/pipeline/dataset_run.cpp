@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "core/util/fnv1a.h"
+#include "core/util/json_text.h"  // mesh names and error texts need not be UTF-8
 #include "core/util/median.h"
 #include "core/util/progress.h"
 #include "core/util/version_json.h"
@@ -37,9 +38,6 @@ using Clock = std::chrono::steady_clock;
 const std::vector<double> kLengthBins = {0.1, 0.25, 0.5, 0.75, 1.0, 1.5, 2.0};
 
 fs::path cloud_path(const fs::path& out, const std::string& name) { return out / "clouds" / (name + ".lcloud"); }
-// Mesh names and error texts may hold bytes that are not UTF-8: replaced, since a throwing dump() inside
-// a worker would abort the whole run (and every re-run).
-std::string json_text(const Json& j, int indent) { return j.dump(indent, ' ', false, Json::error_handler_t::replace); }
 
 fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
 

@@ -12,7 +12,7 @@ import hostile
 
 @dataclass
 class Special:
-    kind: str  # fifo | dir | devzero | sparse | loop | missing
+    kind: str  # fifo | dir | devzero | sparse | loop | missing | null (a device node like /dev/null)
 
 
 @dataclass
@@ -23,6 +23,10 @@ class Case:
     names: list = field(default_factory=list)  # paths under C an error message must name (any one)
     flag: str = ""                             # a flag case: the error must name this flag
     allowed: list = field(default_factory=lambda: ["out"])  # folders under C the command may write to
+    # Exit codes that keep the convention (0 done, 1 partly failed, 2 usage, 3 data or I/O error): a hostile
+    # file is never a usage error; empty means {0, 1, 3} for files and {0, 1, 2, 3} for flag values.
+    exits: tuple = ()
+    also_named: list = field(default_factory=list)  # other words that name the problem well enough
     timeout: float = 30
     id: str = ""
 
@@ -136,7 +140,7 @@ def eval_cases(fx, rng, n):
 
 def dataset(fx, rng, n):
     argv = [exe("lc2wf-dataset"), "--meshes", "{C}/in/meshes", "--out", "{C}/out", "--views", "6", "--size", "128x96", "-j", "1",
-            "--no-progress"]
+            "--quiet"]
     cases = file_cases("dataset/polyshape", "in/meshes/b.polyshape", fx.seeds["polyshape"], rng, n, argv, timeout=60)
     cases += name_cases("dataset/names", "in/meshes", ".polyshape", fx.seeds["polyshape"], lambda rel: argv, timeout=60)
     return cases
@@ -183,15 +187,22 @@ def reconstruct(fx, rng, n):
 
 
 def make_splits(fx, rng, n):
-    argv = [exe("lc2wf-make-splits"), "--data", "{C}/in/meshes", "--out", "{C}/out", "--test", "1", "--val", "1"]
-    return name_cases("make_splits/names", "in/meshes", ".polyshape", fx.seeds["polyshape"], lambda rel: argv)
+    argv = [exe("lc2wf-make-splits"), "--meshes", "{C}/in/meshes", "-o", "{C}/out", "--test", "1", "--val", "1"]
+    cases = name_cases("make_splits/names", "in/meshes", ".polyshape", fx.seeds["polyshape"], lambda rel: argv)
+    for case in cases:  # two more buildings, so one test and one validation building can be drawn
+        case.files.update({"in/meshes/b1.polyshape": fx.seeds["polyshape"], "in/meshes/b2.polyshape": fx.seeds["polyshape"]})
+    # Too few buildings for the split: the error names the folder and the flags.
+    cases.append(Case("make_splits/names", argv[:-4] + ["--test", "2", "--val", "1"], {"in/meshes/b.polyshape": fx.seeds["polyshape"]},
+                      ["in/meshes"]))
+    return cases
 
 
 def colmap_poses(fx, rng, n):
     images = fixture_images(fx, "in/views")
-    argv = [exe("lc2wf-colmap-poses"), "--views", "{C}/in/views", "--colmap", "/bin/false", "--threads", "1"]
+    argv = [exe("lc2wf-colmap-poses"), "{C}/in/views", "--colmap", "/bin/false", "--threads", "1"]
+    # /bin/false stands in for COLMAP: a cameras.json that is accepted ends in "COLMAP ... failed", named.
     return file_cases("colmap_poses/cameras_json", "in/views/cameras.json", fx.seeds["cameras_json"], rng, n // 2, argv,
-                      extra_files=images, allowed=["in/views"])
+                      extra_files=images, allowed=["in/views"], also_named=["COLMAP"])
 
 
 # Flag values a command line must refuse by name (exit 2) or accept: NaN, Inf, overflow, empty, junk.
@@ -205,7 +216,7 @@ def flags(fx, rng, n):
                         ["--threads", "--units", "--format"]),  # --preview's value is an output path by design
         "lc2wf-eval": ([exe("lc2wf-eval"), "--pred", "{F}/pred", "--data", "{F}/synth/clouds", "--split", "{F}/one.txt", "--out",
                         "{C}/out", "--quiet"], ["--ties", "--units", "--method", "--format"]),
-        "lc2wf-dataset": ([exe("lc2wf-dataset"), "--meshes", "{F}/meshes", "--out", "{C}/out", "--no-progress", "-j", "1"],
+        "lc2wf-dataset": ([exe("lc2wf-dataset"), "--meshes", "{F}/meshes", "--out", "{C}/out", "--quiet", "-j", "1"],
                           ["--views", "--size", "--supersample", "--blur", "--seed", "--shard", "--limit", "--lsd-scale", "--min-score",
                            "--max-segments", "--sigma-p", "--neighbours", "--threads"]),
         "lc2wf-reconstruct": ([exe("lc2wf-reconstruct"), "{F}/images", "--weights", "{F}/weights", "-o", "{C}/out", "--quiet",
@@ -215,7 +226,7 @@ def flags(fx, rng, n):
         "lc2wf-cloud-convert": ([exe("lc2wf-cloud-convert"), cloud, "-o", "{C}/out/c.txt"], ["--to"]),
         "lc2wf-train": ([exe("lc2wf-train"), "{F}/config.json", "--out", "{C}/out", "--quiet"], ["--stage"]),
         "lc2wf-synthetic-data": ([exe("lc2wf-synthetic-data"), "--out", "{C}/out", "--quiet"], ["--count", "--val", "--test", "--seed"]),
-        "lc2wf-make-splits": ([exe("lc2wf-make-splits"), "--data", "{F}/meshes", "--out", "{C}/out", "--test", "0", "--val", "0"],
+        "lc2wf-make-splits": ([exe("lc2wf-make-splits"), "--meshes", "{F}/meshes", "-o", "{C}/out", "--test", "0", "--val", "0"],
                               ["--seed", "--test", "--val"]),
     }
     extra = {"--size": ["0x0", "100000x100000", "96x", "x72", "-5x5", "1e3x1e3"], "--shard": ["3/2", "0/0", "-1/2", "1/99999999999999999999"],
@@ -226,12 +237,14 @@ def flags(fx, rng, n):
         for f in names:
             for v in BAD_VALUES + extra.get(f, []):
                 cases.append(Case("flags/" + name, argv + [f, v], flag=f, timeout=60))
-        # Output paths that cannot be folders: under a file, a device, /proc. cloud-convert's -o names a file,
-        # so overwriting in/file is what it was asked to do.
-        for v in ("{C}/in/file", "{C}/in/file/sub", "/dev/null", "/proc/version"):
+        # Output paths that cannot be folders: under a file, a device (a node like /dev/null made in the case
+        # folder, so a command that replaces it harms nothing), /proc. cloud-convert's -o names a file, so
+        # overwriting in/file is what it was asked to do.
+        for v in ("{C}/in/file", "{C}/in/file/sub", "{C}/in/null", "/proc/version"):
             out = [a if a != "{C}/out" and a != "{C}/out/c.txt" else v for a in argv]
-            allowed = ["out", "in/file"] if name == "lc2wf-cloud-convert" else ["out"]
-            cases.append(Case("flags/" + name, out, {"in/file": b"x"}, flag="", timeout=60, allowed=allowed))
+            convert_onto_file = name == "lc2wf-cloud-convert" and v == "{C}/in/file"
+            cases.append(Case("flags/" + name, out, {"in/file": b"x", "in/null": Special("null")}, flag="", timeout=60,
+                              allowed=["out", "in/file"] if convert_onto_file else ["out"], exits=(0,) if convert_onto_file else (3,)))
     return cases
 
 

@@ -88,7 +88,7 @@ class Fixtures:
         (r / "meshes/b.polyshape").write_bytes((CORPUS / "polyshape/gable_box.seed").read_bytes())
         # Six rendered views of the gable box and their exact cameras: what lc2wf-reconstruct runs on.
         self._run(self.exe["lc2wf-dataset"], "--meshes", r / "meshes", "--out", r / "rendered", "--views", "6", "--size", "160x120",
-                  "-j", "1", "--no-progress", "--keep-views")
+                  "-j", "1", "--quiet", "--keep-views")
         names = sorted(p.name for p in (r / "rendered/views/b").glob("*.png"))
         shutil.copytree(r / "rendered/views/b", r / "images", ignore=shutil.ignore_patterns("*.json"))
         shutil.copy(r / "rendered/views/b/cameras.json", r / "cameras.json")

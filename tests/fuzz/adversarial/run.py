@@ -65,6 +65,11 @@ def materialise(case, cdir, fx, esc):
                     f.truncate((5 << 30) + 7)  # over the 4 GiB input limit, no disk used
             elif data.kind == "loop":
                 os.symlink(p.name, p)
+            elif data.kind == "null":
+                try:  # the device numbers of /dev/null; a FIFO when not allowed to make devices
+                    os.mknod(p, 0o666 | stat.S_IFCHR, os.makedev(1, 3))
+                except PermissionError:
+                    os.mkfifo(p)
             continue
         data = data.replace(b"{C}", os.fsencode(str(cdir))).replace(b"{F}", fx.encode()).replace(b"{ESC}", esc.encode())
         p.write_bytes(data)
@@ -143,13 +148,16 @@ def check(case, result, stderr, created, size):
         problems.append("hang: killed after %.0f s" % case.timeout)
     elif result["exit"] < 0:
         problems.append("crash: signal %d" % -result["exit"])
-    elif result["exit"] >= 128:
-        problems.append("crash: exit %d" % result["exit"])
+    elif result["exit"] >= 128:  # GNU time's 128 + N for a command killed by signal N
+        problems.append("crash: signal %d" % (result["exit"] - 128))
     if created:
         problems.append("wrote outside the output folder: " + ", ".join(os.fsdecode(p) for p in sorted(created)[:3]))
     bound = max(256, 4 * size / MB)
     if result["rss_mb"] > bound:
         problems.append("memory: peak RSS %.0f MB > %.0f MB" % (result["rss_mb"], bound))
+    expected = case.exits or ((0, 1, 2, 3) if case.flag else (0, 1, 3))
+    if not result["timed_out"] and 0 <= result["exit"] < 128 and result["exit"] not in expected:
+        problems.append("exit %d, expected %s" % (result["exit"], " or ".join(map(str, expected))))
     unclear = ""
     # lc2wf-reconstruct's exit 1 is "done, with warnings" (its --help); every other non-zero exit is an error.
     warned = result["exit"] == 1 and case.argv[0] == "{X:lc2wf-reconstruct}"
@@ -158,12 +166,43 @@ def check(case, result, stderr, created, size):
         # A missing file found by listing a folder can only be reported through the folder.
         wanted += [os.fsencode(os.path.basename(os.path.dirname(n))) for n in case.names
                    if isinstance(case.files.get(n), casebook.Special) and case.files[n].kind == "missing"]
-        wanted = [w for w in wanted if w]
+        wanted = [w for w in wanted if w] + [os.fsencode(w) for w in case.also_named]
         if wanted and not any(w in stderr for w in wanted):
             unclear = "does not name " + " or ".join(os.fsdecode(w) for w in wanted)
         elif not LOCATOR.search(stderr):
             unclear = "names no field, line, byte, flag or value"
     return problems, unclear
+
+
+def run_case(case, work, fixtures, exe, env):
+    """Runs one case in WORK/cases/ID and checks it: (record, problems, unclear message)."""
+    cdir = work / "cases" / case.id
+    (cdir / "tmp").mkdir(parents=True)
+    size = materialise(case, cdir, str(fixtures), str(work / "escaped"))
+    roots, shallow = (cdir, work / "fixtures", work / "escaped"), (work, work / "cases")
+    before = snapshot(*roots, shallow=shallow)
+    argv = [os.fsencode(expand(a, str(cdir), str(fixtures), str(work / "escaped"), exe)) for a in case.argv]
+    run_env = dict(env, TMPDIR=str(cdir / "tmp"), HOME=str(cdir / "tmp"))
+    err_path, out_path = work / "cases" / (case.id + ".stderr"), work / "cases" / (case.id + ".stdout")
+    result = run_limited(argv, str(cdir), run_env, case.timeout, out_path, err_path, (4 << 30) + 8 * size)
+    # Messages go to stderr; lc2wf-dataset reports failed buildings in its summary on stdout.
+    err, out = err_path.read_bytes(), out_path.read_bytes()
+    stderr = err + b"\n" + out
+    after = snapshot(*roots, shallow=shallow)
+    logs = [os.fsencode(str(p)) for p in (err_path, out_path, str(err_path) + ".rss")]
+    allowed = [os.fsencode(str(cdir / a)) for a in case.allowed + ["tmp"]] + logs
+    created = {p for p, v in after.items() if before.get(p) != v and not any(p == a or p.startswith(a + b"/") for a in allowed)}
+    problems, message = check(case, result, stderr, created, size)
+    record = {"id": case.id, "argv": [os.fsdecode(a) for a in argv], "result": result,
+              "stderr": err.decode("utf-8", "replace")[-600:], "stdout": out.decode("utf-8", "replace")[-200:]}
+    return record, problems, message
+
+
+def forget_case(work, case):
+    """Removes a passing case's folder and logs."""
+    shutil.rmtree(work / "cases" / case.id, ignore_errors=True)
+    for ext in (".stderr", ".stdout"):
+        (work / "cases" / (case.id + ext)).unlink(missing_ok=True)
 
 
 def sample(all_cases, count):
@@ -173,12 +212,15 @@ def sample(all_cases, count):
         by_family.setdefault(c.family, []).append(c)
     picked, queues = [], [list(v) for v in by_family.values()]
     step = {id(q): max(1, len(q) * len(queues) // max(count, 1)) for q in queues}
-    positions = {id(q): 0 for q in queues}
-    while len(picked) < count and any(positions[id(q)] < len(q) for q in queues):
+    # Each family starts at a different offset, so a small sample mixes truncations, flips, numbers, names.
+    positions = {id(q): (37 * k) % len(q) for k, q in enumerate(queues)}
+    taken = {id(q): 0 for q in queues}
+    while len(picked) < count and any(taken[id(q)] < len(q) for q in queues):
         for q in queues:
-            if positions[id(q)] < len(q) and len(picked) < count:
-                picked.append(q[positions[id(q)]])
+            if taken[id(q)] < len(q) and len(picked) < count:
+                picked.append(q[positions[id(q)] % len(q)])
                 positions[id(q)] += step[id(q)]
+                taken[id(q)] += step[id(q)]
     return picked
 
 
@@ -210,29 +252,13 @@ def main():
     failures, unclear, families = [], [], {}
     t0 = time.monotonic()
     for k, case in enumerate(todo):
-        cdir = work / "cases" / case.id
-        (cdir / "tmp").mkdir(parents=True)
-        size = materialise(case, cdir, str(fx.root), str(work / "escaped"))
-        watched = dict(roots=(cdir, work / "fixtures", work / "escaped"), shallow=(work, work / "cases"))
-        before = snapshot(*watched["roots"], shallow=watched["shallow"])
-        argv = [os.fsencode(expand(a, str(cdir), str(fx.root), str(work / "escaped"), exe)) for a in case.argv]
-        run_env = dict(env, TMPDIR=str(cdir / "tmp"), HOME=str(cdir / "tmp"))
-        err_path, out_path = work / "cases" / (case.id + ".stderr"), work / "cases" / (case.id + ".stdout")
-        result = run_limited(argv, str(cdir), run_env, case.timeout, out_path, err_path, (4 << 30) + 8 * size)
-        # Messages go to stderr; lc2wf-dataset reports failed buildings in its summary on stdout.
-        stderr = err_path.read_bytes() + b"\n" + out_path.read_bytes()
-        after = snapshot(*watched["roots"], shallow=watched["shallow"])
-        logs = [os.fsencode(str(p)) for p in (err_path, out_path, str(err_path) + ".rss")]
-        allowed = [os.fsencode(str(cdir / a)) for a in case.allowed + ["tmp"]] + logs
-        created = {p for p, v in after.items() if before.get(p) != v and not any(p == a or p.startswith(a + b"/") for a in allowed)}
-        problems, message = check(case, result, stderr, created, size)
+        record, problems, message = run_case(case, work, fx.root, exe, env)
+        result = record["result"]
         fam = families.setdefault(case.family, {"cases": 0, "failed": 0, "unclear": 0, "exit0": 0, "max_rss_mb": 0, "seconds": 0})
         fam["cases"] += 1
         fam["exit0"] += result["exit"] == 0
         fam["max_rss_mb"] = max(fam["max_rss_mb"], round(result["rss_mb"]))
         fam["seconds"] = round(fam["seconds"] + result["seconds"], 1)
-        record = {"id": case.id, "argv": [os.fsdecode(a) for a in argv], "result": result,
-                  "stderr": stderr.decode("utf-8", "replace")[-600:]}
         if problems:
             fam["failed"] += 1
             failures.append(dict(record, problems=problems))
@@ -240,9 +266,7 @@ def main():
             fam["unclear"] += 1
             unclear.append(dict(record, unclear=message))
         if not problems and not message and not args.keep:
-            shutil.rmtree(cdir, ignore_errors=True)
-            err_path.unlink()
-            out_path.unlink()
+            forget_case(work, case)
         if (k + 1) % 250 == 0:
             print("adversarial: %d / %d cases, %d failed, %.0f s" % (k + 1, len(todo), len(failures), time.monotonic() - t0), flush=True)
     changed = {p for p, v in snapshot(work / "fixtures").items() if fixture_state.get(p) != v}

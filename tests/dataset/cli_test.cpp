@@ -1,0 +1,54 @@
+// Runs lc2wf-make-splits and lc2wf-cloud-convert: errors name the folder and the flags the user typed, and
+// an output path that is not a regular file is refused and left as it was.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/util/cli.h"
+#include "dataset/line_cloud_io.h"
+#include "dataset/synthetic_building.h"
+#include "dataset/synthetic_line_cloud.h"
+#include "tests/common/run_cli.h"
+#include "test_util.h"
+
+namespace lc2wf {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// Regression: one building with --test 2 --val 1 failed as "make_splits: fewer names than test_count +
+// val_count", naming neither the folder nor a flag (found by the adversarial corpus).
+TEST(MakeSplitsCli, TooFewBuildingsNameTheFolderAndTheFlags) {
+  const fs::path dir = test::scratch_dir("make_splits_few");
+  fs::create_directories(dir / "meshes");
+  std::ofstream(dir / "meshes" / "b.polyshape") << "0 0 0\n";
+  const auto r = testing::run_argv({LC2WF_MAKE_SPLITS_BIN, "--meshes", (dir / "meshes").string(), "-o", (dir / "out").string(),
+                                    "--test", "2", "--val", "1"});
+  EXPECT_EQ(r.code, kExitDataError) << r.err;
+  EXPECT_THAT(r.err, HasSubstr((dir / "meshes").string() + ": 1 building(s), fewer than --test 2 + --val 1"));
+  EXPECT_THAT(r.err, Not(HasSubstr("test_count")));
+  EXPECT_FALSE(fs::exists(dir / "out"));
+  fs::remove_all(dir);
+}
+
+// Regression: run as root, `lc2wf-cloud-convert CLOUD -o /dev/null` renamed its temporary file over the
+// device, leaving a regular file in its place for every program on the machine (a FIFO stands in here).
+TEST(CloudConvertCli, AnOutputThatIsAFifoIsRefusedAndKept) {
+  const fs::path dir = test::scratch_dir("convert_fifo");
+  write_line_cloud(dir / "c.lcloud", make_synthetic_line_cloud(make_rect_building("box", RectBuildingSpec{}), 1));
+  ASSERT_EQ(::mkfifo((dir / "out.txt").c_str(), 0600), 0);
+  const auto r = testing::run_argv({LC2WF_CLOUD_CONVERT_BIN, (dir / "c.lcloud").string(), "-o", (dir / "out.txt").string()});
+  EXPECT_EQ(r.code, kExitDataError) << r.err;
+  EXPECT_THAT(r.err, HasSubstr((dir / "out.txt").string() + ": is not a regular file"));
+  EXPECT_TRUE(fs::is_fifo(dir / "out.txt"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace lc2wf
