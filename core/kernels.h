@@ -133,6 +133,13 @@ class DropoutMask {
   // d[i] = s[i] * (keep(i) ? scale : 0) for i in [begin, end).
   template <class T>
   void apply(const T* __restrict s, T* __restrict d, int64_t begin, int64_t end, T scale) const {
+    apply_then(s, d, begin, end, scale, [](int64_t, T dropped) { return dropped; });
+  }
+
+  // d[i] = then(i, s[i] * (keep(i) ? scale : 0)) for i in [begin, end): an elementwise step fused into the
+  // same pass, so the dropped tensor is never written out.
+  template <class T, class Then>
+  void apply_then(const T* __restrict s, T* __restrict d, int64_t begin, int64_t end, T scale, Then then) const {
     const uint64_t at = static_cast<uint64_t>(begin) + offset_;
     const uint32_t hk = high_key(at);
     const uint32_t k0 = k0_, thr = threshold_;
@@ -142,7 +149,7 @@ class DropoutMask {
     d += begin;
     for (int64_t i = 0; i < n; ++i) {
       uint32_t h = fmix32(((base + static_cast<uint32_t>(i)) ^ k0) + hk);
-      d[i] = (h >> 8) >= thr ? s[i] * scale : T(0);
+      d[i] = then(begin + i, (h >> 8) >= thr ? s[i] * scale : T(0));
     }
   }
 
