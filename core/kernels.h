@@ -9,6 +9,7 @@
 #include <vector>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/parallel.h"
 #include "core/rng.h"
@@ -149,11 +150,23 @@ class DropoutMask {
     d += begin;
     for (int64_t i = 0; i < n; ++i) {
       uint32_t h = fmix32(((base + static_cast<uint32_t>(i)) ^ k0) + hk);
-      d[i] = then(begin + i, (h >> 8) >= thr ? s[i] * scale : T(0));
+      d[i] = then(begin + i, keep_or_zero(s[i] * scale, (h >> 8) >= thr));
     }
   }
 
  private:
+  // v, or +0 when !keep, by masking its bits: a float select would be control flow that GCC does not
+  // vectorise under the default -ftrapping-math (measured 3 ns per element, 4-5x the vector loop).
+  template <class T>
+  static T keep_or_zero(T v, bool keep) {
+    using Bits = std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>;
+    Bits bits;
+    std::memcpy(&bits, &v, sizeof v);
+    bits &= Bits{0} - static_cast<Bits>(keep);
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
+  }
+
   // i is an index into the whole block. high_key(i) is constant over any 2^32-aligned block, so vector
   // loops hash only the low 32 bits per lane.
   uint32_t high_key(uint64_t i) const { return k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u; }
