@@ -82,17 +82,10 @@ class StorageCache {
       // and its unused tail adds nothing to the footprint already counted.
       auto it = by_size_.lower_bound(size);
       if (it != by_size_.end() && it->first <= 2 * size) {
-        size_t capacity = it->first;
-        // The most recently freed block of the class is the likeliest to still be in cache.
-        auto block = it->second.back();
-        it->second.pop_back();
-        if (it->second.empty()) by_size_.erase(it);
-        void* data = block->data;
-        cached_bytes_ -= capacity;
-        live_bytes_ += capacity;
-        lru_.erase(block);
+        const Block block = take(it);
+        live_bytes_ += block.size;
         ++hits_;
-        return {data, capacity};
+        return {block.data, block.size};
       }
       ++misses_;
       live_bytes_ += size;
@@ -103,7 +96,9 @@ class StorageCache {
       if (cached_bytes_ > room) {
         // Blocks must go back to the system anyway: one of them becomes this request instead, so its
         // resident pages are reused rather than unmapped while fresh ones are faulted in and zeroed.
-        Block block = take_block_to_reshape(size);
+        // The block needing the fewest fresh pages: the smallest one at least as large, else the largest.
+        auto fit = by_size_.lower_bound(size);
+        const Block block = take(fit != by_size_.end() ? fit : std::prev(by_size_.end()));
         evict_until(room);
         ++reshaped_;
         if (size > block.size) fresh_bytes_ += size - block.size;
@@ -159,15 +154,13 @@ class StorageCache {
   };
   using BlockList = std::list<Block>;
 
-  // Removes from the cache the block that needs the fewest fresh pages to become `size` bytes: the
-  // smallest one at least that large, else the largest one. Caller holds mutex_; the cache is not empty.
-  Block take_block_to_reshape(size_t size) {
-    auto it = by_size_.lower_bound(size);
-    if (it == by_size_.end()) it = std::prev(by_size_.end());
-    auto block = it->second.back();
-    it->second.pop_back();
-    if (it->second.empty()) by_size_.erase(it);
-    Block taken = *block;
+  // Removes from the cache the most recently freed block of a size class (the likeliest to still be in
+  // the CPU's caches). Caller holds mutex_.
+  Block take(std::map<size_t, std::vector<BlockList::iterator>>::iterator size_class) {
+    const auto block = size_class->second.back();
+    size_class->second.pop_back();
+    if (size_class->second.empty()) by_size_.erase(size_class);
+    const Block taken = *block;
     cached_bytes_ -= taken.size;
     lru_.erase(block);
     return taken;
