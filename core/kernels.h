@@ -9,6 +9,7 @@
 #include <vector>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/parallel.h"
 #include "core/rng.h"
@@ -133,6 +134,13 @@ class DropoutMask {
   // d[i] = s[i] * (keep(i) ? scale : 0) for i in [begin, end).
   template <class T>
   void apply(const T* __restrict s, T* __restrict d, int64_t begin, int64_t end, T scale) const {
+    apply_then(s, d, begin, end, scale, [](int64_t, T dropped) { return dropped; });
+  }
+
+  // d[i] = then(i, s[i] * (keep(i) ? scale : 0)) for i in [begin, end): an elementwise step fused into the
+  // same pass, so the dropped tensor is never written out.
+  template <class T, class Then>
+  void apply_then(const T* __restrict s, T* __restrict d, int64_t begin, int64_t end, T scale, Then then) const {
     const uint64_t at = static_cast<uint64_t>(begin) + offset_;
     const uint32_t hk = high_key(at);
     const uint32_t k0 = k0_, thr = threshold_;
@@ -142,11 +150,23 @@ class DropoutMask {
     d += begin;
     for (int64_t i = 0; i < n; ++i) {
       uint32_t h = fmix32(((base + static_cast<uint32_t>(i)) ^ k0) + hk);
-      d[i] = (h >> 8) >= thr ? s[i] * scale : T(0);
+      d[i] = then(begin + i, keep_or_zero(s[i] * scale, (h >> 8) >= thr));
     }
   }
 
  private:
+  // v, or +0 when !keep, by masking its bits: a float select would be control flow that GCC does not
+  // vectorise under the default -ftrapping-math (measured 3 ns per element, 4-5x the vector loop).
+  template <class T>
+  static T keep_or_zero(T v, bool keep) {
+    using Bits = std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>;
+    Bits bits;
+    std::memcpy(&bits, &v, sizeof v);
+    bits &= Bits{0} - static_cast<Bits>(keep);
+    std::memcpy(&v, &bits, sizeof v);
+    return v;
+  }
+
   // i is an index into the whole block. high_key(i) is constant over any 2^32-aligned block, so vector
   // loops hash only the low 32 bits per lane.
   uint32_t high_key(uint64_t i) const { return k1_ + static_cast<uint32_t>(i >> 32) * 0x9E3779B9u; }

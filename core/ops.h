@@ -90,6 +90,12 @@ Tensor log_softmax(const Tensor& a, int64_t axis);
 // Inverted dropout with a counter-based mask: deterministic for a given rng state at any thread count.
 // Identity when !training or p == 0.
 Tensor dropout(const Tensor& a, double p, bool training, Rng& rng);
+// x + dropout(a) (same shapes), the residual after a dropped sub-layer, in one pass: the same values and
+// the same draws as the two ops, without the dropped tensor in memory.
+Tensor add_dropout(const Tensor& x, const Tensor& a, double p, bool training, Rng& rng);
+// relu(dropout(a)) in one pass, the same values and draws as the two ops; its backward reads the output
+// only (y > 0 exactly where the mask kept a positive value), so the mask is not recomputed.
+Tensor dropout_relu(const Tensor& a, double p, bool training, Rng& rng);
 // Normalises over the last axis; weight/bias (C) may be undefined.
 Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, double eps = 1e-5);
 // Channels-last batch norm: x (M, C), statistics over the M rows. In training the batch statistics

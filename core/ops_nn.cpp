@@ -1,4 +1,4 @@
-// softmax / log_softmax, dropout, layer_norm and batch_norm with fused backward passes.
+// softmax / log_softmax, layer_norm and batch_norm with fused backward passes (dropout: ops_dropout.cpp).
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -137,38 +137,6 @@ Tensor softmax_any(const Tensor& a, int64_t axis, bool log_space) {
 
 Tensor softmax(const Tensor& a, int64_t axis) { return softmax_any(a, axis, false); }
 Tensor log_softmax(const Tensor& a, int64_t axis) { return softmax_any(a, axis, true); }
-
-Tensor dropout(const Tensor& a, double p, bool training, Rng& rng) {
-  check_float(a, "dropout", "a");
-  if (!(p >= 0.0 && p <= 1.0)) throw_arg("dropout: p must be in [0, 1], got " + std::to_string(p));
-  if (!training || p == 0.0) return a;
-  if (p == 1.0) return mul(a, 0.0);
-  DropoutMask mask(rng, rng.reserve_tensor(static_cast<uint64_t>(a.numel())), p);
-  double scale = 1.0 / (1.0 - p);
-  Tensor out = Tensor::empty(a.shape(), a.dtype());
-  auto apply = [mask, scale](const Tensor& src, const Tensor& dst) {
-    dispatch_float(src.dtype(), "dropout", [&](auto tag) {
-      using T = decltype(tag);
-      const T* s = ptr<T>(src);
-      T* d = ptr<T>(dst);
-      T sc = static_cast<T>(scale);
-      parallel_for_work(src.numel(), kElemGrain, 4, [&](int64_t b, int64_t e) {
-        mask.apply(s, d, b, e, sc);
-      });
-      return 0;
-    });
-  };
-  apply(a, out);
-  if (needs_grad({&a})) {
-    // The mask is recomputed from (seed, counter) instead of stored.
-    record(out, "dropout", {a}, [apply](const Tensor& g) -> std::vector<Tensor> {
-      Tensor dx = Tensor::empty(g.shape(), g.dtype());
-      apply(g, dx);
-      return {dx};
-    });
-  }
-  return out;
-}
 
 Tensor layer_norm(const Tensor& x, const Tensor& weight, const Tensor& bias, double eps) {
   check_float(x, "layer_norm", "x");

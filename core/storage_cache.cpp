@@ -59,36 +59,53 @@ void* map_block(size_t size) {
 
 void unmap_block(void* data, size_t size) { munmap(data, size); }
 
+// A mapped block made `size` bytes long: shrinking keeps its first pages, growing keeps them all and maps
+// the rest (the mapping may move; page contents move with it, nothing is copied).
+void* reshape_block(void* data, size_t old_size, size_t size) {
+  if (size == old_size) return data;
+  void* moved = mremap(data, old_size, size, MREMAP_MAYMOVE);
+  if (moved == MAP_FAILED) {
+    unmap_block(data, old_size);
+    return map_block(size);
+  }
+  return moved;
+}
+
 class StorageCache {
  public:
   StorageCache() : budget_(default_budget()) {}
 
   StorageBlock acquire(size_t size) {
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      std::unique_lock<std::mutex> lock(mutex_);
       // Best fit among cached blocks up to twice the request: a resident block costs no page faults,
       // and its unused tail adds nothing to the footprint already counted.
       auto it = by_size_.lower_bound(size);
       if (it != by_size_.end() && it->first <= 2 * size) {
-        size_t capacity = it->first;
-        // The most recently freed block of the class is the likeliest to still be in cache.
-        auto block = it->second.back();
-        it->second.pop_back();
-        if (it->second.empty()) by_size_.erase(it);
-        void* data = block->data;
-        cached_bytes_ -= capacity;
-        live_bytes_ += capacity;
-        lru_.erase(block);
+        const Block block = take(it);
+        live_bytes_ += block.size;
         ++hits_;
-        return {data, capacity};
+        return {block.data, block.size};
       }
       ++misses_;
       live_bytes_ += size;
       high_water_ = std::max(high_water_, live_bytes_);
-      // Cached + live never exceeds the live high-water mark: the process then holds no more than its
-      // largest working set, at the price of re-mapping (with cheap huge-page faults) the blocks of
-      // sizes that are not live at the peak. A shifting mix of sizes can never pile up.
-      evict_until(high_water_ - live_bytes_);
+      // Cached + live never exceeds `slack` times the live high-water mark: the process holds a bounded
+      // multiple of its largest working set, and a shifting mix of sizes can never pile up.
+      const size_t room = static_cast<size_t>(slack_ * static_cast<double>(high_water_)) - live_bytes_;
+      if (cached_bytes_ > room) {
+        // Blocks must go back to the system anyway: one of them becomes this request instead, so its
+        // resident pages are reused rather than unmapped while fresh ones are faulted in and zeroed.
+        // The block needing the fewest fresh pages: the smallest one at least as large, else the largest.
+        auto fit = by_size_.lower_bound(size);
+        const Block block = take(fit != by_size_.end() ? fit : std::prev(by_size_.end()));
+        evict_until(room);
+        ++reshaped_;
+        if (size > block.size) fresh_bytes_ += size - block.size;
+        lock.unlock();
+        return {reshape_block(block.data, block.size, size), size};
+      }
+      fresh_bytes_ += size;
     }
     return {map_block(size), size};
   }
@@ -106,6 +123,13 @@ class StorageCache {
     evict_until(budget_);
   }
 
+  void set_slack(double factor) {
+    if (!(factor >= 1.0 && factor <= 16.0))
+      throw std::invalid_argument("storage cache slack must be in [1, 16], got " + std::to_string(factor));
+    std::lock_guard<std::mutex> lock(mutex_);
+    slack_ = factor;
+  }
+
   void set_budget(size_t bytes) {
     std::lock_guard<std::mutex> lock(mutex_);
     budget_ = bytes;
@@ -120,7 +144,7 @@ class StorageCache {
 
   StorageCacheStats stats() {
     std::lock_guard<std::mutex> lock(mutex_);
-    return StorageCacheStats{budget_, cached_bytes_, lru_.size(), live_bytes_, high_water_, hits_, misses_};
+    return StorageCacheStats{budget_, cached_bytes_, lru_.size(), live_bytes_, high_water_, hits_, misses_, reshaped_, fresh_bytes_};
   }
 
  private:
@@ -129,6 +153,18 @@ class StorageCache {
     size_t size;
   };
   using BlockList = std::list<Block>;
+
+  // Removes from the cache the most recently freed block of a size class (the likeliest to still be in
+  // the CPU's caches). Caller holds mutex_.
+  Block take(std::map<size_t, std::vector<BlockList::iterator>>::iterator size_class) {
+    const auto block = size_class->second.back();
+    size_class->second.pop_back();
+    if (size_class->second.empty()) by_size_.erase(size_class);
+    const Block taken = *block;
+    cached_bytes_ -= taken.size;
+    lru_.erase(block);
+    return taken;
+  }
 
   // Frees least recently released blocks until at most `limit` bytes stay cached. Caller holds mutex_.
   void evict_until(size_t limit) {
@@ -145,11 +181,14 @@ class StorageCache {
 
   std::mutex mutex_;
   size_t budget_;
+  double slack_ = kStorageCacheDefaultSlack;
   size_t cached_bytes_ = 0;
   size_t live_bytes_ = 0;
   size_t high_water_ = 0;
   int64_t hits_ = 0;
   int64_t misses_ = 0;
+  int64_t reshaped_ = 0;
+  size_t fresh_bytes_ = 0;
   BlockList lru_;  // front = most recently released
   std::map<size_t, std::vector<BlockList::iterator>> by_size_;  // capacity -> blocks, oldest first
 };
@@ -186,6 +225,8 @@ void storage_release(const StorageBlock& block) {
 }
 
 void set_storage_cache_budget(size_t bytes) { cache().set_budget(bytes); }
+
+void set_storage_cache_slack(double factor) { cache().set_slack(factor); }
 
 void storage_cache_clear() { cache().clear(); }
 

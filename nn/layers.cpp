@@ -40,4 +40,10 @@ Tensor LayerNorm::forward(const Tensor& x) const { return layer_norm(x, weight_,
 
 Tensor Dropout::forward(const Tensor& x, Rng& rng) const { return dropout(x, p_, is_training(), rng); }
 
+Tensor Dropout::forward_added_to(const Tensor& x, const Tensor& a, Rng& rng) const {
+  return add_dropout(x, a, p_, is_training(), rng);
+}
+
+Tensor Dropout::forward_relu(const Tensor& a, Rng& rng) const { return dropout_relu(a, p_, is_training(), rng); }
+
 }  // namespace lc2wf

@@ -56,6 +56,9 @@ class Dropout : public Module {
  public:
   explicit Dropout(double p) : p_(p) {}
   Tensor forward(const Tensor& x, Rng& rng) const;  // identity in eval mode or when p == 0
+  // x + forward(a) and relu(forward(a)), each in one pass (core/ops.h add_dropout, dropout_relu).
+  Tensor forward_added_to(const Tensor& x, const Tensor& a, Rng& rng) const;
+  Tensor forward_relu(const Tensor& a, Rng& rng) const;
   double p() const { return p_; }
 
  private:

@@ -30,14 +30,16 @@ Tensor TransformerEncoderLayer::forward(const Tensor& x, const Tensor& key_paddi
   // Both LayerNorms are fused into the product that follows them, so their outputs are rebuilt in the
   // backward pass instead of being kept: two (rows x E) activations less per layer during training.
   const Tensor attn = self_attn_.forward(x, norm1_, key_padding_mask, rng, attn_weights);
-  const Tensor h = x + dropout1_.forward(attn, rng);
+  // Each dropout is fused with the add or ReLU after it: one pass over memory instead of two, and the
+  // dropped tensor never exists (same values and draws as dropping first).
+  const Tensor h = dropout1_.forward_added_to(x, attn, rng);
   // Drop(ReLU(z)) == ReLU(Drop(z)) exactly (the mask scales by 0 or 1/(1-p) >= 0, same draws), but in
   // this order the one tensor ReLU keeps for its backward is also linear2's saved input: one activation
   // of (rows x ffn) less per layer during training.
   const Tensor hidden = layer_norm_linear(h, norm2_.weight(), norm2_.bias(), norm2_.eps(), linear1_.weight(),
                                           linear1_.bias());
-  const Tensor ffn = linear2_.forward(relu(dropout_.forward(hidden, rng)));
-  return h + dropout2_.forward(ffn, rng);
+  const Tensor ffn = linear2_.forward(dropout_.forward_relu(hidden, rng));
+  return dropout2_.forward_added_to(h, ffn, rng);
 }
 
 TransformerEncoder::TransformerEncoder(const EncoderSizes& sizes, int64_t num_layers, Rng& init_rng)

@@ -46,6 +46,9 @@ step_snapshot() {
   [[ -f runs/base/predicted_junctions/manifest.json ]] &&
     tar -C runs/base -czf "$tmp/predicted_junctions.tar.gz" predicted_junctions
   cp tools/paper_experiment-snapshot.md "$tmp/README.md"
+  # The learning curves so far, shown in the top README (skipped without matplotlib).
+  /usr/bin/python3 tools/plots/plot_training.py runs/base --out "$tmp/learning_curves.png" >/dev/null ||
+    echo "paper_experiment.sh: no learning curves (tools/setup-deps.sh installs python3-matplotlib)" >&2
   rm -rf "$snapshot_dir" && mv "$tmp" "$snapshot_dir"
   echo "Training state of runs/base copied to $snapshot_dir ($(du -sh "$snapshot_dir" | cut -f1))"
 }
@@ -55,7 +58,7 @@ step_restore() {
   [[ ! -e runs/base ]] || { echo "paper_experiment.sh: runs/base exists; move it away to restore" >&2; exit 3; }
   mkdir -p runs/base.tmp
   cp -r "$snapshot_dir"/. runs/base.tmp/
-  rm -f runs/base.tmp/README.md runs/base.tmp/predicted_junctions.tar.gz
+  rm -f runs/base.tmp/README.md runs/base.tmp/predicted_junctions.tar.gz runs/base.tmp/learning_curves.png
   [[ -f $snapshot_dir/predicted_junctions.tar.gz ]] && tar -C runs/base.tmp -xzf "$snapshot_dir/predicted_junctions.tar.gz"
   mv runs/base.tmp runs/base
   echo "runs/base restored from $snapshot_dir"

@@ -9,11 +9,13 @@
 # e.g.   bench/reconstruct/run_buildings.sh models/base bench/reconstruct/test-buildings.txt runs/recon-bench
 # POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
 # output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.
+# RECONSTRUCT_FLAGS="--max-features 1000" adds options to every lc2wf-reconstruct run.
 set -euo pipefail
 weights=$1 names=$2 out=$3
 meshes=${4:-../shared/data/roof-image/res_building}
 bin=${BUILD_DIR:-build}
 threads=${THREADS:-2}
+read -r -a user_flags <<< "${RECONSTRUCT_FLAGS:-}"
 
 mkdir -p "$out/meshes"
 while read -r n; do
@@ -37,7 +39,7 @@ while read -r n; do
     rm -rf "$out/recon-$mode/$n"
     code=0
     "$bin/reconstruct/lc2wf-reconstruct" "$out/photos/$n" --weights "$weights" -o "$out/recon-$mode/$n" \
-      --reference-cameras "$views/cameras.json" -j "$threads" "${extra[@]}" 2> "$out/logs/$mode-$n.log" || code=$?
+      --reference-cameras "$views/cameras.json" -j "$threads" "${extra[@]}" "${user_flags[@]}" 2> "$out/logs/$mode-$n.log" || code=$?
     echo "$mode $n exit $code" | tee -a "$out/logs/exit-codes.txt"
     if [ -f "$out/recon-$mode/$n/wireframe_aligned.obj" ]; then
       cp "$out/recon-$mode/$n/wireframe_aligned.obj" "$out/pred-$mode/$n.obj"

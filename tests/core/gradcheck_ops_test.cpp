@@ -171,6 +171,24 @@ TEST_F(GradCheck, DropoutWithFixedStream) {
       {rand({4, 6})}));
 }
 
+TEST_F(GradCheck, FusedDropoutAddAndReluWithFixedStream) {
+  EXPECT_TRUE(gradcheck(
+      [](auto& x) {
+        Rng r(7);
+        return add_dropout(x[0], x[1], 0.4, true, r);
+      },
+      {rand({4, 6}), rand({4, 6})}));
+  // Inputs away from 0, where ReLU has no derivative for the finite differences to straddle.
+  std::vector<double> away(24);
+  for (size_t i = 0; i < away.size(); ++i) away[i] = (i % 3 == 0 ? -1.0 : 1.0) * (0.3 + 0.05 * static_cast<double>(i));
+  EXPECT_TRUE(gradcheck(
+      [](auto& x) {
+        Rng r(7);
+        return dropout_relu(x[0], 0.4, true, r);
+      },
+      {Tensor::from_vector(away, {4, 6})}));
+}
+
 TEST_F(GradCheck, LayerNormTrain) {
   EXPECT_TRUE(gradcheck([](auto& x) { return layer_norm(x[0], x[1], x[2]); }, {rand({3, 2, 6}), rand({6}), rand({6})}));
   EXPECT_TRUE(gradcheck([](auto& x) { return layer_norm(x[0], Tensor(), Tensor()); }, {rand({4, 5})}));

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdint>
 #include <fstream>
 #include <random>
@@ -25,16 +26,19 @@ int64_t rss_bytes() {
 
 Tensor floats(size_t bytes) { return Tensor::empty({static_cast<int64_t>(bytes / 4)}); }
 
-// Every test starts from an empty cache with the given budget and restores the default budget after.
+// Every test starts from an empty cache with the given budget and cached + live held to the high water
+// itself (slack 1), and restores the defaults after.
 class StorageCacheTest : public ::testing::Test {
  protected:
   void SetUp() override {
     default_budget_ = storage_cache_stats().budget_bytes;
     storage_cache_clear();
+    set_storage_cache_slack(1.0);
   }
   void TearDown() override {
     storage_cache_clear();
     set_storage_cache_budget(default_budget_);
+    set_storage_cache_slack(kStorageCacheDefaultSlack);
   }
   size_t default_budget_ = 0;
 };
@@ -146,15 +150,97 @@ TEST_F(StorageCacheTest, MissGivesBackBlocksBeyondTheLiveHighWater) {
     c = Tensor();
   }
   ASSERT_EQ(storage_cache_stats().cached_bytes, 12 * kMiB);
-  // No block can serve 7 MiB, and 12 cached + 7 live would exceed the 12 MiB high water: the least
-  // recently freed blocks (4, then 6 MiB) go back to the system until 7 + cached <= 12.
+  // No block can serve 7 MiB, and 12 cached + 7 live would exceed the 12 MiB high water: the 6 MiB block
+  // (the largest, none being >= 7) is grown into the request, then the least recently freed (4 MiB)
+  // goes back to the system until 7 + cached <= 12.
+  const StorageCacheStats before = storage_cache_stats();
   Tensor seven = floats(7 * kMiB);
   StorageCacheStats stats = storage_cache_stats();
+  EXPECT_EQ(stats.reshaped, before.reshaped + 1);
+  EXPECT_EQ(stats.fresh_bytes - before.fresh_bytes, 1 * kMiB);  // only the growth is new memory
   EXPECT_EQ(stats.cached_bytes, 2 * kMiB);
   EXPECT_EQ(stats.cached_blocks, 1u);
   EXPECT_LE(stats.cached_bytes + stats.live_bytes, stats.high_water);
   seven = Tensor();
   EXPECT_EQ(floats(2 * kMiB).data<float>(), two);
+}
+
+// A block that must leave the cache becomes the request: shrunk (no fresh page) or grown (fresh pages for
+// the growth only), and the whole request is usable memory.
+TEST_F(StorageCacheTest, MissReshapesABlockThatWouldBeEvicted) {
+  set_storage_cache_budget(256 * kMiB);
+  floats(40 * kMiB) = Tensor();  // high water 40 MiB, one 40 MiB block cached
+  StorageCacheStats before = storage_cache_stats();
+  {
+    // A 40 MiB block may not serve 4 MiB (more than twice), and 40 cached + 4 live exceed 40: the block
+    // is shrunk into the request.
+    Tensor small = floats(4 * kMiB);
+    StorageCacheStats after = storage_cache_stats();
+    EXPECT_EQ(after.reshaped, before.reshaped + 1);
+    EXPECT_EQ(after.fresh_bytes, before.fresh_bytes);
+    EXPECT_EQ(after.cached_bytes, 0u);
+    float* p = small.data<float>();
+    for (int64_t i = 0; i < small.numel(); ++i) p[i] = static_cast<float>(i);
+    EXPECT_EQ(p[small.numel() - 1], static_cast<float>(small.numel() - 1));
+  }
+  storage_cache_clear();  // the high water restarts from the live bytes (0)
+  {
+    Tensor a = floats(8 * kMiB), b = floats(8 * kMiB);  // high water 16 MiB
+  }
+  before = storage_cache_stats();
+  ASSERT_EQ(before.cached_bytes, 16 * kMiB);
+  // No block reaches 24 MiB: the largest (8 MiB) grows by 16 MiB, and the other goes, since the live
+  // 24 MiB are the new high water.
+  Tensor big = floats(24 * kMiB);
+  StorageCacheStats after = storage_cache_stats();
+  EXPECT_EQ(after.reshaped, before.reshaped + 1);
+  EXPECT_EQ(after.fresh_bytes - before.fresh_bytes, 16 * kMiB);
+  EXPECT_EQ(after.cached_bytes, 0u);
+  float* p = big.data<float>();
+  for (int64_t i = 0; i < big.numel(); ++i) p[i] = 1.0f;
+  EXPECT_EQ(p[big.numel() - 1], 1.0f);
+}
+
+// With room under the high water nothing has to go: a miss maps fresh memory and the cache is kept.
+TEST_F(StorageCacheTest, MissWithRoomUnderTheHighWaterKeepsTheCache) {
+  set_storage_cache_budget(256 * kMiB);
+  Tensor a = floats(32 * kMiB), b = floats(8 * kMiB);  // high water 40 MiB
+  a = Tensor();                                        // cached 32, live 8
+  Tensor c = floats(2 * kMiB);  // 32 cached + 10 live exceed 40: the 32 MiB block becomes c
+  ASSERT_EQ(storage_cache_stats().cached_bytes, 0u);
+  b = Tensor();
+  c = Tensor();  // cached 8 + 2, live 0
+  const StorageCacheStats before = storage_cache_stats();
+  Tensor d = floats(20 * kMiB);  // 10 cached + 20 live fit under 40
+  const StorageCacheStats after = storage_cache_stats();
+  EXPECT_EQ(after.reshaped, before.reshaped);
+  EXPECT_EQ(after.fresh_bytes - before.fresh_bytes, 20 * kMiB);
+  EXPECT_EQ(after.cached_bytes, 10 * kMiB);
+}
+
+// With slack, blocks that are not live at the peak stay cached: a step that frees its activations and
+// then asks for other sizes is served from the cache from its second repetition on.
+TEST_F(StorageCacheTest, SlackKeepsBlocksThatAreNotLiveAtThePeak) {
+  auto step = [] {
+    { Tensor a = floats(8 * kMiB), b = floats(8 * kMiB); }  // the peak: 16 MiB
+    Tensor c = floats(3 * kMiB), d = floats(5 * kMiB);       // other sizes, after the peak
+  };
+  step();
+  step();
+  StorageCacheStats before = storage_cache_stats();
+  step();
+  StorageCacheStats tight = storage_cache_stats();
+  EXPECT_GT(tight.fresh_bytes, before.fresh_bytes);  // slack 1: 16 cached + 3 live exceed 16, every step
+  set_storage_cache_slack(1.5);
+  step();
+  before = storage_cache_stats();
+  step();
+  StorageCacheStats loose = storage_cache_stats();
+  EXPECT_EQ(loose.misses, before.misses);
+  EXPECT_EQ(loose.fresh_bytes, before.fresh_bytes);
+  EXPECT_LE(static_cast<double>(loose.cached_bytes + loose.live_bytes), 1.5 * static_cast<double>(loose.high_water));
+  EXPECT_THROW(set_storage_cache_slack(0.5), std::invalid_argument);
+  EXPECT_THROW(set_storage_cache_slack(std::nan("")), std::invalid_argument);
 }
 
 TEST_F(StorageCacheTest, ThousandStepsOfShiftingSizesStayBounded) {
