@@ -18,6 +18,21 @@ nlohmann::json camera_to_json(const Camera& camera) {
           {"height", camera.height}};
 }
 
+namespace {
+
+// What makes a camera unusable for projection, or "" (checked on reading, so the error names the file and
+// entry instead of a later stage's "view 0 has an invalid camera").
+std::string camera_problem(const Camera& c) {
+  if (!c.K.allFinite() || !c.R.allFinite() || !c.t.allFinite()) return "K, R or t holds a non-finite value";
+  if (!(c.K(0, 0) > 0 && c.K(1, 1) > 0)) return "the focal lengths K[0] and K[4] must be > 0";
+  if ((c.R * c.R.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-3 || !(c.R.determinant() > 0))
+    return "R is not a rotation (orthonormal, determinant +1)";
+  if (c.width <= 0 || c.height <= 0) return "width and height must be > 0";
+  return "";
+}
+
+}  // namespace
+
 Camera camera_from_json(const nlohmann::json& j, const std::string& source) {
   try {
     const auto K = json_exact_array<double>(j.at("K"), "camera K"), R = json_exact_array<double>(j.at("R"), "camera R");
@@ -29,6 +44,7 @@ Camera camera_from_json(const nlohmann::json& j, const std::string& source) {
     c.t = Vec3(t[0], t[1], t[2]);
     c.width = json_exact<int>(j.at("width"), "camera width");  // 2^32 + 640 must not become 640
     c.height = json_exact<int>(j.at("height"), "camera height");
+    if (const std::string problem = camera_problem(c); !problem.empty()) throw DataError(source, "camera: " + problem);
     return c;
   } catch (const nlohmann::json::exception& e) {
     throw DataError(source, std::string("malformed camera: ") + e.what());

@@ -11,7 +11,8 @@
 namespace lc2wf {
 
 nlohmann::json camera_to_json(const Camera& camera);
-// Throws DataError naming `source` when a key is missing or has the wrong size or type.
+// Throws DataError naming `source` when a key is missing or has the wrong size or type, or the camera cannot
+// project (non-finite values, focal length <= 0, R not a rotation, empty image size).
 Camera camera_from_json(const nlohmann::json& j, const std::string& source);
 
 }  // namespace lc2wf

@@ -71,9 +71,15 @@ std::optional<fs::path> find_cloud_file_if_any(const fs::path& dir, const std::s
   std::vector<fs::path> hits;
   std::error_code ec, type_ec;
   // Not only regular files: a FIFO or device under the name is then refused by the reader, naming it.
-  for (const auto& entry : fs::directory_iterator(dir, ec))
-    if ((!entry.is_directory(type_ec) || is_limap_tracks_dir(entry.path())) && entry.path().stem() == name) hits.push_back(entry.path());
+  std::vector<fs::path> folders;  // e.g. a folder named b.lcloud: named when no file stands for the building
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (entry.path().stem() != name) continue;
+    if (!entry.is_directory(type_ec) || is_limap_tracks_dir(entry.path())) hits.push_back(entry.path());
+    else if (entry.path().has_extension()) folders.push_back(entry.path());
+  }
   if (ec) throw DataError(dir.string(), "cannot list folder: " + ec.message());
+  if (hits.empty() && !folders.empty())
+    throw DataError(std::min_element(folders.begin(), folders.end())->string(), "is a folder, not a line-cloud file (nor LIMAP tracks)");
   std::sort(hits.begin(), hits.end());
   if (hits.size() > 1)
     throw DataError(dir.string(), "building '" + name + "' has several files (" + hits[0].filename().string() + ", " +

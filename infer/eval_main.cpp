@@ -161,6 +161,13 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
+// The first names of a list, quoted, for a message that must say which buildings it means.
+std::string quoted_names(const std::vector<std::string>& names, size_t shown = 20) {
+  std::string out;
+  for (size_t k = 0; k < std::min(names.size(), shown); ++k) out += (k ? ", '" : "'") + names[k] + "'";
+  return names.size() > shown ? out + ", ..." : out;
+}
+
 int run(const Args& a) {
   GroundTruthSource source;
   source.kind = a.gt.empty() ? GroundTruthSource::Kind::kLineCloudDir : GroundTruthSource::Kind::kMeshDir;
@@ -174,8 +181,8 @@ int run(const Args& a) {
   // Where the names came from, for the errors about them: a name from a split list is the list's problem.
   const std::string listed = a.split.empty() ? std::string() : " listed in " + a.split.string();
   if (a.weights.empty() && std::none_of(names.begin(), names.end(), [&](const std::string& n) { return fs::exists(a.pred / (n + ".obj")); }))
-    throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings" + listed +
-                             " has a prediction in " + a.pred.string());
+    throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings" + listed + " (" +
+                             quoted_names(names) + ") has a prediction in " + a.pred.string());
 
 #if LC2WF_EVAL_WITH_WEIGHTS
   if (!a.weights.empty()) {
@@ -215,7 +222,11 @@ int run(const Args& a) {
     const auto gt_path = find_ground_truth(source, name);
     if (!gt_path) {
       if (progress) progress->finish();
-      throw std::runtime_error("no ground truth for building '" + name + "'" + listed + " in " + source.dir.string());
+      // Names the files looked for: a reader of this message can then see which one is missing.
+      const std::string looked_for = source.kind == GroundTruthSource::Kind::kMeshDir ? name + ".obj or " + name + ".polyshape"
+                                                                                       : "line-cloud file " + name + ".*";
+      throw std::runtime_error("no ground truth for building '" + name + "'" + listed + ": no " + looked_for + " in " +
+                               source.dir.string());
     }
     const GroundTruth gt = load_ground_truth(source, *gt_path);
     const fs::path pred_path = a.pred / (name + ".obj");
@@ -238,12 +249,9 @@ int run(const Args& a) {
   write_eval_outputs(a.out, report, a.method, &b3d);
   const auto missing = report.missing_predictions();
   if (!missing.empty()) {
-    // Exit 1 names what was skipped (the first 20; metrics.json lists them all).
-    std::string shown;
-    for (size_t k = 0; k < std::min<size_t>(missing.size(), 20); ++k) shown += " '" + missing[k] + "'";
-    if (missing.size() > 20) shown += " ...";
-    std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings%s have no prediction in %s (scored as empty):%s\n",
-                 missing.size(), names.size(), listed.c_str(), a.pred.string().c_str(), shown.c_str());
+    // Exit 1 names what was skipped (metrics.json lists them all).
+    std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings%s have no prediction in %s (scored as empty): %s\n",
+                 missing.size(), names.size(), listed.c_str(), a.pred.string().c_str(), quoted_names(missing).c_str());
   }
   std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method)).c_str(), stdout);
   std::fprintf(stderr, "lc2wf-eval: wrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),

@@ -125,6 +125,8 @@ ReconstructOptions parse_args(int argc, char** argv) {
       else if (v == "cameras") o.frame.up = UpSource::kCameras;
       else if (v == "z") o.frame.up = UpSource::kInputZ;
       else o.frame.up = UpSource::kGiven, o.frame.given_up = parse_vector(f, v);
+      if (o.frame.up == UpSource::kGiven && !(o.frame.given_up.norm() > 0))
+        throw UsageError("--up '" + v + "' is the zero vector: give a direction, e.g. 0,0,1");
     } else if (!f.empty() && f[0] == '-') {
       throw UsageError("unknown option '" + f + "'");
     } else if (o.images.empty()) {

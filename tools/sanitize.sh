@@ -27,7 +27,9 @@ cmake --build "$build" -j "$(nproc)" --target lc2wf_fuzzers lc2wf_reader_tests
 echo "sanitize: built in $((SECONDS - start)) s"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-(cd "$build" && ./tests/fuzz/lc2wf_reader_tests --gtest_brief=1)
+# The labelling and synthetic-cloud tests share a file with the reader tests but read nothing: at -O0 under
+# ASan they took 45 of the 50 s.
+(cd "$build" && ./tests/fuzz/lc2wf_reader_tests --gtest_brief=1 --gtest_filter=-Labelling.*:SyntheticCloud.*)
 echo "sanitize: tests passed at $((SECONDS - start)) s"
 WORK="$build/fuzz-work" "$root/tests/fuzz/run.sh" "$build" "$seconds"
 echo "sanitize: done in $((SECONDS - start)) s"

@@ -92,6 +92,7 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
 
   StageCallbacks cb;
   cb.batches_per_epoch = stream.batches_per_epoch();
+  cb.training_buildings = clouds.size();
   cb.start_epoch = [&](int64_t epoch, int64_t first) { stream.start(epoch, first); };
   cb.train_step = [&]() -> std::optional<StageStep> {
     std::optional<StreamBatch<PairPatches>> p = stream.next();

@@ -64,6 +64,7 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
 
   StageCallbacks cb;
   cb.batches_per_epoch = stream.batches_per_epoch();
+  cb.training_buildings = train.clouds.size();
   cb.start_epoch = [&](int64_t epoch, int64_t first) { stream.start(epoch, first); };
   cb.train_step = [&]() -> std::optional<StageStep> {
     std::optional<StreamBatch<JunctionPatches>> p = stream.next();

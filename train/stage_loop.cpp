@@ -99,7 +99,10 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
   std::unique_ptr<Optimizer> optimizer = make_optimizer(model, o.optim);
   const MultiStepLR schedule(o.optim.lr, o.optim.milestones, o.optim.gamma);
   const int64_t spe = cb.batches_per_epoch;
-  if (spe < 1) throw std::runtime_error(stage + " stage: the training split gives no full batch (fewer buildings than batch_size?)");
+  if (spe < 1)
+    throw std::runtime_error(stage + " stage: the training split's " + std::to_string(cb.training_buildings) +
+                             " usable building(s) give no full batch of " + stage + ".batch_size = " +
+                             std::to_string(o.schedule.batch_size) + " (set " + stage + ".drop_last to false, or a smaller batch)");
 
   Communicator& comm = o.comm ? *o.comm : local_communicator();
   const bool writer = comm.rank() == 0;  // logs and checkpoints

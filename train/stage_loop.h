@@ -46,6 +46,7 @@ struct StageValidation {
 
 struct StageCallbacks {
   int64_t batches_per_epoch = 0;
+  size_t training_buildings = 0;  // named when they give no full batch
   // Prepares the batches of `epoch`, starting at batch `first_batch`.
   std::function<void(int64_t epoch, int64_t first_batch)> start_epoch;
   // Runs forward and backward on the next batch (the loop steps the optimiser); nullopt ends the epoch.

@@ -144,7 +144,7 @@ TrainConfig TrainConfig::from_file(const std::filesystem::path& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(ss.str());
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // a syntax error, or a number that overflows a double (1e309)
     throw std::runtime_error(path.string() + ": not valid JSON: " + e.what());
   }
   try {

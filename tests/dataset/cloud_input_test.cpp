@@ -46,5 +46,22 @@ TEST(CloudInput, DetectsEveryFormat) {
   fs::remove_all(dir);
 }
 
+// Regression: a folder named like a cloud (b.lcloud/) was skipped as if nothing were there, so lc2wf-eval
+// reported "no ground truth for building 'b'" without naming it (found by the adversarial corpus).
+TEST(CloudInput, AFolderStandingForACloudIsNamed) {
+  const fs::path dir = fs::temp_directory_path() / ("lc2wf_cloud_folder_test_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "b.lcloud");
+  fs::create_directories(dir / "c");  // a folder without an extension is not a candidate
+  try {
+    find_cloud_file_if_any(dir, "b");
+    ADD_FAILURE() << "the folder was not reported";
+  } catch (const DataError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir / "b.lcloud").string() + ": is a folder, not a line-cloud file (nor LIMAP tracks)");
+  }
+  EXPECT_FALSE(find_cloud_file_if_any(dir, "c").has_value());
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace lc2wf

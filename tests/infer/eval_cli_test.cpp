@@ -131,7 +131,7 @@ TEST(EvalCli, BadInputsAreDataErrorsNamingTheProblem) {
   testing::write_text(pred / "b1.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n");
   const CliResult no_gt = run_eval(dir.path(), base + " --split " + (dir.path() / "split.txt").string());
   EXPECT_EQ(no_gt.code, 3);
-  EXPECT_THAT(no_gt.err, HasSubstr("no ground truth for building 'ghost' listed in " + (dir.path() / "split.txt").string()));
+  EXPECT_THAT(no_gt.err, HasSubstr("no ground truth for building 'ghost' listed in " + (dir.path() / "split.txt").string() + ": no ghost.obj or ghost.polyshape in "));
   EXPECT_FALSE(fs::exists(dir.path() / "o" / "metrics.json"));
 }
 
@@ -172,7 +172,7 @@ TEST(EvalCli, NoPredictionAtAllIsNothingEvaluated) {
   fs::create_directories(pred);
   const CliResult r = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + gt.string() + " -o " + out.string() + " -q");
   EXPECT_EQ(r.code, 3);
-  EXPECT_THAT(r.err, HasSubstr("nothing to evaluate"));
+  EXPECT_THAT(r.err, HasSubstr("nothing to evaluate: none of the 1 buildings ('b1') has a prediction in " + pred.string()));
   EXPECT_FALSE(fs::exists(out));
 }
 

@@ -31,6 +31,10 @@ TEST(ReconstructCli, HelpAndUsageErrors) {
     EXPECT_EQ(r.code, 2) << flag;
     EXPECT_NE(r.err.find(flag.substr(0, flag.find(' ')) + " expects finite"), std::string::npos) << r.err;
   }
+  // Regression: a zero up vector failed as "MetricFrameOptions.given_up is zero", naming no flag.
+  const auto zero_up = testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --up 0,0,0");
+  EXPECT_EQ(zero_up.code, 2);
+  EXPECT_NE(zero_up.err.find("--up '0,0,0' is the zero vector"), std::string::npos) << zero_up.err;
   fs::remove_all(dir);
 }
 

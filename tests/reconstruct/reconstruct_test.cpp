@@ -205,6 +205,20 @@ TEST_F(Reconstruct, HostileCameraFilesAreNamed) {
   ReconstructOptions m = options("foreign_model_out");
   m.cameras = model;
   expect_stage_error(m, "cameras", model.string() + ": none of the model's 2 image names matches an image of the folder");
+  // Regression: all-zero K and R passed the reader and failed in triangulation as an I/O error, "view 0
+  // has an invalid camera", naming no file (found by the adversarial corpus).
+  Json cams = Json::parse(read_file(scene_->cameras_json));
+  const fs::path zeros = *dir_ / "zero_cameras.json";
+  for (auto& c : cams)
+    if (!c.is_null()) c["K"] = std::vector<double>(9, 0.0);
+  write_file_atomic(zeros, cams.dump());
+  ReconstructOptions z = options("zero_cameras_out");
+  z.cameras = zeros;
+  expect_stage_error(z, "cameras", zeros.string() + " entry 0: camera: the focal lengths K[0] and K[4] must be > 0");
+  for (auto& c : cams)
+    if (!c.is_null()) c["K"] = {500, 0, 320, 0, 500, 240, 0, 0, 1}, c["R"] = std::vector<double>(9, 0.0);
+  write_file_atomic(zeros, cams.dump());
+  expect_stage_error(z, "cameras", zeros.string() + " entry 0: camera: R is not a rotation");
 }
 
 TEST_F(Reconstruct, ImagesWithoutLines) {

@@ -138,5 +138,20 @@ TEST(TrainConfig, FileErrorsNameTheFile) {
   fs::remove(p);
 }
 
+// Regression: a number beyond a double (1e309) failed as "number overflow parsing '1e309'", naming no file
+// (nlohmann reports it as out_of_range, not as a parse error; found by the adversarial corpus).
+TEST(TrainConfig, ANumberBeyondADoubleNamesTheFile) {
+  const fs::path p = fs::temp_directory_path() / ("lc2wf_overflow_config_" + std::to_string(::getpid()) + ".json");
+  std::ofstream(p) << "{\"seed\": 1e309}";
+  try {
+    TrainConfig::from_file(p);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_THAT(std::string(e.what()), HasSubstr(p.string() + ": not valid JSON"));
+    EXPECT_THAT(std::string(e.what()), HasSubstr("1e309"));
+  }
+  fs::remove(p);
+}
+
 }  // namespace
 }  // namespace lc2wf

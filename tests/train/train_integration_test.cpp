@@ -267,5 +267,18 @@ TEST_F(TrainIntegration, RejectsABadConfigNamingTheKey) {
   EXPECT_FALSE(fs::exists(dir_ / "bad"));  // nothing written for a bad config
 }
 
+// Regression: a batch larger than the split failed as "the training split gives no full batch (fewer
+// buildings than batch_size?)", naming neither the count nor the key (found by the adversarial corpus).
+TEST_F(TrainIntegration, ASplitSmallerThanTheBatchNamesTheCountAndTheKey) {
+  nlohmann::json big = config_;
+  big["junction"]["batch_size"] = 3;  // two training buildings
+  std::ofstream(dir_ / "big_batch.json") << big.dump();
+  const testing::CliResult r =
+      testing::run_cli(std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "big_batch.json") + " --quiet --out " + quote(dir_ / "big"));
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("junction stage: the training split's 2 usable building(s) give no full batch of junction.batch_size = 3"))
+      << r.err;
+}
+
 }  // namespace
 }  // namespace lc2wf

@@ -201,8 +201,14 @@ def colmap_poses(fx, rng, n):
     images = fixture_images(fx, "in/views")
     argv = [exe("lc2wf-colmap-poses"), "{C}/in/views", "--colmap", "/bin/false", "--threads", "1"]
     # /bin/false stands in for COLMAP: a cameras.json that is accepted ends in "COLMAP ... failed", named.
-    return file_cases("colmap_poses/cameras_json", "in/views/cameras.json", fx.seeds["cameras_json"], rng, n // 2, argv,
-                      extra_files=images, allowed=["in/views"], also_named=["COLMAP"])
+    cases = file_cases("colmap_poses/cameras_json", "in/views/cameras.json", fx.seeds["cameras_json"], rng, n // 2, argv,
+                       extra_files=images, allowed=["in/views"], also_named=["COLMAP"])
+    # cameras.json is optional: without it the intrinsics must come from --intrinsics, so its absence is a
+    # usage error (exit 2) whose message names both.
+    for case in cases:
+        if case.files["in/views/cameras.json"] == Special("missing"):
+            case.exits = (2,)
+    return cases
 
 
 # Flag values a command line must refuse by name (exit 2) or accept: NaN, Inf, overflow, empty, junk.
