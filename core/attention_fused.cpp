@@ -184,9 +184,10 @@ void fused_forward(const Shape4& s, const float* q, Layout lq, const float* k, L
         copy_head(Lq, D, q + lq.at(b, h), lq.row, qc);
         copy_head(Lk, D, v + lv.at(b, h), lv.row, vc);
         head_gemm::gemm_nn(Lq, Lk, D, qc, D, kt, Lk, S, Lk);
+        const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv);
         for (int64_t i = 0; i < Lq;) {
           const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
-          for (int64_t r = i; r < i + group; ++r) prefetch_next_rows(s, p, r, q, lq, k, lk, v, lv);
+          for (int64_t r = i; r < i + group; ++r) next.share(r);
           auto rows = group == kRowGroup ? forward_rows<kRowGroup> : forward_rows<1>;
           rows(S + i * Lk, probs ? probs + row * Lk : nullptr, nv, scale, mask ? valid.data() : nullptr, drop,
                static_cast<uint64_t>(row * Lk), stats ? stats + 2 * row : nullptr,
@@ -220,9 +221,10 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
         transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt);
         head_gemm::gemm_nn(Lq, Lk, D, Q, D, kt, Lk, S, Lk);   // raw scores again
         head_gemm::gemm_nn(Lq, Lk, D, G, D, vt, Lk, dP, Lk);  // dP~ = g v^T
+        const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv, go, lo);
         for (int64_t i = 0; i < Lq;) {
           const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
-          for (int64_t r = i; r < i + group; ++r) prefetch_next_rows(s, p, r, q, lq, k, lk, v, lv, go, lo);
+          for (int64_t r = i; r < i + group; ++r) next.share(r);
           auto rows = group == kRowGroup ? backward_rows<kRowGroup> : backward_rows<1>;
           rows(S + i * Lk, dP + i * Lk, Pd + i * Lk, nv, scale, mask ? valid.data() : nullptr, drop, stats + 2 * row,
                keep_bits ? keep_bits + row * nv : nullptr);

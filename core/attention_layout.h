@@ -51,20 +51,33 @@ inline void prefetch_next_pair(const Shape4& s, int64_t p, const T* q, Layout lq
   if (go) prefetch_rows(go + lo.at(nb, nh), s.Lq, lo.row, s.D);
 }
 
-// The share of pair p + 1's rows that goes with query row i of pair p: the rows of q (and go) with the same
-// index and the matching slice of the k and v rows. Called once per query row, the prefetches spread over
-// the pair's work: issued in one burst, they fill the L1 miss buffers and the burst stalls the core
-// (measured no faster than none).
+// The rows of pair p + 1, prefetched a share per query row of pair p (share(i)): issued in one burst, the
+// prefetches fill the L1 miss buffers and the burst stalls the core (measured no faster than none).
 template <class T>
-inline void prefetch_next_rows(const Shape4& s, int64_t p, int64_t i, const T* q, Layout lq, const T* k, Layout lk,
-                               const T* v, Layout lv, const T* go = nullptr, Layout lo = {}) {
-  if (p + 1 >= s.B * s.H) return;
-  const int64_t nb = (p + 1) / s.H, nh = (p + 1) % s.H;
-  const int64_t k0 = i * s.Lk / s.Lq, k1 = (i + 1) * s.Lk / s.Lq;
-  prefetch_rows(q + lq.at(nb, nh) + i * lq.row, 1, 0, s.D);
-  if (go) prefetch_rows(go + lo.at(nb, nh) + i * lo.row, 1, 0, s.D);
-  prefetch_rows(k + lk.at(nb, nh) + k0 * lk.row, k1 - k0, lk.row, s.D);
-  prefetch_rows(v + lv.at(nb, nh) + k0 * lv.row, k1 - k0, lv.row, s.D);
-}
+class NextPairRows {
+ public:
+  NextPairRows(const Shape4& s, int64_t p, const T* q, Layout lq, const T* k, Layout lk, const T* v, Layout lv,
+               const T* go = nullptr, Layout lo = {})
+      : s_(s), lq_(lq), lk_(lk), lv_(lv), lo_(lo) {
+    if (p + 1 >= s.B * s.H) return;
+    const int64_t nb = (p + 1) / s.H, nh = (p + 1) % s.H;
+    q_ = q + lq.at(nb, nh), k_ = k + lk.at(nb, nh), v_ = v + lv.at(nb, nh);
+    if (go) go_ = go + lo.at(nb, nh);
+  }
+  // Row i of q (and go) and the matching slice of the k and v rows.
+  void share(int64_t i) const {
+    if (!q_) return;
+    prefetch_rows(q_ + i * lq_.row, 1, 0, s_.D);
+    if (go_) prefetch_rows(go_ + i * lo_.row, 1, 0, s_.D);
+    const int64_t k0 = s_.Lk == s_.Lq ? i : i * s_.Lk / s_.Lq, k1 = s_.Lk == s_.Lq ? i + 1 : (i + 1) * s_.Lk / s_.Lq;
+    prefetch_rows(k_ + k0 * lk_.row, k1 - k0, lk_.row, s_.D);
+    prefetch_rows(v_ + k0 * lv_.row, k1 - k0, lv_.row, s_.D);
+  }
+
+ private:
+  const Shape4& s_;
+  Layout lq_, lk_, lv_, lo_;
+  const T *q_ = nullptr, *k_ = nullptr, *v_ = nullptr, *go_ = nullptr;
+};
 
 }  // namespace lc2wf::attention
