@@ -51,73 +51,117 @@ inline __m256 shifted_exp8(__m256 s, __m256 scale, __m256 m, const int32_t* vali
   return valid ? _mm256_and_ps(e, lanes8(valid, v)) : e;
 }
 
-// Softmax and dropout of one score row in place: s holds raw scores on entry and the dropped-out
-// probabilities on exit; p (optional) gets the probabilities. A row whose keys are all masked is zero.
-// Element j of query row `first / Lk` has dropout index first + j.
-void forward_row(float* s, float* p, int64_t nv, float scale, const int32_t* valid, const DropoutPlan& drop,
-                 uint64_t first, float* stat, uint8_t* bits) {
+// Query rows whose softmax runs interleaved: one row alone is a chain of dependent reductions (max, exp,
+// sum, reciprocal) that leaves most of the core idle; independent rows fill it.
+constexpr int kRowGroup = 4;
+
+// Softmax and dropout of R consecutive score rows of Lk = 8 * nv keys in place: s holds raw scores on entry
+// and the dropped-out probabilities on exit; p (optional) gets the probabilities. A row whose keys are all
+// masked is zero. Element j of query row `first / Lk` has dropout index first + j. Each row's arithmetic
+// is that of R = 1, so the grouping does not change a bit.
+template <int R>
+void forward_rows(float* s, float* p, int64_t nv, float scale, const int32_t* valid, const DropoutPlan& drop,
+                  uint64_t first, float* stat, uint8_t* bits) {
+  const int64_t n = 8 * nv;
   const __m256 neg_inf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
-  __m256 mx = neg_inf;
-  for (int64_t v = 0; v < nv; ++v) {
-    __m256 x = _mm256_loadu_ps(s + 8 * v);
-    mx = _mm256_max_ps(mx, valid ? _mm256_blendv_ps(neg_inf, x, lanes8(valid, v)) : x);
-  }
-  const float top = hmax8(mx);
-  if (top == -std::numeric_limits<float>::infinity()) {
-    for (int64_t j = 0; j < 8 * nv; ++j) s[j] = 0.0f;
-    if (p)
-      for (int64_t j = 0; j < 8 * nv; ++j) p[j] = 0.0f;
-    if (stat) stat[0] = stat[1] = 0.0f;
-    if (bits)
-      for (int64_t v = 0; v < nv; ++v) bits[v] = 0;
-    return;
-  }
-  // Rounding is monotonic, so max(s) * scale is the maximum of the scaled scores.
-  const float m = top * scale;
-  const __m256 vscale = _mm256_set1_ps(scale), vm = _mm256_set1_ps(m);
-  __m256 sum = _mm256_setzero_ps();
-  for (int64_t v = 0; v < nv; ++v) {
-    const __m256 e = shifted_exp8(_mm256_loadu_ps(s + 8 * v), vscale, vm, valid, v);
-    _mm256_storeu_ps(s + 8 * v, e);
-    sum = _mm256_add_ps(sum, e);
-  }
-  const float inv = 1.0f / hsum8(sum);
-  const __m256 vinv = _mm256_set1_ps(inv), keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
-  for (int64_t v = 0; v < nv; ++v) {
-    __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(s + 8 * v), vinv);
-    if (p) _mm256_storeu_ps(p + 8 * v, pv);
-    if (drop.active) {
-      const __m256 keep = _mm256_castsi256_ps(drop.mask.keep8(first + 8 * static_cast<uint64_t>(v)));
-      if (bits) bits[v] = static_cast<uint8_t>(_mm256_movemask_ps(keep));
-      pv = _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), keep);
+  __m256 mx[R], sum[R], vm[R], vinv[R];
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r) mx[r] = neg_inf, sum[r] = _mm256_setzero_ps();
+  for (int64_t v = 0; v < nv; ++v)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      __m256 x = _mm256_loadu_ps(s + r * n + 8 * v);
+      mx[r] = _mm256_max_ps(mx[r], valid ? _mm256_blendv_ps(neg_inf, x, lanes8(valid, v)) : x);
     }
-    _mm256_storeu_ps(s + 8 * v, pv);
+  float m[R];
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r) {
+    const float top = hmax8(mx[r]);
+    if (top == -std::numeric_limits<float>::infinity()) {
+      if constexpr (R > 1) {
+        // Rare (every key masked): each row on its own path.
+        for (int q = 0; q < R; ++q)
+          forward_rows<1>(s + q * n, p ? p + q * n : nullptr, nv, scale, valid, drop, first + q * n,
+                          stat ? stat + 2 * q : nullptr, bits ? bits + q * nv : nullptr);
+        return;
+      }
+      for (int64_t j = 0; j < n; ++j) s[j] = 0.0f;
+      if (p)
+        for (int64_t j = 0; j < n; ++j) p[j] = 0.0f;
+      if (stat) stat[0] = stat[1] = 0.0f;
+      if (bits)
+        for (int64_t v = 0; v < nv; ++v) bits[v] = 0;
+      return;
+    }
+    // Rounding is monotonic, so max(s) * scale is the maximum of the scaled scores.
+    m[r] = top * scale;
+    vm[r] = _mm256_set1_ps(m[r]);
   }
-  if (stat) stat[0] = m, stat[1] = inv;
+  const __m256 vscale = _mm256_set1_ps(scale);
+  for (int64_t v = 0; v < nv; ++v)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      const __m256 e = shifted_exp8(_mm256_loadu_ps(s + r * n + 8 * v), vscale, vm[r], valid, v);
+      _mm256_storeu_ps(s + r * n + 8 * v, e);
+      sum[r] = _mm256_add_ps(sum[r], e);
+    }
+  float inv[R];
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r) inv[r] = 1.0f / hsum8(sum[r]), vinv[r] = _mm256_set1_ps(inv[r]);
+  const __m256 keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
+  for (int64_t v = 0; v < nv; ++v)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      float* row = s + r * n;
+      __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(row + 8 * v), vinv[r]);
+      if (p) _mm256_storeu_ps(p + r * n + 8 * v, pv);
+      if (drop.active) {
+        const __m256 keep = _mm256_castsi256_ps(drop.mask.keep8(first + r * n + 8 * static_cast<uint64_t>(v)));
+        if (bits) bits[r * nv + v] = static_cast<uint8_t>(_mm256_movemask_ps(keep));
+        pv = _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), keep);
+      }
+      _mm256_storeu_ps(row + 8 * v, pv);
+    }
+  if (stat)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) stat[2 * r] = m[r], stat[2 * r + 1] = inv[r];
 }
 
-// One row of the backward pass. s holds raw scores, dp the gradient of the dropped-out probabilities;
-// on exit pd holds the dropped-out probabilities and dp the score gradient
+// R consecutive rows of the backward pass (Lk = 8 * nv keys). s holds raw scores, dp the gradient of the
+// dropped-out probabilities; on exit pd holds the dropped-out probabilities and dp the score gradient
 // dS = P * (dP - sum(P * dP)) * scale with dP = dP~ * keep * keep_scale (sum(P dP) = sum(P~ dP~)).
-void backward_row(float* s, float* dp, float* pd, int64_t nv, float scale, const int32_t* valid,
-                  const DropoutPlan& drop, const float* stat, const uint8_t* bits) {
-  const __m256 vscale = _mm256_set1_ps(scale), vm = _mm256_set1_ps(stat[0]), vinv = _mm256_set1_ps(stat[1]);
-  const __m256 keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
-  __m256 dot = _mm256_setzero_ps();
-  for (int64_t v = 0; v < nv; ++v) {
-    const __m256 pv = _mm256_mul_ps(shifted_exp8(_mm256_loadu_ps(s + 8 * v), vscale, vm, valid, v), vinv);
-    const __m256 pt = drop.active ? _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), bits_to_mask8(bits[v])) : pv;
-    _mm256_storeu_ps(s + 8 * v, pv);
-    _mm256_storeu_ps(pd + 8 * v, pt);
-    dot = _mm256_fmadd_ps(pt, _mm256_loadu_ps(dp + 8 * v), dot);
-  }
-  const __m256 vdot = _mm256_set1_ps(hsum8(dot));
-  for (int64_t v = 0; v < nv; ++v) {
-    __m256 g = _mm256_loadu_ps(dp + 8 * v);
-    if (drop.active) g = _mm256_and_ps(_mm256_mul_ps(g, keep_scale), bits_to_mask8(bits[v]));
-    const __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(s + 8 * v), vscale);
-    _mm256_storeu_ps(dp + 8 * v, _mm256_mul_ps(pv, _mm256_sub_ps(g, vdot)));
-  }
+// Interleaved like forward_rows, each row's arithmetic that of R = 1.
+template <int R>
+void backward_rows(float* s, float* dp, float* pd, int64_t nv, float scale, const int32_t* valid,
+                   const DropoutPlan& drop, const float* stat, const uint8_t* bits) {
+  const int64_t n = 8 * nv;
+  const __m256 vscale = _mm256_set1_ps(scale), keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
+  __m256 vm[R], vinv[R], dot[R];
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r)
+    vm[r] = _mm256_set1_ps(stat[2 * r]), vinv[r] = _mm256_set1_ps(stat[2 * r + 1]), dot[r] = _mm256_setzero_ps();
+  for (int64_t v = 0; v < nv; ++v)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      const int64_t at = r * n + 8 * v;
+      const __m256 pv = _mm256_mul_ps(shifted_exp8(_mm256_loadu_ps(s + at), vscale, vm[r], valid, v), vinv[r]);
+      const __m256 pt =
+          drop.active ? _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), bits_to_mask8(bits[r * nv + v])) : pv;
+      _mm256_storeu_ps(s + at, pv);
+      _mm256_storeu_ps(pd + at, pt);
+      dot[r] = _mm256_fmadd_ps(pt, _mm256_loadu_ps(dp + at), dot[r]);
+    }
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r) dot[r] = _mm256_set1_ps(hsum8(dot[r]));
+  for (int64_t v = 0; v < nv; ++v)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      const int64_t at = r * n + 8 * v;
+      __m256 g = _mm256_loadu_ps(dp + at);
+      if (drop.active) g = _mm256_and_ps(_mm256_mul_ps(g, keep_scale), bits_to_mask8(bits[r * nv + v]));
+      const __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(s + at), vscale);
+      _mm256_storeu_ps(dp + at, _mm256_mul_ps(pv, _mm256_sub_ps(g, dot[r])));
+    }
 }
 
 }  // namespace
@@ -140,11 +184,15 @@ void fused_forward(const Shape4& s, const float* q, Layout lq, const float* k, L
         copy_head(Lq, D, q + lq.at(b, h), lq.row, qc);
         copy_head(Lk, D, v + lv.at(b, h), lv.row, vc);
         head_gemm::gemm_nn(Lq, Lk, D, qc, D, kt, Lk, S, Lk);
-        for (int64_t i = 0; i < Lq; ++i) {
-          const int64_t row = p * Lq + i;
-          forward_row(S + i * Lk, probs ? probs + row * Lk : nullptr, nv, scale, mask ? valid.data() : nullptr, drop,
-                      static_cast<uint64_t>(row * Lk), stats ? stats + 2 * row : nullptr,
-                      keep_bits ? keep_bits + row * nv : nullptr);
+        const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv);
+        for (int64_t i = 0; i < Lq;) {
+          const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
+          for (int64_t r = i; r < i + group; ++r) next.share(r);
+          auto rows = group == kRowGroup ? forward_rows<kRowGroup> : forward_rows<1>;
+          rows(S + i * Lk, probs ? probs + row * Lk : nullptr, nv, scale, mask ? valid.data() : nullptr, drop,
+               static_cast<uint64_t>(row * Lk), stats ? stats + 2 * row : nullptr,
+               keep_bits ? keep_bits + row * nv : nullptr);
+          i += group;
         }
         head_gemm::gemm_nn(Lq, D, Lk, S, Lk, vc, D, o + lo.at(b, h), lo.row);
       }
@@ -173,10 +221,14 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
         transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt);
         head_gemm::gemm_nn(Lq, Lk, D, Q, D, kt, Lk, S, Lk);   // raw scores again
         head_gemm::gemm_nn(Lq, Lk, D, G, D, vt, Lk, dP, Lk);  // dP~ = g v^T
-        for (int64_t i = 0; i < Lq; ++i) {
-          const int64_t row = p * Lq + i;
-          backward_row(S + i * Lk, dP + i * Lk, Pd + i * Lk, nv, scale, mask ? valid.data() : nullptr, drop,
-                       stats + 2 * row, keep_bits ? keep_bits + row * nv : nullptr);
+        const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv, go, lo);
+        for (int64_t i = 0; i < Lq;) {
+          const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
+          for (int64_t r = i; r < i + group; ++r) next.share(r);
+          auto rows = group == kRowGroup ? backward_rows<kRowGroup> : backward_rows<1>;
+          rows(S + i * Lk, dP + i * Lk, Pd + i * Lk, nv, scale, mask ? valid.data() : nullptr, drop, stats + 2 * row,
+               keep_bits ? keep_bits + row * nv : nullptr);
+          i += group;
         }
         head_gemm::gemm_nn(Lq, D, Lk, dP, Lk, K, D, dq + ldq.at(b, h), ldq.row);  // dS k
         head_gemm::gemm_tn(Lk, D, Lq, dP, Lk, Q, D, dk + ldk.at(b, h), ldk.row);  // dS^T q
