@@ -4,6 +4,7 @@
 #include <exception>
 #include <memory>
 
+#include "core/parallel.h"
 #include "core/util/progress.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
@@ -14,6 +15,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
                                    const std::filesystem::path& out_dir, const BatchInferenceOptions& o) {
   o.post.Check();
   BatchInferenceSummary s;
+  s.threads = num_threads();
   std::unique_ptr<Progress> bar;
   if (!o.quiet) bar = std::make_unique<Progress>("inferring", static_cast<int64_t>(clouds.size()));
   for (const auto& path : clouds) {
@@ -43,6 +45,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     s.junction_seconds += r.junction_seconds;
     s.edge_seconds += r.edge_seconds;
     s.post_seconds += r.post_seconds;
+    s.pairs += static_cast<int64_t>(r.pairs.size());
     ++s.buildings;
     if (r.wireframe.wireframe.edges.empty()) ++s.empty;
     s.names.push_back(name);

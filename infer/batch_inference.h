@@ -10,6 +10,7 @@
 
 #include "dataset/cloud_input.h"
 #include "infer/inference.h"
+#include "infer/inference_timing.h"
 
 namespace lc2wf {
 
@@ -23,13 +24,8 @@ struct BatchInferenceOptions {
   bool quiet = false;
 };
 
-struct BatchInferenceSummary {
-  int buildings = 0;        // predicted (possibly empty wireframes)
+struct BatchInferenceSummary : InferenceTiming {
   int failed = 0;           // unreadable clouds (reported on stderr)
-  int empty = 0;            // no edge in the final wireframe
-  double total_seconds = 0; // networks + post-processing, excluding file I/O
-  double max_seconds = 0;
-  double junction_seconds = 0, edge_seconds = 0, post_seconds = 0;
   std::vector<std::string> names;  // predicted buildings, input order
 };
 

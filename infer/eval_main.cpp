@@ -4,6 +4,7 @@
 #include <exception>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -184,6 +185,7 @@ int run(const Args& a) {
     throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings" + listed + " (" +
                              quoted_names(names) + ") has a prediction in " + a.pred.string());
 
+  std::optional<InferenceTiming> inference_summary;
 #if LC2WF_EVAL_WITH_WEIGHTS
   if (!a.weights.empty()) {
     // Inference on every listed building, then the usual scoring of what it wrote.
@@ -198,6 +200,7 @@ int run(const Args& a) {
     inference.format = parse_cloud_format(a.format, "--format");
     if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
     const BatchInferenceSummary s = infer_clouds(predictor, clouds, a.pred, inference);
+    inference_summary = s;
     if (s.failed > 0) {
       std::fprintf(stderr, "lc2wf-eval: error: %d line cloud(s) could not be read\n", s.failed);
       return s.buildings > 0 ? kExitPartly : kExitDataError;
@@ -246,7 +249,7 @@ int run(const Args& a) {
   const EvalReport report = evaluator.report();
   const Building3dReport b3d{summarize_building3d(building3d, {}, a.gt.empty() ? "line-cloud segment endpoints" : "GT corners"),
                              names, building3d};
-  write_eval_outputs(a.out, report, a.method, &b3d);
+  write_eval_outputs(a.out, report, a.method, &b3d, inference_summary ? &*inference_summary : nullptr);
   const auto missing = report.missing_predictions();
   if (!missing.empty()) {
     // Exit 1 names what was skipped (metrics.json lists them all).

@@ -175,13 +175,41 @@ std::string eval_per_building_csv(const EvalReport& r) {
   return s;
 }
 
+std::string inference_markdown(const InferenceTiming& s) {
+  const double n = std::max(1, s.buildings);
+  char line[400];
+  std::snprintf(line, sizeof line,
+                "\nInference (%d buildings, %d threads): %.3f s per building on average (junction model %.3f, edge model "
+                "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building.\n",
+                s.buildings, s.threads, s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
+                s.max_seconds, static_cast<double>(s.pairs) / n);
+  return line;
+}
+
+nlohmann::json inference_json(const InferenceTiming& s) {
+  const double n = std::max(1, s.buildings);
+  return {{"buildings", s.buildings},
+          {"threads", s.threads},
+          {"seconds_per_building", s.total_seconds / n},
+          {"junction_seconds_per_building", s.junction_seconds / n},
+          {"edge_seconds_per_building", s.edge_seconds / n},
+          {"post_seconds_per_building", s.post_seconds / n},
+          {"max_seconds", s.max_seconds},
+          {"pairs_per_building", static_cast<double>(s.pairs) / n},
+          {"empty_wireframes", s.empty}};
+}
+
 void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method,
-                        const Building3dReport* building3d) {
+                        const Building3dReport* building3d, const InferenceTiming* inference) {
   std::string md = eval_markdown(report, method);
   nlohmann::json j = eval_json(report, method);
   if (building3d) {
     md += building3d_markdown(*building3d, method);
     j["building3d"] = building3d_json(*building3d);
+  }
+  if (inference) {
+    md += inference_markdown(*inference);
+    j["inference"] = inference_json(*inference);
   }
   md += "\nlc2wf " + version_line() + "\n";
   write_text_atomically(dir / "metrics.md", md);

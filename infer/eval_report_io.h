@@ -9,6 +9,7 @@
 
 #include "infer/building3d_io.h"
 #include "infer/evaluator.h"
+#include "infer/inference_timing.h"
 
 namespace lc2wf {
 
@@ -16,9 +17,14 @@ std::string eval_markdown(const EvalReport& report, const std::string& method);
 nlohmann::json eval_json(const EvalReport& report, const std::string& method);
 std::string eval_per_building_csv(const EvalReport& report);
 
+// Seconds per building of each inference stage and pairs per building (lc2wf-eval --weights).
+std::string inference_markdown(const InferenceTiming& s);
+nlohmann::json inference_json(const InferenceTiming& s);
+
 // Writes `<dir>/metrics.md`, `<dir>/metrics.json` and `<dir>/per_building.csv`, each atomically; with
-// `building3d`, its section is appended to metrics.md and stored under "building3d" in metrics.json.
+// `building3d`, its section is appended to metrics.md and stored under "building3d" in metrics.json, and
+// likewise `inference` (the timing of the predictions just made) under "inference".
 void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method,
-                        const Building3dReport* building3d = nullptr);
+                        const Building3dReport* building3d = nullptr, const InferenceTiming* inference = nullptr);
 
 }  // namespace lc2wf

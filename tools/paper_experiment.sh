@@ -5,7 +5,9 @@
 #   tools/paper_experiment.sh eval      Table 2 on the 757 test buildings (sound and --release-quirks),
 #                                       plots and the HTML report -> runs/base/test*
 #   tools/paper_experiment.sh raster    the same model on raster-rendered test clouds (how much the renderer matters)
-#   tools/paper_experiment.sh all       dataset, train, eval
+#   tools/paper_experiment.sh ship      the trained model -> models/base/ (weights, config, model card with
+#                                       the test metrics; each file <= 20 MB), after eval (and raster)
+#   tools/paper_experiment.sh all       dataset, train, eval, ship
 #   tools/paper_experiment.sh snapshot  copy the training state (newest checkpoint of each stage, best
 #                                       weights, log) to models/base-training/ for committing
 #   tools/paper_experiment.sh restore   put that state back into runs/base (train does it by itself when
@@ -99,6 +101,27 @@ step_raster() {
   evaluate runs/raster-test/clouds runs/base/test-raster "lc2wf on raster clouds"
 }
 
+step_ship() {
+  local out=models/base tmp=models/base.tmp extra=()
+  for f in runs/base/junction.safetensors runs/base/edge.safetensors runs/base/test/metrics.json; do
+    [[ -f $f ]] || { echo "paper_experiment.sh: $f is missing: run train and eval first" >&2; exit 3; }
+  done
+  rm -rf "$tmp" && mkdir -p "$tmp"
+  cp runs/base/junction.safetensors runs/base/edge.safetensors runs/base/config.json "$tmp/"
+  [[ -f runs/base/README.md ]] && cp runs/base/README.md "$tmp/training-card.md"
+  /usr/bin/python3 tools/plots/plot_training.py runs/base --out "$tmp/learning_curves.png" >/dev/null || true
+  [[ -f runs/base/test-release/metrics.json ]] && extra+=(--eval-release runs/base/test-release)
+  [[ -f runs/base/test-raster/metrics.json ]] && extra+=(--eval-raster runs/base/test-raster)
+  [[ -f runs/dataset/summary.json ]] && extra+=(--dataset runs/dataset)
+  /usr/bin/python3 tools/model_card.py --run runs/base --eval runs/base/test "${extra[@]}" -o "$tmp/README.md"
+  # The repository keeps every file under 20 MB.
+  local big
+  big=$(find "$tmp" -type f -size +20M)
+  [[ -z $big ]] || { echo "paper_experiment.sh: over 20 MB: $big" >&2; exit 3; }
+  rm -rf "$out" && mv "$tmp" "$out"
+  echo "Model published in $out ($(du -sh "$out" | cut -f1)); commit it."
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -106,6 +129,7 @@ case "${1:-}" in
   raster) step_raster ;;
   snapshot) step_snapshot ;;
   restore) step_restore ;;
-  all) step_dataset && step_train && step_eval ;;
-  *) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  ship) step_ship ;;
+  all) step_dataset && step_train && step_eval && step_ship ;;
+  *) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

@@ -9,6 +9,7 @@
 #include "nn/edge_net.h"
 #include "nn/losses.h"
 #include "train/data_parallel.h"
+#include "train/edge_step.h"
 #include "train/junction_handoff.h"
 #include "train/patch_stream.h"
 #include "train/stage_loop.h"
@@ -57,17 +58,10 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
   Communicator& comm = run.communicator();
   DataParallel dp(comm, net, net.dropout_rng(), c.schedule.batch_norm == "sync");
 
-  PairSampleOptions train_options;
-  train_options.pairs.pairs_per_building = static_cast<int>(c.net.lpt.patches);
-  train_options.pairs.max_static_pairs = static_cast<int>(c.max_static_pairs);
-  train_options.patch = pair_patch_options(c.net);
-  train_options.augment_enabled = c.schedule.augment;
-  train_options.cloud_augment_enabled = c.schedule.cloud_augment.enabled;
-  train_options.cloud_augment = c.schedule.cloud_augment.options;
+  const PairSampleOptions train_options = edge_training_sample_options(c);
   // Training pairs and validation wireframes select junctions as lc2wf-infer does (same NMS, refinement).
-  const PostProcessOptions post = c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
-  JunctionSelectionOptions selection = post.selection;
-  selection.top_k = static_cast<int>(c.top_k);
+  const PostProcessOptions post = edge_post_process_options(c);
+  const JunctionSelectionOptions selection = edge_training_selection(c);
 
   // Buildings whose GT has fewer than two junctions have no pairs to learn from. The selection is fixed
   // for the stage (the hand-off does not change), so it is made once.
@@ -97,33 +91,8 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
   cb.train_step = [&]() -> std::optional<StageStep> {
     std::optional<StreamBatch<PairPatches>> p = stream.next();
     if (!p) return std::nullopt;
-    const int64_t micro = c.schedule.micro_batch;
-    if (comm.size() == 1 && micro_batch_ranges(static_cast<int>(p->batch), micro).size() == 1) {
-      double total = 0.0;
-      dp.run_step(p->batch, micro, [&](int64_t, int64_t) {
-        const PatchInput in = pair_input(p->patches);
-        const Tensor loss = edge_loss(net.forward(in.x, in.mask), pair_labels(p->patches), c.loss);
-        loss.backward();
-        total = loss.item();
-      });
-      return StageStep{total, nlohmann::json::object(), p->batch};
-    }
-    // Each pass divides by the whole batch's class-weight sum: the parts add up to the batch loss.
-    std::vector<double> weight_total{p->share.count > 0 ? edge_loss_weight(pair_labels(p->patches), c.loss) : 0.0};
-    dp.sum(weight_total, "edge loss weight");
-    std::vector<double> total{0.0};
-    const double comm_seconds = dp.run_step(p->batch, micro, [&](int64_t first, int64_t count) {
-      const bool all_local = count == p->share.count;
-      const PairPatches part =
-          all_local ? PairPatches{} : slice(p->patches, static_cast<int>(first - p->share.first), static_cast<int>(count));
-      const PairPatches& q = all_local ? p->patches : part;
-      const PatchInput in = pair_input(q);
-      const Tensor loss = edge_loss(net.forward(in.x, in.mask), pair_labels(q), c.loss, weight_total[0]);
-      loss.backward();
-      total[0] += loss.item();
-    });
-    dp.sum(total, "loss terms");
-    return StageStep{total[0], nlohmann::json::object(), p->batch, comm_seconds};
+    const EdgeStepPasses step = edge_step_passes(net, dp, *p, c.schedule.micro_batch, c.loss);
+    return StageStep{step.loss, nlohmann::json::object(), p->batch, step.comm_seconds};
   };
   cb.validate = [&]() {
     // One pass per building: the loss is computed on exactly the pairs whose wireframe is scored.

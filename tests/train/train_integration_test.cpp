@@ -191,6 +191,14 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_FALSE(metrics.empty());
   EXPECT_TRUE(fs::exists(eval / "predictions" / "ell.obj"));
   EXPECT_TRUE(fs::exists(eval / "metrics.md"));
+  // The inference just made is timed in the report: every stage's seconds add up to the total.
+  const nlohmann::json& timing = metrics.at("inference");
+  EXPECT_EQ(timing["buildings"].get<int>(), static_cast<int>(metrics["buildings"].get<size_t>()));
+  EXPECT_NEAR(timing["seconds_per_building"].get<double>(),
+              timing["junction_seconds_per_building"].get<double>() + timing["edge_seconds_per_building"].get<double>() +
+                  timing["post_seconds_per_building"].get<double>(), 1e-9);
+  EXPECT_GT(timing["pairs_per_building"].get<double>(), 0.0);
+  EXPECT_THAT(read_text(eval / "metrics.md"), HasSubstr("classified pairs per building"));
 
   // One rule for junctions: the edge stage's validation of the weights it kept scores exactly what
   // lc2wf-eval --weights scores for the same weights and buildings.

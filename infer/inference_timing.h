@@ -1,0 +1,19 @@
+// What a batch of inferences cost, per stage: kept apart from the networks so that the metrics' output
+// (infer/eval_report_io.h) can report it without depending on them.
+#pragma once
+
+#include <cstdint>
+
+namespace lc2wf {
+
+struct InferenceTiming {
+  int buildings = 0;        // predicted (possibly empty wireframes)
+  int empty = 0;            // no edge in the final wireframe
+  double total_seconds = 0; // networks + post-processing, excluding file I/O
+  double max_seconds = 0;
+  double junction_seconds = 0, edge_seconds = 0, post_seconds = 0;
+  int64_t pairs = 0;        // junction pairs the edge model classified, all buildings
+  int threads = 1;          // compute threads the networks ran on
+};
+
+}  // namespace lc2wf
