@@ -58,12 +58,30 @@ void check_patch_input(const Tensor& x, const Tensor& mask, const LptConfig& c, 
 Tensor LinePatchTransformer::forward(const Tensor& x, const Tensor& mask, Rng& rng) {
   check_patch_input(x, mask, config_, "LinePatchTransformer");
   const int64_t B = x.size(0), G = x.size(1), N = x.size(2), E = config_.hidden_dim;
-  Tensor h = x.reshape({B * G * N, config_.input_dim});
-  h = line_mlp(h);
-  const Tensor line_mask = mask.reshape({B * G, N});
-  const Tensor lines = enc1_.forward(h.reshape({B * G, N, E}), line_mask, rng);
-  const Tensor patches = pool(lines, line_mask).reshape({B, G, E});
-  return enc2_.forward(patches, Tensor(), rng);
+  const Tensor rows = x.reshape({B * G, N, config_.input_dim});
+  const Tensor row_mask = mask.reshape({B * G, N});
+  // Inference: each patch's lines are encoded independently of every other patch (BatchNorm uses its
+  // running statistics, no dropout), so a building's thousands of pair patches go through in chunks that
+  // stay in cache instead of as activations of gigabytes. Training needs the whole batch (statistics, graph).
+  const int64_t chunk = std::max<int64_t>(1, kInferenceTokensPerChunk / N);
+  Tensor patches;
+  if (is_training() || grad_enabled() || B * G <= chunk) {
+    patches = encode_patches(rows, row_mask, rng);
+  } else {
+    std::vector<Tensor> parts;
+    for (int64_t first = 0; first < B * G; first += chunk) {
+      const int64_t last = std::min(B * G, first + chunk);
+      parts.push_back(encode_patches(slice(rows, 0, first, last), slice(row_mask, 0, first, last), rng));
+    }
+    patches = concat(parts, 0);
+  }
+  return enc2_.forward(patches.reshape({B, G, E}), Tensor(), rng);
+}
+
+Tensor LinePatchTransformer::encode_patches(const Tensor& rows, const Tensor& mask, Rng& rng) {
+  const int64_t R = rows.size(0), N = rows.size(1), E = config_.hidden_dim;
+  const Tensor h = line_mlp(rows.reshape({R * N, config_.input_dim}));
+  return pool(enc1_.forward(h.reshape({R, N, E}), mask, rng), mask);
 }
 
 // The MLP runs on every line slot: checkpointed, its Linear outputs and ReLU activations (M x 640 floats

@@ -30,12 +30,17 @@ class LinearBnRelu : public Module {
 
 class LinePatchTransformer : public Module {
  public:
+  // Line slots per chunk when patches are encoded without gradients in eval mode (about 16 MB per
+  // activation at width 256): the edge model meets thousands of pairs per building at inference.
+  static constexpr int64_t kInferenceTokensPerChunk = 16384;
   LinePatchTransformer(const LptConfig& config, Rng& init_rng);
   // x (B, G, N, F) F32; mask Bool (B, G, N), true = padded slot. Returns (B, G, hidden_dim).
   Tensor forward(const Tensor& x, const Tensor& mask, Rng& rng);
   const LptConfig& config() const { return config_; }
 
  private:
+  // Line MLP, line encoder and pooling of R patches: rows (R, N, F), mask (R, N) -> (R, E).
+  Tensor encode_patches(const Tensor& rows, const Tensor& mask, Rng& rng);
   Tensor line_mlp(const Tensor& rows) const;
   Tensor pool(const Tensor& lines, const Tensor& mask) const;
 

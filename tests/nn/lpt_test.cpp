@@ -98,6 +98,30 @@ TEST(Lpt, TrainingForwardIsDeterministicAcrossThreadCounts) {
   EXPECT_EQ(two, again);
 }
 
+TEST(Lpt, InferenceInChunksEqualsTheWholeForward) {
+  // A building with more pair patches than one inference chunk holds: without gradients the lines are
+  // encoded chunk by chunk, with them (same eval mode) all at once; the patch encoder sees every patch.
+  EdgeNetConfig c;
+  c.lpt.lines_per_patch = 64;
+  c.lpt.mlp_dims = {8, 16};
+  c.lpt.hidden_dim = 16;
+  c.lpt.num_heads = 4;
+  c.lpt.ffn_dim = 16;
+  c.head.dims = {8};
+  const int64_t P = 2 * LinePatchTransformer::kInferenceTokensPerChunk / 64 + 5;  // 3 chunks, the last partial
+  const Tensor x = inputs(1, P, 64, 6, 8);
+  const Tensor mask = mask_every(1, P, 64, 5);
+  EdgeNet net(c, 12);
+  net.eval();
+  const std::vector<double> whole = net.forward(x, mask).to_vector();
+  NoGradGuard no_grad;
+  const std::vector<double> chunked = net.forward(x, mask).to_vector();
+  ASSERT_EQ(whole.size(), chunked.size());
+  double diff = 0;
+  for (size_t i = 0; i < whole.size(); ++i) diff = std::max(diff, std::abs(whole[i] - chunked[i]));
+  EXPECT_LE(diff, 1e-6);
+}
+
 TEST(Lpt, DropoutStreamAdvancesOnlyInTraining) {
   JunctionNet net(small(), 4);
   const Tensor x = inputs(1, 4, 6, 7, 6);
