@@ -4,6 +4,7 @@
 // backward pass recomputes the probabilities and the counter-based dropout mask pair by pair.
 #include <cmath>
 #include <cstring>
+#include <vector>
 #include <limits>
 #include <type_traits>
 
@@ -261,6 +262,35 @@ bool takes_fused(DType dtype, const AttnShape& s) {
   return g_fused_attention && dtype == DType::F32 && attention::fused_supported(s.Lk, s.D);
 }
 
+// Inference with a key count the fused kernel does not take (the patch encoder over a building's
+// thousands of pairs): k and v are copied with zero rows up to a multiple of 8 that the key mask hides,
+// which gives the fused kernel's result for the real keys. Returns false when the case does not apply.
+bool fused_forward_padded(const AttnShape& s, const Operands& x, Tensor& out, const uint8_t* mask, double scale,
+                          const DropoutPlan& drop, const Tensor& probs, bool keep_for_backward) {
+  if (!g_fused_attention || keep_for_backward || drop.active || probs.defined() || x.qs.dtype() != DType::F32) return false;
+  const int64_t Lk8 = (s.Lk + 7) / 8 * 8;
+  if (Lk8 == s.Lk || !attention::fused_supported(Lk8, s.D)) return false;
+  const int64_t HD = s.H * s.D;
+  Tensor kp = Tensor::zeros({s.B, Lk8, HD}, DType::F32), vp = Tensor::zeros({s.B, Lk8, HD}, DType::F32);
+  std::vector<uint8_t> padded_mask(static_cast<size_t>(s.B * Lk8), 1);
+  const float* k = ptr<float>(x.ks) + x.k_off;
+  const float* v = ptr<float>(x.vs) + x.v_off;
+  float *kd = ptr<float>(kp), *vd = ptr<float>(vp);
+  for (int64_t b = 0; b < s.B; ++b)
+    for (int64_t i = 0; i < s.Lk; ++i) {
+      padded_mask[static_cast<size_t>(b * Lk8 + i)] = mask ? mask[b * s.Lk + i] : 0;
+      for (int64_t h = 0; h < s.H; ++h) {
+        std::memcpy(kd + (b * Lk8 + i) * HD + h * s.D, k + x.lk.at(b, h) + i * x.lk.row, sizeof(float) * s.D);
+        std::memcpy(vd + (b * Lk8 + i) * HD + h * s.D, v + x.lv.at(b, h) + i * x.lv.row, sizeof(float) * s.D);
+      }
+    }
+  const AttnShape s8{s.B, s.H, s.Lq, Lk8, s.D};
+  const Layout lk8{Lk8 * HD, s.D, HD};
+  attention::fused_forward(s8, ptr<float>(x.qs) + x.q_off, x.lq, kd, lk8, vd, lk8, ptr<float>(out), x.lo,
+                           padded_mask.data(), static_cast<float>(scale), drop, nullptr, nullptr, nullptr);
+  return true;
+}
+
 // Runs the forward kernel into out; probs (B, H, Lq, Lk) is filled when defined.
 FusedSaved run_forward(const AttnShape& s, const Operands& x, Tensor& out, const uint8_t* mask, double scale,
                        const DropoutPlan& drop, Tensor& probs, bool keep_for_backward, const char* op) {
@@ -278,6 +308,7 @@ FusedSaved run_forward(const AttnShape& s, const Operands& x, Tensor& out, const
                              saved.keep_bits.defined() ? saved.keep_bits.data<uint8_t>() : nullptr);
     return saved;
   }
+  if (fused_forward_padded(s, x, out, mask, scale, drop, probs, keep_for_backward)) return saved;
   dispatch_float(x.qs.dtype(), op, [&](auto tag) {
     using T = decltype(tag);
     attention_forward<T>(s, ptr<T>(x.qs) + x.q_off, x.lq, ptr<T>(x.ks) + x.k_off, x.lk, ptr<T>(x.vs) + x.v_off, x.lv,
