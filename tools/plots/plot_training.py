@@ -46,12 +46,26 @@ def plot(lines, title):
         if epochs:
             loss_ax.plot([l["epoch"] for l in epochs], [l["train_loss"] for l in epochs], "o-", color=colour,
                          markersize=3.5, linewidth=1.6, label="%s stage (epoch mean)" % stage)
-    loss_ax.set_title("Training loss")
+        # The validation loss keeps showing progress when the validation metric is flat or noisy.
+        vals = [l for l in lines if l.get("stage") == stage and l.get("type") == "val" and l.get("loss", 0) > 0]
+        if vals:
+            loss_ax.plot([l["epoch"] for l in vals], [l["loss"] for l in vals], "s--", color=colour, markersize=3,
+                         linewidth=1.2, label="%s stage (validation)" % stage)
+    loss_ax.set_title("Training and validation loss")
     loss_ax.set_xlabel("epoch (of its stage)")
     loss_ax.set_ylabel("loss")
     all_losses = [l["loss"] for l in lines if l.get("type") == "step" and l.get("loss", 0) > 0]
     if all_losses and max(all_losses) / min(all_losses) > 20:
         loss_ax.set_yscale("log")
+    elif len(all_losses) > 50:
+        # The first steps' loss (10x the rest at paper size) would flatten every curve: they go off the top.
+        means = [l.get("train_loss", 0) for l in lines if l.get("type") == "epoch"]
+        means += [l.get("loss", 0) for l in lines if l.get("type") == "val"]
+        top = 1.15 * max([sorted(all_losses)[int(0.98 * (len(all_losses) - 1))]] + means)
+        if max(all_losses) > top:
+            loss_ax.set_ylim(0, top)
+            loss_ax.annotate("first steps above the top", xy=(0.02, 0.97), xycoords="axes fraction", fontsize=8,
+                             va="top", color="0.4")
     if loss_ax.get_legend_handles_labels()[0]:
         loss_ax.legend(loc="upper right", fontsize=9)
 
