@@ -2,7 +2,11 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <type_traits>
+#include <vector>
 
+#include "core/bf16.h"
+#include "core/matmul_precision.h"
 #include "core/parallel.h"
 
 namespace lc2wf {
@@ -22,6 +26,33 @@ using ConstMap = Eigen::Map<const RowMat<T>, Eigen::Unaligned, Eigen::OuterStrid
 template <class T>
 using MutMap = Eigen::Map<RowMat<T>, Eigen::Unaligned, Eigen::OuterStride<>>;
 
+// bf16 operands: K is walked in chunks whose slices of op(A) and op(B) are rounded into scratch copies, so
+// the extra memory is O(tile x chunk) and the sum over the chunks stays in fp32. The chunking depends only
+// on K, so results stay bit-identical at any thread count.
+constexpr int64_t kBf16Chunk = 256;
+
+void gemm_tile_bf16(bool ta, bool tb, int64_t K, const float* A, int64_t lda, const float* B, int64_t ldb,
+                    MutMap<float>& c, bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+  thread_local std::vector<float> a_slice, b_slice;
+  for (int64_t k0 = 0; k0 < K; k0 += kBf16Chunk) {
+    const int64_t kn = std::min(kBf16Chunk, K - k0);
+    a_slice.resize(static_cast<size_t>(rows * kn));
+    b_slice.resize(static_cast<size_t>(kn * cols));
+    for (int64_t r = 0; r < rows; ++r)  // a_slice[r][k] = op(A)[r0 + r][k0 + k]
+      for (int64_t k = 0; k < kn; ++k)
+        a_slice[r * kn + k] = round_to_bf16(ta ? A[(k0 + k) * lda + r0 + r] : A[(r0 + r) * lda + k0 + k]);
+    for (int64_t k = 0; k < kn; ++k)  // b_slice[k][j] = op(B)[k0 + k][c0 + j]
+      for (int64_t j = 0; j < cols; ++j)
+        b_slice[k * cols + j] = round_to_bf16(tb ? B[(c0 + j) * ldb + k0 + k] : B[(k0 + k) * ldb + c0 + j]);
+    Eigen::Map<const RowMat<float>> a(a_slice.data(), rows, kn);
+    Eigen::Map<const RowMat<float>> b(b_slice.data(), kn, cols);
+    if (k0 == 0 && !accumulate)
+      c.noalias() = a * b;
+    else
+      c.noalias() += a * b;
+  }
+}
+
 // One tile C[r0:r0+rows, c0:c0+cols].
 template <class T>
 void gemm_tile(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb,
@@ -29,6 +60,8 @@ void gemm_tile(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, in
   MutMap<T> c(C + r0 * ldc + c0, rows, cols, Eigen::OuterStride<>(ldc));
   if (K == 0) {
     if (!accumulate) c.setZero();
+  } else if (std::is_same_v<T, float> && matmul_precision() == MatmulPrecision::kBf16) {
+    if constexpr (std::is_same_v<T, float>) gemm_tile_bf16(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols);
   } else {
     ConstMap<T> a(A, ta ? K : M, ta ? M : K, Eigen::OuterStride<>(lda));
     ConstMap<T> b(B, tb ? N : K, tb ? K : N, Eigen::OuterStride<>(ldb));

@@ -1,5 +1,6 @@
-// Deterministic threaded GEMM: the output is cut into fixed tiles that depend only on (M, N), and each
-// tile is one single-threaded Eigen product, so results are bit-identical at any thread count.
+// Deterministic threaded GEMM: the output is cut into fixed tiles that depend only on (M, N), and each tile
+// is one single-threaded Eigen product, so results are bit-identical at any thread count. Float products
+// round their operands to bf16 when core/matmul_precision.h says so (double never: gradient checks).
 #pragma once
 
 #include <cstdint>

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "core/matmul_precision.h"
 #include "core/util/input_file.h"
 #include "nn/json_fields.h"
 
@@ -120,6 +121,7 @@ EdgeStageConfig EdgeStageConfig::from_json(const nlohmann::json& j, const std::s
 void TrainConfig::Check() const {
   require(threads >= 1, "threads", "must be >= 1");
   require(loader_workers >= 1, "loader_workers", "must be >= 1");
+  parse_matmul_precision(precision, "precision");
   require(!out.empty(), "out", "must name the output folder");
   data.Check();
   junction.Check();

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/matmul_precision.h"
 #include "core/parallel.h"
 #include "core/util/cli.h"
 #include "core/util/atomic_file.h"
@@ -100,6 +101,7 @@ int train(const Args& a, Communicator& comm) {
   if (a.threads) config.threads = *a.threads;
   set_num_threads(static_cast<int>(config.threads));
   config.threads = num_threads();  // -j 0 resolved, so config.json records a valid count
+  set_matmul_precision(parse_matmul_precision(config.precision, "precision"));
   const StageRun run{config.out, a.resume, a.quiet || !writer, config.init_weights, &comm};
   // Every input is read before OUT is touched: a bad split or cloud leaves no half-made run folder.
   const BuildingSet train = load_building_set(config.data, config.data.train_split, run.quiet);
@@ -111,6 +113,8 @@ int train(const Args& a, Communicator& comm) {
     std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %d rank(s) x %lld threads, output %s\n",
                  train.clouds.size(), val.clouds.size(), comm.size(), static_cast<long long>(config.threads),
                  run.out.string().c_str());
+  if (!run.quiet && matmul_precision() == MatmulPrecision::kBf16 && !cpu_has_bf16_dot_product())
+    std::fprintf(stderr, "lc2wf-train: precision bf16 is emulated (this CPU has no AVX512-BF16): same numbers, slower than fp32\n");
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
   if (a.stage == "edge" || a.stage == "all") {
     const fs::path handoff = write_junction_handoff(train, val, log, run);

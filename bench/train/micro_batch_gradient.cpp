@@ -4,8 +4,11 @@
 // the edge model with the config's micro-batches and, at the chosen steps, takes one batch's gradient
 // four ways from the same weights: micro-batched and whole (same dropout masks: only BatchNorm's
 // statistics differ), whole with other dropout masks (dropout noise) and whole on the next batch
-// (sampling noise). Writes a JSON report; bench/README.md ("Edge micro-batches") has a run.
-//   micro_batch_gradient CONFIG --junction-weights FILE [--buildings 96] [--measure-at 0,8] [-o OUT.json]
+// (sampling noise). With --bf16 it also takes the micro-batched gradient with bf16 GEMM operands
+// (core/matmul_precision.h) next to other dropout masks at the same passes; --no-whole skips the three
+// whole-batch passes (≈ 14 GB at the paper's batch). Writes a JSON report; bench/README.md ("Edge
+// micro-batches", "bf16 mixed precision") has runs.
+//   micro_batch_gradient CONFIG --junction-weights FILE [--buildings 96] [--measure-at 0,8] [--bf16] [--no-whole] [-o OUT.json]
 #include <sys/resource.h>
 
 #include <chrono>
@@ -21,6 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/matmul_precision.h"
 #include "core/parallel.h"
 #include "core/util/atomic_file.h"
 #include "dataset/splits.h"
@@ -40,6 +44,7 @@ struct Options {
   fs::path config, junction_weights, out = "micro_batch_gradient.json";
   int64_t buildings = 96;
   std::set<int64_t> measure_at{0, 8};
+  bool bf16 = false, whole = true;
 };
 
 std::set<int64_t> parse_steps(const std::string& text) {
@@ -60,12 +65,14 @@ Options parse(int argc, char** argv) {
     if (f == "--junction-weights") o.junction_weights = value();
     else if (f == "--buildings") o.buildings = std::stoll(value());
     else if (f == "--measure-at") o.measure_at = parse_steps(value());
+    else if (f == "--bf16") o.bf16 = true;
+    else if (f == "--no-whole") o.whole = false;
     else if (f == "-o" || f == "--out") o.out = value();
     else if (!f.empty() && f[0] != '-' && o.config.empty()) o.config = f;
     else throw std::invalid_argument("unknown argument '" + f + "'");
   }
   if (o.config.empty() || o.junction_weights.empty())
-    throw std::invalid_argument("usage: micro_batch_gradient CONFIG --junction-weights FILE [--buildings N] [--measure-at 0,8] [-o OUT.json]");
+    throw std::invalid_argument("usage: micro_batch_gradient CONFIG --junction-weights FILE [--buildings N] [--measure-at 0,8] [--bf16] [--no-whole] [-o OUT.json]");
   return o;
 }
 
@@ -97,6 +104,9 @@ Comparison compare(const std::vector<double>& a, const std::vector<double>& b) {
   }
   return {ab / std::sqrt(aa * bb), std::sqrt(dd / bb)};
 }
+
+// Another dropout stream for the noise reference.
+constexpr uint64_t kOtherMasks = 0x9e3779b97f4a7c15ull;
 
 nlohmann::json to_json(const Comparison& c) { return {{"cosine", c.cosine}, {"relative_difference", c.relative_difference}}; }
 
@@ -158,6 +168,7 @@ int run(const Options& o) {
                            {"batch", c.schedule.batch_size},
                            {"micro_batch", micro},
                            {"threads", config.threads},
+                           {"bf16_dot_product_instruction", cpu_has_bf16_dot_product()},
                            {"measurements", nlohmann::json::array()}};
   const int64_t last = *o.measure_at.rbegin();
   stream.start(0);
@@ -168,18 +179,32 @@ int run(const Options& o) {
     if (o.measure_at.count(step)) {
       if (!next) throw std::invalid_argument("--buildings too small: a measurement needs the step's batch and the next");
       const auto t0 = std::chrono::steady_clock::now();
-      double loss_micro = 0, loss_whole = 0, loss_other_masks = 0, loss_next = 0;
+      double loss_micro = 0;
       const std::vector<double> g_micro = batch_gradient(*batch, micro, seed, counter, loss_micro);
-      const std::vector<double> g_whole = batch_gradient(*batch, 0, seed, counter, loss_whole);
-      const std::vector<double> g_masks = batch_gradient(*batch, 0, seed ^ 0x9e3779b97f4a7c15ull, counter, loss_other_masks);
-      const std::vector<double> g_next = batch_gradient(*next, 0, seed, counter, loss_next);
-      const nlohmann::json m = {
-          {"step", step},
-          {"loss", {{"micro", loss_micro}, {"whole", loss_whole}, {"whole_other_masks", loss_other_masks}, {"next_batch", loss_next}}},
-          {"micro_vs_whole", to_json(compare(g_micro, g_whole))},
-          {"other_masks_vs_whole", to_json(compare(g_masks, g_whole))},
-          {"next_batch_vs_whole", to_json(compare(g_next, g_whole))},
-          {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()}};
+      nlohmann::json m = {{"step", step}, {"loss", {{"micro", loss_micro}}}};
+      if (o.whole) {
+        double loss_whole = 0, loss_other_masks = 0, loss_next = 0;
+        const std::vector<double> g_whole = batch_gradient(*batch, 0, seed, counter, loss_whole);
+        const std::vector<double> g_masks = batch_gradient(*batch, 0, seed ^ kOtherMasks, counter, loss_other_masks);
+        const std::vector<double> g_next = batch_gradient(*next, 0, seed, counter, loss_next);
+        m["loss"].update({{"whole", loss_whole}, {"whole_other_masks", loss_other_masks}, {"next_batch", loss_next}});
+        m["micro_vs_whole"] = to_json(compare(g_micro, g_whole));
+        m["other_masks_vs_whole"] = to_json(compare(g_masks, g_whole));
+        m["next_batch_vs_whole"] = to_json(compare(g_next, g_whole));
+      }
+      if (o.bf16) {
+        double loss_bf16 = 0, loss_micro_masks = 0;
+        std::vector<double> g_bf16;
+        {
+          MatmulPrecisionGuard bf16(MatmulPrecision::kBf16);
+          g_bf16 = batch_gradient(*batch, micro, seed, counter, loss_bf16);
+        }
+        const std::vector<double> g_micro_masks = batch_gradient(*batch, micro, seed ^ kOtherMasks, counter, loss_micro_masks);
+        m["loss"].update({{"micro_bf16", loss_bf16}, {"micro_other_masks", loss_micro_masks}});
+        m["bf16_vs_fp32"] = to_json(compare(g_bf16, g_micro));
+        m["other_masks_vs_micro"] = to_json(compare(g_micro_masks, g_micro));
+      }
+      m["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       report["measurements"].push_back(m);
       std::cerr << m.dump() << '\n';
     }

@@ -1,0 +1,122 @@
+// bf16 mixed precision of the GEMM: operands rounded to nearest-even bf16, products summed in fp32, the
+// same at any thread count, and only when asked for (double products and the default stay exact fp32).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "core/bf16.h"
+#include "core/gemm.h"
+#include "core/matmul_precision.h"
+#include "core/parallel.h"
+
+namespace lc2wf {
+namespace {
+
+TEST(Bf16, RoundsToNearestEven) {
+  for (float exact : {0.0f, -0.0f, 1.0f, -2.5f, 3.0f * 1024.0f, std::numeric_limits<float>::infinity()})
+    EXPECT_EQ(round_to_bf16(exact), exact);
+  const float ulp = std::ldexp(1.0f, -7);  // spacing of bf16 values in [1, 2)
+  EXPECT_EQ(round_to_bf16(1.0f + ulp / 2), 1.0f) << "a tie goes to the even neighbour (down)";
+  EXPECT_EQ(round_to_bf16(1.0f + 3 * ulp / 2), 1.0f + 2 * ulp) << "a tie goes to the even neighbour (up)";
+  EXPECT_EQ(round_to_bf16(1.0f + ulp / 2 + std::ldexp(1.0f, -20)), 1.0f + ulp) << "above the tie rounds up";
+  EXPECT_EQ(round_to_bf16(-(1.0f + 0.4f * ulp)), -1.0f);
+  EXPECT_TRUE(std::isnan(round_to_bf16(std::numeric_limits<float>::quiet_NaN())));
+  EXPECT_TRUE(std::isnan(round_to_bf16(std::bit_cast<float>(0x7f800001u)))) << "a NaN with only low bits set";
+  EXPECT_EQ(round_to_bf16(std::numeric_limits<float>::max()), std::numeric_limits<float>::infinity());
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<float> u(-100.0f, 100.0f);
+  for (int i = 0; i < 10000; ++i) {
+    const float x = u(gen), r = round_to_bf16(x);
+    EXPECT_EQ(std::bit_cast<uint32_t>(r) & 0xffffu, 0u);
+    EXPECT_LE(std::abs(r - x), std::ldexp(std::abs(x), -8)) << x;  // half a bf16 ulp: 2^-8 relative
+  }
+}
+
+TEST(Bf16, PrecisionNamesAndErrors) {
+  EXPECT_EQ(parse_matmul_precision("bf16", "precision"), MatmulPrecision::kBf16);
+  EXPECT_EQ(parse_matmul_precision("fp32", "precision"), MatmulPrecision::kFp32);
+  EXPECT_EQ(to_string(MatmulPrecision::kBf16), "bf16");
+  try {
+    parse_matmul_precision("fp16", "config.precision");
+    FAIL() << "fp16 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("config.precision"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fp16"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(matmul_precision(), MatmulPrecision::kFp32) << "fp32 is the default";
+}
+
+std::vector<float> random_floats(size_t n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<float> v(n);
+  for (float& x : v) x = u(gen);
+  return v;
+}
+
+// C = op(A) op(B) + bias under bf16, against a double product of the bf16-rounded operands (what the
+// rounding promises) and against the fp32 product (what it costs), at 1 and 2 threads.
+void expect_bf16_product(bool ta, bool tb, int64_t M, int64_t N, int64_t K, bool accumulate) {
+  const std::vector<float> A = random_floats(static_cast<size_t>(M * K), 1), B = random_floats(static_cast<size_t>(K * N), 2);
+  const std::vector<float> bias = random_floats(static_cast<size_t>(N), 3), C0 = random_floats(static_cast<size_t>(M * N), 4);
+  const int64_t lda = ta ? M : K, ldb = tb ? K : N;
+  auto a_at = [&](int64_t i, int64_t k) { return ta ? A[k * lda + i] : A[i * lda + k]; };
+  auto b_at = [&](int64_t k, int64_t j) { return tb ? B[j * ldb + k] : B[k * ldb + j]; };
+  std::vector<float> fp32 = C0;
+  gemm(ta, tb, M, N, K, A.data(), lda, B.data(), ldb, fp32.data(), N, accumulate, bias.data());
+  MatmulPrecisionGuard bf16(MatmulPrecision::kBf16);
+  std::vector<std::vector<float>> results;
+  const int before = num_threads();
+  for (int threads : {1, 2}) {
+    set_num_threads(threads);
+    results.push_back(C0);
+    gemm(ta, tb, M, N, K, A.data(), lda, B.data(), ldb, results.back().data(), N, accumulate, bias.data());
+  }
+  set_num_threads(before);
+  EXPECT_EQ(std::memcmp(results[0].data(), results[1].data(), results[0].size() * sizeof(float)), 0)
+      << "bf16 product differs between 1 and 2 threads";
+  double max_rounded = 0, max_vs_fp32 = 0;
+  for (int64_t i = 0; i < M; ++i)
+    for (int64_t j = 0; j < N; ++j) {
+      double exact = 0, magnitude = 0;
+      for (int64_t k = 0; k < K; ++k) {
+        const double p = double(round_to_bf16(a_at(i, k))) * double(round_to_bf16(b_at(k, j)));
+        exact += p;
+        magnitude += std::abs(p);
+      }
+      exact += bias[j] + (accumulate ? C0[i * N + j] : 0.0f);
+      const double got = results[0][i * N + j];
+      // fp32 summation of K exact products: a few ulps of the sum of magnitudes.
+      max_rounded = std::max(max_rounded, std::abs(got - exact) / (magnitude + 1.0));
+      max_vs_fp32 = std::max(max_vs_fp32, std::abs(got - fp32[i * N + j]) / (magnitude + 1.0));
+    }
+  EXPECT_LT(max_rounded, 4e-6) << "M " << M << " N " << N << " K " << K << " ta " << ta << " tb " << tb;
+  EXPECT_GT(max_vs_fp32, 1e-5) << "the bf16 path was not taken";
+  EXPECT_LT(max_vs_fp32, 1e-2) << "bf16 error beyond its 2^-8 operand rounding";
+}
+
+TEST(Bf16, GemmRoundsOperandsAndSumsInFp32) {
+  for (bool ta : {false, true})
+    for (bool tb : {false, true}) {
+      expect_bf16_product(ta, tb, 37, 19, 600, false);  // K spans three chunks
+      expect_bf16_product(ta, tb, 300, 45, 70, true);   // several row tiles, accumulate into C
+    }
+}
+
+TEST(Bf16, DoubleProductsStayExact) {
+  const std::vector<float> af = random_floats(64 * 32, 6), bf = random_floats(32 * 16, 7);
+  const std::vector<double> A(af.begin(), af.end()), B(bf.begin(), bf.end());
+  std::vector<double> fp64(64 * 16), under_bf16(64 * 16);
+  gemm(false, false, 64, 16, 32, A.data(), 32, B.data(), 16, fp64.data(), 16, false);
+  MatmulPrecisionGuard bf16(MatmulPrecision::kBf16);
+  gemm(false, false, 64, 16, 32, A.data(), 32, B.data(), 16, under_bf16.data(), 16, false);
+  EXPECT_EQ(fp64, under_bf16);
+}
+
+}  // namespace
+}  // namespace lc2wf
