@@ -60,6 +60,7 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.junction.optim.optimizer, "adamw");
   EXPECT_DOUBLE_EQ(c.junction.optim.lr, 1e-3);
   EXPECT_EQ(c.junction.loss.kind, "release");
+  EXPECT_EQ(c.precision, "fp32");  // the paper's numbers
   // The networks are the nn defaults (the release's): base.json only spells them out.
   EXPECT_EQ(c.junction.net.to_json(), JunctionNetConfig().to_json());
   EXPECT_EQ(c.edge.net.to_json(), EdgeNetConfig().to_json());
@@ -102,6 +103,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "batch_size"}, 0, "edge.batch_size"},
       {{"data", "format"}, "csv", "data.format"},
       {{"threads"}, 0, "threads"},
+      {{"precision"}, "fp16", "precision"},
       {{"junction", "net", "lpt", "hidden_dim"}, "wide", "junction.net.lpt.hidden_dim"},
       {{"edge", "net", "lpt", "lines_per_patch"}, 63, "edge.net.lpt.lines_per_patch"},
       {{"junction", "net", "lpt", "input_dim"}, 6, "junction.net.lpt.input_dim"},
