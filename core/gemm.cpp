@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/bf16.h"
+#include "core/blas_backend.h"
 #include "core/matmul_precision.h"
 #include "core/parallel.h"
 
@@ -44,13 +45,26 @@ void gemm_tile_bf16(bool ta, bool tb, int64_t K, const float* A, int64_t lda, co
     for (int64_t k = 0; k < kn; ++k)  // b_slice[k][j] = op(B)[k0 + k][c0 + j]
       for (int64_t j = 0; j < cols; ++j)
         b_slice[k * cols + j] = round_to_bf16(tb ? B[(c0 + j) * ldb + k0 + k] : B[(k0 + k) * ldb + c0 + j]);
+    const bool add = k0 > 0 || accumulate;
+    if (openblas_sgemm(false, false, rows, cols, kn, a_slice.data(), kn, b_slice.data(), cols, c.data(), c.outerStride(), add))
+      continue;
     Eigen::Map<const RowMat<float>> a(a_slice.data(), rows, kn);
     Eigen::Map<const RowMat<float>> b(b_slice.data(), kn, cols);
-    if (k0 == 0 && !accumulate)
+    if (!add)
       c.noalias() = a * b;
     else
       c.noalias() += a * b;
   }
+}
+
+// The tile's product through OpenBLAS when it is the backend (float only); false leaves it to Eigen.
+template <class T>
+bool openblas_tile(bool ta, bool tb, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C, int64_t ldc,
+                   bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+  if constexpr (std::is_same_v<T, float>)
+    return openblas_sgemm(ta, tb, rows, cols, K, A + (ta ? r0 : r0 * lda), lda, B + (tb ? c0 * ldb : c0), ldb,
+                          C + r0 * ldc + c0, ldc, accumulate);
+  return false;
 }
 
 // One tile C[r0:r0+rows, c0:c0+cols].
@@ -62,6 +76,8 @@ void gemm_tile(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, in
     if (!accumulate) c.setZero();
   } else if (std::is_same_v<T, float> && matmul_precision() == MatmulPrecision::kBf16) {
     if constexpr (std::is_same_v<T, float>) gemm_tile_bf16(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols);
+  } else if (openblas_tile(ta, tb, K, A, lda, B, ldb, C, ldc, accumulate, r0, rows, c0, cols)) {
+    // done by OpenBLAS (core/blas_backend.h)
   } else {
     ConstMap<T> a(A, ta ? K : M, ta ? M : K, Eigen::OuterStride<>(lda));
     ConstMap<T> b(B, tb ? N : K, tb ? K : N, Eigen::OuterStride<>(ldb));

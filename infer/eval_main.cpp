@@ -269,7 +269,7 @@ int run(const Args& a) {
 
 int main(int argc, char** argv) {
   return lc2wf::cli_main({"lc2wf-eval", kUsage,
-                          {kEnvOmpThreads, kEnvStorageCache,
+                          {kEnvOmpThreads, kEnvStorageCache, kEnvGemm,
                            {"LC2WF_THREE_JS_DIR", "--html: folder of three.js r111 (default /usr/share/javascript/three)"}}},
                          argc, argv, parse_args, run);
 }

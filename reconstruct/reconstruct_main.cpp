@@ -164,5 +164,5 @@ int run(const ReconstructOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return cli_main({"lc2wf-reconstruct", kUsage, {kEnvOmpThreads, kEnvStorageCache}}, argc, argv, parse_args, run);
+  return cli_main({"lc2wf-reconstruct", kUsage, {kEnvOmpThreads, kEnvStorageCache, kEnvGemm}}, argc, argv, parse_args, run);
 }

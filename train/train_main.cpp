@@ -147,5 +147,5 @@ int run(const Args& a) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return lc2wf::cli_main({"lc2wf-train", kUsage, {kEnvStorageCache}}, argc, argv, parse_args, run);
+  return lc2wf::cli_main({"lc2wf-train", kUsage, {kEnvStorageCache, kEnvGemm}}, argc, argv, parse_args, run);
 }

@@ -34,6 +34,8 @@ struct EnvVar {
 inline constexpr EnvVar kEnvOmpThreads{"OMP_NUM_THREADS", "thread count when -j is not given (default: all cores)"};
 inline constexpr EnvVar kEnvStorageCache{"LC2WF_STORAGE_CACHE_MB",
                                          "memory kept to reuse large tensor buffers, MB (default: a quarter of RAM, at most 4096)"};
+inline constexpr EnvVar kEnvGemm{"LC2WF_GEMM",
+                                 "eigen: matrix products by Eigen instead of OpenBLAS (default auto: OpenBLAS where installed)"};
 
 struct Command {
   const char* program;              // "lc2wf-infer"

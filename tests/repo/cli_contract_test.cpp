@@ -45,12 +45,12 @@ const std::map<std::string, Expectation> kExpectations = {
     {"lc2wf-cloud-convert", {false, {}, {kMissing, "-o", kOut}}},
     {"lc2wf-cloud-styles", {false, {}, {"--data", kMissing, "--split", kMissing, "-o", kOut}}},
     {"lc2wf-synthetic-data", {false, {}, {"--count", "3", "--val", "1", "--test", "1", "-o", kOut}}},
-    {"lc2wf-train", {true, {"LC2WF_STORAGE_CACHE_MB"}, {kMissing, "-o", kOut}}},
-    {"lc2wf-infer", {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB"}, {"--weights", kMissing, kMissing, "-o", kOut}}},
+    {"lc2wf-train", {true, {"LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM"}, {kMissing, "-o", kOut}}},
+    {"lc2wf-infer", {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM"}, {"--weights", kMissing, kMissing, "-o", kOut}}},
     {"lc2wf-eval",
-     {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB", "LC2WF_THREE_JS_DIR"}, {"--pred", kMissing, "--gt", kMissing, "-o", kOut}}},
+     {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM", "LC2WF_THREE_JS_DIR"}, {"--pred", kMissing, "--gt", kMissing, "-o", kOut}}},
     {"lc2wf-reconstruct",
-     {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB"}, {kMissing, "--weights", kMissing, "-o", kOut}}},
+     {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM"}, {kMissing, "--weights", kMissing, "-o", kOut}}},
 };
 
 // "name=path|name=path" from CMake: every binary added with lc2wf_add_command.
