@@ -15,10 +15,13 @@ namespace {
 enum CblasOrder { kRowMajor = 101 };
 enum CblasTranspose { kNoTrans = 111, kTrans = 112 };
 using CblasSgemm = void (*)(int, int, int, int, int, int, float, const float*, int, const float*, int, float, float*, int);
-using CoreName = char* (*)();
+using InfoString = char* (*)();
+using SetThreads = void (*)(int);
 
-// The serial build first: our thread pool already runs one tile per core.
-constexpr const char* kLibraries[] = {"/usr/lib/x86_64-linux-gnu/openblas-serial/libopenblas.so.0", "libopenblas.so.0"};
+// Debian's threaded build, run with one thread per call: it locks its buffer pool, so our pool's threads
+// may call it at once. The SINGLE_THREADED build does not (concurrent calls then share a buffer and
+// return wrong products now and then: 0.7 % of small products from two threads), so it is refused.
+constexpr const char* kLibraries[] = {"/usr/lib/x86_64-linux-gnu/openblas-pthread/libopenblas.so.0", "libopenblas.so.0"};
 
 struct Backend {
   CblasSgemm sgemm = nullptr;
@@ -43,20 +46,28 @@ Backend choose() {
                            __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"));
 #endif
   if (core.empty()) return {nullptr, "eigen (no AVX2/FMA: no OpenBLAS kernel worth loading)"};
-  // Read by OpenBLAS when it loads; a user's own setting wins. One thread: our pool parallelises the tiles.
+  // Read by OpenBLAS when it loads; a user's own kernel class wins. One thread: our pool parallelises the
+  // tiles (set before loading so no OpenBLAS worker thread is started, and again below).
   setenv("OPENBLAS_CORETYPE", core.c_str(), 0);
-  setenv("OPENBLAS_NUM_THREADS", "1", 0);
+  setenv("OPENBLAS_NUM_THREADS", "1", 1);
   void* lib = nullptr;
   for (const char* path : kLibraries)
     if ((lib = dlopen(path, RTLD_NOW | RTLD_LOCAL))) break;
-  if (!lib) return {nullptr, "eigen (no libopenblas0-serial)"};
+  if (!lib) return {nullptr, "eigen (no libopenblas0-pthread)"};
   auto sgemm = reinterpret_cast<CblasSgemm>(dlsym(lib, "cblas_sgemm"));
-  auto core_name = reinterpret_cast<CoreName>(dlsym(lib, "openblas_get_corename"));
-  const std::string loaded = core_name ? core_name() : "";
-  if (!sgemm || lower(loaded) != lower(core)) {
+  auto core_name = reinterpret_cast<InfoString>(dlsym(lib, "openblas_get_corename"));
+  auto config = reinterpret_cast<InfoString>(dlsym(lib, "openblas_get_config"));
+  auto set_threads = reinterpret_cast<SetThreads>(dlsym(lib, "openblas_set_num_threads"));
+  const std::string loaded = core_name ? core_name() : "", built = config ? config() : "";
+  std::string refused;
+  if (!sgemm || !set_threads || built.empty()) refused = "eigen (the OpenBLAS found lacks cblas_sgemm or its info calls)";
+  else if (built.find("SINGLE_THREADED") != std::string::npos) refused = "eigen (only OpenBLAS's single-threaded build, unsafe for concurrent calls)";
+  else if (lower(loaded) != lower(core)) refused = "eigen (OpenBLAS runs its " + (loaded.empty() ? std::string("unknown") : loaded) + " kernel, not " + core + ")";
+  if (!refused.empty()) {
     dlclose(lib);
-    return {nullptr, "eigen (OpenBLAS runs its " + (loaded.empty() ? std::string("unknown") : loaded) + " kernel, not " + core + ")"};
+    return {nullptr, refused};
   }
+  set_threads(1);
   return {sgemm, "openblas (" + loaded + ")"};
 }
 

@@ -1,5 +1,5 @@
-// The kernel behind one single-threaded fp32 GEMM tile: OpenBLAS (Debian's libopenblas0-serial, loaded at
-// run time) when it runs a kernel of this CPU's class, else Eigen. On the LPT's tile shapes OpenBLAS is
+// The kernel behind one single-threaded fp32 GEMM tile: OpenBLAS (Debian's libopenblas0-pthread, loaded at
+// run time, one thread per call) when it runs a kernel of this CPU's class, else Eigen. On the LPT's tile shapes OpenBLAS is
 // 1.4-1.5x faster than Eigen's AVX2 kernel (bench/README.md). The kernel class is chosen here from the
 // CPU's features, never left to OpenBLAS's own detection, which falls back to SSE3 on CPUs it does not
 // know (≈ 6x slower). LC2WF_GEMM=eigen forces Eigen (benchmarks, comparisons).
@@ -10,7 +10,7 @@
 
 namespace lc2wf {
 
-// What gemm<float> uses, e.g. "openblas (Haswell)" or "eigen (no libopenblas0-serial)". Chosen once.
+// What gemm<float> uses, e.g. "openblas (Haswell)" or "eigen (no libopenblas0-pthread)". Chosen once.
 std::string gemm_backend_name();
 
 // C[M x N] (ldc) = op(A) op(B) (+ C when accumulate) through OpenBLAS on the calling thread. Returns

@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libopenblas0-serial              # fp32 GEMM tiles, loaded at run time (core/blas_backend.h); Eigen without it
+  libopenblas0-pthread             # fp32 GEMM tiles, loaded at run time (core/blas_backend.h); Eigen without it
   libopencv-dev libopencv-contrib-dev
   python3-numpy
   libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
