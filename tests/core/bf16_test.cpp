@@ -13,6 +13,7 @@
 #include "core/gemm.h"
 #include "core/matmul_precision.h"
 #include "core/parallel.h"
+#include "random_floats.h"
 
 namespace lc2wf {
 namespace {
@@ -51,13 +52,7 @@ TEST(Bf16, PrecisionNamesAndErrors) {
   EXPECT_EQ(matmul_precision(), MatmulPrecision::kFp32) << "fp32 is the default";
 }
 
-std::vector<float> random_floats(size_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<float> v(n);
-  for (float& x : v) x = u(gen);
-  return v;
-}
+using test::random_floats;
 
 // C = op(A) op(B) + bias under bf16, against a double product of the bf16-rounded operands (what the
 // rounding promises) and against the fp32 product (what it costs), at 1 and 2 threads.

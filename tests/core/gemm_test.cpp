@@ -11,22 +11,16 @@
 #include <filesystem>
 #include <cstring>
 #include <string>
-#include <random>
 #include <vector>
 
 #include "core/blas_backend.h"
 #include "core/parallel.h"
+#include "random_floats.h"
 
 namespace lc2wf {
 namespace {
 
-std::vector<float> random_floats(size_t n, unsigned seed) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<float> v(n);
-  for (float& x : v) x = u(gen);
-  return v;
-}
+using test::random_floats;
 
 // C = op(A) op(B) (+ bias) by the tiled GEMM at 1 and 2 threads (bit for bit: the tiles depend only on M
 // and N) and by one serial product: bit for bit with Eigen, whose sum over K does not depend on where an

@@ -116,20 +116,29 @@ TEST(Golden, EdgeEvalMode) {
   EXPECT_TRUE(close(net.forward(get(f, "input.x"), get(f, "input.mask")), get(f, "eval.logits")));
 }
 
-TEST(Golden, FullPaperDimensionsForward) {
-  const SafetensorsFile f = read_safetensors(test::fixture("full_size_forward.safetensors"));
+// Both networks at the paper's sizes with the fixture's hashed weights, in eval mode.
+struct PaperSizeOutputs {
+  JunctionOutput junction;
+  Tensor edge_logits;
+};
+
+PaperSizeOutputs paper_size_forward(const SafetensorsFile& f) {
   NoGradGuard no_grad;
   JunctionNet junction{JunctionNetConfig{}};
   test::fill_hashed(junction);
   junction.eval();
-  const JunctionOutput out = junction.forward(get(f, "junction.x"), get(f, "junction.mask"));
-  EXPECT_TRUE(close(out.logits, get(f, "junction.logits")));
-  EXPECT_TRUE(close(out.offsets, get(f, "junction.offsets")));
-
   EdgeNet edge{EdgeNetConfig{}};
   test::fill_hashed(edge);
   edge.eval();
-  EXPECT_TRUE(close(edge.forward(get(f, "edge.x"), get(f, "edge.mask")), get(f, "edge.logits")));
+  return {junction.forward(get(f, "junction.x"), get(f, "junction.mask")), edge.forward(get(f, "edge.x"), get(f, "edge.mask"))};
+}
+
+TEST(Golden, FullPaperDimensionsForward) {
+  const SafetensorsFile f = read_safetensors(test::fixture("full_size_forward.safetensors"));
+  const PaperSizeOutputs out = paper_size_forward(f);
+  EXPECT_TRUE(close(out.junction.logits, get(f, "junction.logits")));
+  EXPECT_TRUE(close(out.junction.offsets, get(f, "junction.offsets")));
+  EXPECT_TRUE(close(out.edge_logits, get(f, "edge.logits")));
 }
 
 // bf16 mixed precision (core/matmul_precision.h) against the same float64 references: every GEMM operand
@@ -209,17 +218,10 @@ TEST(GoldenBf16, JunctionAndEdgeWithinTheStatedTolerance) {
   }
   {
     const SafetensorsFile f = read_safetensors(test::fixture("full_size_forward.safetensors"));
-    NoGradGuard no_grad;
-    JunctionNet junction{JunctionNetConfig{}};
-    test::fill_hashed(junction);
-    junction.eval();
-    const JunctionOutput out = junction.forward(get(f, "junction.x"), get(f, "junction.mask"));
-    EdgeNet edge{EdgeNetConfig{}};
-    test::fill_hashed(edge);
-    edge.eval();
-    const double j = std::max(relative_error(out.logits, get(f, "junction.logits")),
-                              relative_error(out.offsets, get(f, "junction.offsets")));
-    const double e = relative_error(edge.forward(get(f, "edge.x"), get(f, "edge.mask")), get(f, "edge.logits"));
+    const PaperSizeOutputs out = paper_size_forward(f);
+    const double j = std::max(relative_error(out.junction.logits, get(f, "junction.logits")),
+                              relative_error(out.junction.offsets, get(f, "junction.offsets")));
+    const double e = relative_error(out.edge_logits, get(f, "edge.logits"));
     std::printf("paper size bf16: junction %.2e edge %.2e\n", j, e);
     EXPECT_LT(j, kBf16OutputTolerance);
     EXPECT_LT(e, kBf16OutputTolerance);
