@@ -62,7 +62,7 @@ Backend choose() {
   std::string refused;
   if (!sgemm || !set_threads || built.empty()) refused = "eigen (the OpenBLAS found lacks cblas_sgemm or its info calls)";
   else if (built.find("SINGLE_THREADED") != std::string::npos) refused = "eigen (only OpenBLAS's single-threaded build, unsafe for concurrent calls)";
-  else if (lower(loaded) != lower(core)) refused = "eigen (OpenBLAS runs its " + (loaded.empty() ? std::string("unknown") : loaded) + " kernel, not " + core + ")";
+  else if (!openblas_core_acceptable(loaded, core)) refused = "eigen (OpenBLAS runs its " + (loaded.empty() ? std::string("unknown") : loaded) + " kernel, not " + core + ")";
   if (!refused.empty()) {
     dlclose(lib);
     return {nullptr, refused};
@@ -84,6 +84,16 @@ std::string openblas_core_for(bool avx512_skylake, bool avx2_fma) {
   if (avx512_skylake) return "SkylakeX";
   if (avx2_fma) return "Haswell";
   return "";
+}
+
+bool openblas_core_acceptable(const std::string& loaded, const std::string& wanted) {
+  const std::string l = lower(loaded);
+  if (l == lower(wanted)) return true;
+  // Kernels of the same or a neighbouring class run near the machine's peak too (OpenBLAS may decline an
+  // AVX-512 class the OS does not enable); what is refused is a fallback such as Prescott (SSE3).
+  const bool avx2 = l == "haswell" || l == "zen";
+  const bool avx512 = l == "skylakex" || l == "cooperlake" || l == "sapphirerapids";
+  return lower(wanted) == "skylakex" ? avx2 || avx512 : avx2;
 }
 
 std::string gemm_backend_name() { return backend().name; }

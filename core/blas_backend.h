@@ -21,4 +21,8 @@ bool openblas_sgemm(bool trans_a, bool trans_b, int64_t M, int64_t N, int64_t K,
 // The OpenBLAS kernel class for a CPU with these features ("" = none worth using: Eigen).
 std::string openblas_core_for(bool avx512_skylake, bool avx2_fma);
 
+// Whether the class OpenBLAS reports after loading (openblas_get_corename) is one of the wanted class's
+// speed: the same, or an AVX2/AVX-512 neighbour; never a fallback such as "Prescott".
+bool openblas_core_acceptable(const std::string& loaded, const std::string& wanted);
+
 }  // namespace lc2wf

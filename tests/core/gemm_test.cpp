@@ -66,6 +66,14 @@ TEST(Gemm, OpenBlasKernelClassComesFromTheCpuNotFromOpenBlas) {
   EXPECT_EQ(openblas_core_for(true, true), "SkylakeX");
   EXPECT_EQ(openblas_core_for(false, true), "Haswell");
   EXPECT_EQ(openblas_core_for(false, false), "");
+  EXPECT_TRUE(openblas_core_acceptable("Haswell", "Haswell"));
+  EXPECT_TRUE(openblas_core_acceptable("Zen", "Haswell"));
+  EXPECT_TRUE(openblas_core_acceptable("Haswell", "SkylakeX"));
+  EXPECT_TRUE(openblas_core_acceptable("SKYLAKEX", "SkylakeX"));
+  EXPECT_FALSE(openblas_core_acceptable("Prescott", "Haswell")) << "OpenBLAS's fallback on CPUs it does not know";
+  EXPECT_FALSE(openblas_core_acceptable("Prescott", "SkylakeX"));
+  EXPECT_FALSE(openblas_core_acceptable("SkylakeX", "Haswell")) << "an AVX-512 kernel on a CPU without AVX-512";
+  EXPECT_FALSE(openblas_core_acceptable("", "Haswell"));
 }
 
 TEST(Gemm, UsesOpenBlasWhereItIsInstalledAndTheCpuHasAvx2) {
