@@ -57,6 +57,18 @@ void gemm_tile_bf16(bool ta, bool tb, int64_t K, const float* A, int64_t lda, co
   }
 }
 
+// The tile's product with bf16 operands when that precision is set (float only); false: fp32 as usual.
+template <class T>
+bool bf16_tile(bool ta, bool tb, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, MutMap<T>& c,
+               bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+  if constexpr (std::is_same_v<T, float>) {
+    if (matmul_precision() != MatmulPrecision::kBf16) return false;
+    gemm_tile_bf16(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols);
+    return true;
+  }
+  return false;
+}
+
 // The tile's product through OpenBLAS when it is the backend (float only); false leaves it to Eigen.
 template <class T>
 bool openblas_tile(bool ta, bool tb, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, T* C, int64_t ldc,
@@ -74,8 +86,8 @@ void gemm_tile(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, in
   MutMap<T> c(C + r0 * ldc + c0, rows, cols, Eigen::OuterStride<>(ldc));
   if (K == 0) {
     if (!accumulate) c.setZero();
-  } else if (std::is_same_v<T, float> && matmul_precision() == MatmulPrecision::kBf16) {
-    if constexpr (std::is_same_v<T, float>) gemm_tile_bf16(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols);
+  } else if (bf16_tile(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols)) {
+    // done with bf16 operands (core/matmul_precision.h)
   } else if (openblas_tile(ta, tb, K, A, lda, B, ldb, C, ldc, accumulate, r0, rows, c0, cols)) {
     // done by OpenBLAS (core/blas_backend.h)
   } else {
