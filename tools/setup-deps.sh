@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libopenblas0-pthread             # fp32 GEMM tiles, loaded at run time (core/blas_backend.h); Eigen without it
   libopencv-dev libopencv-contrib-dev
+  libsqlite3-dev                   # tools/ reads the SIFT descriptors from COLMAP's database
   python3-numpy
   libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
   libopenmpi-dev openmpi-bin       # mpirun -np N lc2wf-train (data-parallel); its tests run 2 local ranks

@@ -70,8 +70,8 @@ TEST(ReconstructBuilding, PhotosOfAHeldOutBuildingGiveAMetricCloudOnItsEdges) {
   o.out = dir / "out";
   o.reference_cameras = dir / "reference.json";
   o.threads = 2;
-  // Half the default's features: half COLMAP's matching time, poses still within centimetres at this
-  // ring's 30 m (reconstruct/README.md); the rest of the pipeline is the default.
+  // Half the default's features: a quarter of the matching, poses still within centimetres at this
+  // ring's 30 m (tools/README.md, "Matching: exact"); the rest of the pipeline is the default.
   o.colmap.max_features = 1000;
   const ReconstructResult r = reconstruct(o);
   const Json& rep = r.report;

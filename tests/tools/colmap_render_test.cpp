@@ -45,7 +45,7 @@ TEST(ColmapOnRenders, SfmTexturesGiveAccuratePoses) {
   }
   ColmapOptions colmap;
   colmap.threads = 2;
-  colmap.max_features = 2000;  // CPU matching cost grows with the square of the feature count
+  colmap.max_features = 2000;  // matching cost grows with the square of the feature count
   auto run = estimate_poses_with_colmap(images, reference.front().K, dir / "colmap", colmap);
   const PoseComparison pc = align_to_reference(reference, run.cameras);
   EXPECT_GE(pc.registered, static_cast<int>(0.8 * ring.views + 0.5));

@@ -25,7 +25,7 @@ namespace {
 
 constexpr const char* kUsage = R"(Usage: lc2wf-colmap-poses IMAGES_DIR [-o OUT] [options]
 
-Runs COLMAP (feature_extractor, exhaustive or sequential matcher, mapper; CPU) on the images of IMAGES_DIR
+Runs COLMAP's SIFT (CPU), our exact descriptor matching, COLMAP's geometric verification and mapper on the images of IMAGES_DIR
 (*.png, *.jpg, in name order) with fixed pinhole intrinsics and writes their cameras (K, R, t per image in
 the OpenCV convention, null for unregistered images). Intrinsics come from --intrinsics or
 IMAGES_DIR/cameras.json; with IMAGES_DIR/cameras.json the poses are aligned to those cameras (similarity)
@@ -44,6 +44,8 @@ options:
                               all image pairs (default) or only views close in name order
   --overlap N                 sequential matcher: next views matched per view (default 10)
   --max-features N            SIFT features per image (default 4000)
+  --first-octave N            SIFT's first octave: -1 (default) the image doubled first, 0 at its own size
+                              (4x faster extraction, fewer small features: enough for 20 overlapping views)
   --init-min-inliers N        mapper: verified matches of the initial pair (default 100)
   --abs-pose-min-inliers N    mapper: 2D-3D inliers to register a view (default 30)
   --outlier-factor F          alignment: leave views whose centre error exceeds F x the median out of
@@ -81,6 +83,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--matcher") a.colmap.matcher = value();
     else if (f == "--overlap") a.colmap.sequential_overlap = lc2wf::int_flag(f, value());
     else if (f == "--max-features") a.colmap.max_features = lc2wf::int_flag(f, value());
+    else if (f == "--first-octave") a.colmap.first_octave = lc2wf::int_flag(f, value());
     else if (f == "--init-min-inliers") a.colmap.init_min_inliers = lc2wf::int_flag(f, value());
     else if (f == "--abs-pose-min-inliers") a.colmap.abs_pose_min_inliers = lc2wf::int_flag(f, value());
     else if (f == "--outlier-factor") a.align.outlier_factor = lc2wf::number_flag(f, value());
@@ -92,7 +95,8 @@ Args parse_args(int argc, char** argv) {
   if (a.views.empty()) throw UsageError("IMAGES_DIR is required");
   lc2wf::check_options([&] { a.colmap.Check(); a.align.Check(); },
                        {{"ColmapOptions.executable", "--colmap"}, {"ColmapOptions.max_features", "--max-features"},
-                        {"ColmapOptions.matcher", "--matcher"}, {"ColmapOptions.sequential_overlap", "--overlap"},
+                        {"ColmapOptions.first_octave", "--first-octave"}, {"ColmapOptions.matcher", "--matcher"},
+                        {"ColmapOptions.sequential_overlap", "--overlap"},
                         {"ColmapOptions.init_min_inliers", "--init-min-inliers"},
                         {"ColmapOptions.abs_pose_min_inliers", "--abs-pose-min-inliers"},
                         {"AlignOptions.outlier_factor", "--outlier-factor"}});

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -13,8 +14,11 @@
 #include <stdexcept>
 
 #include "core/util/median.h"
+#include "core/util/seconds_since.h"
 #include "dataset/errors.h"
 #include "dataset/line_meeting_point.h"
+#include "tools/colmap/colmap_database.h"
+#include "tools/colmap/sift_matching.h"
 #include "tools/process/run_process.h"
 
 namespace lc2wf {
@@ -127,6 +131,7 @@ void ColmapOptions::Check() const {
   if (init_min_inliers < 8) throw std::invalid_argument("ColmapOptions.init_min_inliers must be >= 8");
   if (abs_pose_min_inliers < 6) throw std::invalid_argument("ColmapOptions.abs_pose_min_inliers must be >= 6");
   if (threads < 0) throw std::invalid_argument("ColmapOptions.threads must be >= 0");
+  if (first_octave < -1 || first_octave > 2) throw std::invalid_argument("ColmapOptions.first_octave must be in [-1, 2]");
 }
 
 namespace {
@@ -147,7 +152,7 @@ double run_step(const std::vector<std::string>& argv, const fs::path& log, const
 // file creates, never the folder or anything else in it.
 void clear_colmap_outputs(const fs::path& workspace) {
   if (!fs::is_directory(workspace)) return;
-  for (const char* name : {"images", "database.db", "sparse", "colmap.log"}) fs::remove_all(workspace / name);
+  for (const char* name : {"images", "database.db", "matches.txt", "sparse", "colmap.log"}) fs::remove_all(workspace / name);
   for (const auto& e : fs::directory_iterator(workspace))
     if (e.path().filename().string().rfind("model_txt_", 0) == 0) fs::remove_all(e.path());
 }
@@ -162,8 +167,11 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
   std::vector<std::string> names;
   for (const fs::path& p : images) {
     if (!fs::exists(p)) throw std::runtime_error("image not found: " + p.string());
-    fs::copy_file(p, workspace / "images" / p.filename());
-    names.push_back(p.filename().string());
+    // Numbered copies: COLMAP's match list separates names by spaces, which a photo's name may hold.
+    char numbered[32];
+    std::snprintf(numbered, sizeof numbered, "%06zu", names.size());
+    names.push_back(numbered + p.extension().string());
+    fs::copy_file(p, workspace / "images" / names.back());
   }
   const fs::path db = workspace / "database.db", log = workspace / "colmap.log", image_dir = workspace / "images";
   const std::string threads = std::to_string(o.threads > 0 ? o.threads : -1);
@@ -176,13 +184,23 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
       run_step({o.executable, "feature_extractor", "--database_path", db.string(), "--image_path", image_dir.string(),
                 "--ImageReader.camera_model", "PINHOLE", "--ImageReader.single_camera", "1", "--ImageReader.camera_params",
                 params.str(), "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads,
-                "--SiftExtraction.max_num_features", std::to_string(o.max_features)},
+                "--SiftExtraction.max_num_features", std::to_string(o.max_features), "--SiftExtraction.first_octave",
+                std::to_string(o.first_octave)},
                log, "feature_extractor"));
-  const std::string matcher = o.matcher + "_matcher";
-  std::vector<std::string> match_cmd = {o.executable, matcher, "--database_path", db.string(), "--SiftMatching.use_gpu", "0",
-                                        "--SiftMatching.num_threads", threads};
-  if (o.matcher == "sequential") match_cmd.insert(match_cmd.end(), {"--SequentialMatching.overlap", std::to_string(o.sequential_overlap)});
-  run.step_seconds.emplace_back(matcher, run_step(match_cmd, log, matcher));
+  // Our exact matcher, then COLMAP's geometric verification of the matches (its RANSAC, its defaults).
+  const auto t0 = SteadyClock::now();
+  SiftMatchOptions match;
+  match.threads = o.threads;
+  const std::vector<ImageDescriptors> features = read_colmap_descriptors(db);
+  const fs::path match_list = workspace / "matches.txt";
+  write_match_list(features, image_pairs(static_cast<int>(features.size()), o.matcher == "sequential" ? o.sequential_overlap : 0),
+                   match, match_list);
+  run.step_seconds.emplace_back("matching", seconds_since(t0));
+  run.step_seconds.emplace_back(
+      "matches_importer",
+      run_step({o.executable, "matches_importer", "--database_path", db.string(), "--match_list_path", match_list.string(),
+                "--match_type", "raw", "--SiftMatching.use_gpu", "0", "--SiftMatching.num_threads", threads},
+               log, "matches_importer"));
   fs::create_directories(workspace / "sparse");
   const std::vector<std::string> mapper_cmd = {
       o.executable, "mapper", "--database_path", db.string(), "--image_path", image_dir.string(), "--output_path",

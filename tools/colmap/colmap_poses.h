@@ -1,5 +1,5 @@
-// Camera poses from images with COLMAP 3.8 (CPU SIFT, exhaustive matching, mapper with fixed known
-// intrinsics), for users with real photos. Its models are read by tools/colmap/colmap_model.h.
+// Camera poses from images with COLMAP 3.8 (CPU SIFT, our exact matching of the SIFT descriptors, COLMAP's
+// geometric verification and mapper with fixed known intrinsics), for users with real photos. Its models are read by tools/colmap/colmap_model.h.
 #pragma once
 
 #include <filesystem>
@@ -46,7 +46,10 @@ Vec3 common_aim_point(const std::vector<Camera>& cameras);
 struct ColmapOptions {
   std::string executable = "colmap";
   int max_features = 4000;
-  std::string matcher = "exhaustive";  // or "sequential": only views close in name order (video, rings)
+  // SIFT's first octave: -1 (COLMAP's default) doubles the image first, 0 starts at its own size: 4x less
+  // extraction time and fewer small features, enough for 20 views around a building, not for a 10-view ring.
+  int first_octave = -1;
+  std::string matcher = "exhaustive";  // image pairs matched: all, or "sequential": only views close in name order
   int sequential_overlap = 10;         // sequential: each view is matched with this many next ones
   int init_min_inliers = 100;          // mapper: verified matches of the initial pair (COLMAP's default)
   int abs_pose_min_inliers = 30;       // mapper: 2D-3D inliers to register a view (COLMAP's default)
@@ -59,9 +62,9 @@ struct ColmapRun {
   std::vector<std::pair<std::string, double>> step_seconds;  // wall time of each COLMAP command
 };
 
-// Runs feature_extractor, the matcher, mapper and model_converter in `workspace` on `images` (one
+// Runs feature_extractor, our matcher (tools/colmap/sift_matching.h), matches_importer, mapper and model_converter in `workspace` on `images` (one
 // camera: intrinsics K, fixed during mapping). `workspace` belongs to the caller (core/util/workspace.h):
-// only what a previous call wrote there (images/, database.db, sparse/, model_txt_*, colmap.log) is replaced. The mapper may build several models; the one with the
+// only what a previous call wrote there (images/, database.db, matches.txt, sparse/, model_txt_*, colmap.log) is replaced. The mapper may build several models; the one with the
 // most registered images is used. Throws std::runtime_error naming the failing step and its log.
 ColmapRun estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images, const Eigen::Matrix3d& K,
                                      const std::filesystem::path& workspace, const ColmapOptions& options);
