@@ -21,8 +21,23 @@ namespace fs = std::filesystem;
 // refined candidates, so its selection ran in a different order).
 constexpr int kHandoffVersion = 2;
 
+namespace {
+
+// True when `file` (the manifest or the progress file) names this junction checkpoint step and version.
+bool made_by(const fs::path& file, int64_t step) {
+  if (!fs::exists(file)) return false;
+  std::ifstream in(file);
+  const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
+  return !m.is_discarded() && m.is_object() && m.value("junction_step", int64_t{-1}) == step &&
+         m.value("version", 0) == kHandoffVersion;
+}
+
+}  // namespace
+
 fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run) {
   const fs::path dir = run.out / "predicted_junctions", manifest = dir / "manifest.json";
+  // Written before the first prediction, removed with the manifest's arrival: an interrupted hand-off resumes.
+  const fs::path progress = dir / "in_progress.json";
   const fs::path weights = best_checkpoint_path(run.out, "junction");
   if (!fs::exists(weights)) throw std::runtime_error(weights.string() + ": no junction model yet (run --stage junction first)");
   const int64_t step = read_checkpoint_info(weights).position.step;
@@ -35,13 +50,12 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   Communicator& comm = run.communicator();
   const bool writer = comm.rank() == 0;
   std::string decision = "redo";
-  if (writer && run.resume && fs::exists(manifest)) {
-    std::ifstream in(manifest);
-    const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
-    bool complete = !m.is_discarded() && m.value("junction_step", int64_t{-1}) == step &&
-                    m.value("version", 0) == kHandoffVersion;
+  if (writer && run.resume) {
+    bool complete = made_by(manifest, step);
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
     if (complete) decision = "keep";
+    // An interrupted hand-off of the same weights: its files are whole (atomic writes), keep them.
+    else if (made_by(progress, step)) decision = "continue";
   }
   comm.broadcast(decision, "hand-off decision");
   if (decision == "keep") {
@@ -51,16 +65,25 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   if (writer) {
     fs::remove(manifest);
     log.rewind("handoff", 0, stage_order());
+    if (decision == "redo")
+      write_text_atomically(progress, json_text({{"format", "lc2wf-predicted-junctions-progress"}, {"junction_step", step},
+                                                 {"version", kHandoffVersion}}, 2) + "\n");
   }
+  comm.barrier("hand-off progress");  // the progress file exists before any rank writes a prediction
 
   std::unique_ptr<JunctionNet> net = load_junction_net(weights);
   const BatchShare share = batch_share(static_cast<int64_t>(clouds.size()), comm.rank(), comm.size());
   std::unique_ptr<Progress> bar;
   if (!run.quiet) bar = std::make_unique<Progress>("predicting junctions", share.count);
   const auto t0 = std::chrono::steady_clock::now();
+  int64_t kept = 0;
   for (int64_t k = share.first; k < share.first + share.count; ++k) {
     const LineCloud* c = clouds[static_cast<size_t>(k)];
-    write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c));
+    if (decision == "continue" && fs::exists(predicted_junctions_path(dir, c->name))) {
+      ++kept;  // predicted before the interruption, by the same weights: inference is deterministic
+    } else {
+      write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c));
+    }
     if (bar) bar->step();
   }
   if (bar) bar->finish();
@@ -75,8 +98,12 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
                             {"version", kHandoffVersion},
                             {"buildings", names}};
   write_text_atomically(manifest, json_text(m, 2) + "\n");
-  log.append({{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},
-              {"seconds", seconds}, {"buildings_per_s", seconds > 0 ? clouds.size() / seconds : 0.0}});
+  fs::remove(progress);
+  const double predicted = static_cast<double>(clouds.size()) - static_cast<double>(kept);
+  nlohmann::json line = {{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},
+                         {"seconds", seconds}, {"buildings_per_s", seconds > 0 ? predicted / seconds : 0.0}};
+  if (comm.size() == 1) line["kept_from_interrupted_run"] = kept;  // other ranks' counts stay with them
+  log.append(line);
   return dir;
 }
 

@@ -134,6 +134,32 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   const auto straight_losses = step_losses(straight / "log.jsonl");
   ASSERT_EQ(straight_losses.size(), 80u + 30u);
 
+  // An interrupted hand-off resumes: files already predicted by the same junction weights are kept, the
+  // missing ones are predicted, and the result equals the uninterrupted hand-off.
+  const fs::path partial = dir_ / "partial";
+  fs::copy(straight, partial, fs::copy_options::recursive);
+  const fs::path pj = partial / "predicted_junctions";
+  const nlohmann::json manifest = nlohmann::json::parse(read_text(pj / "manifest.json"));
+  fs::remove(pj / "manifest.json");
+  fs::remove(pj / "rect.json");
+  std::ofstream(pj / "in_progress.json") << nlohmann::json{{"junction_step", manifest["junction_step"]},
+                                                           {"version", manifest["version"]}}.dump();
+  const auto old_time = fs::last_write_time(pj / "ell.json") - std::chrono::hours(1);
+  fs::last_write_time(pj / "ell.json", old_time);
+  ASSERT_EQ(run(train_cmd(partial) + " --stage edge --resume"), 0) << command_output();
+  EXPECT_EQ(fs::last_write_time(pj / "ell.json"), old_time) << "a prediction of the interrupted hand-off was redone";
+  EXPECT_EQ(read_text(pj / "rect.json"), read_text(straight / "predicted_junctions" / "rect.json"));
+  EXPECT_TRUE(fs::exists(pj / "manifest.json"));
+  EXPECT_FALSE(fs::exists(pj / "in_progress.json"));
+  const auto handoff = log_lines(partial / "log.jsonl", "handoff");
+  ASSERT_FALSE(handoff.empty());
+  EXPECT_EQ(handoff.back()["kept_from_interrupted_run"], 2);  // ell: a training and the validation building
+  // Without the progress file the files cannot be trusted: everything is predicted again.
+  fs::remove(pj / "manifest.json");
+  ASSERT_EQ(run(train_cmd(partial) + " --stage edge --resume"), 0) << command_output();
+  EXPECT_NE(fs::last_write_time(pj / "ell.json"), old_time);
+  EXPECT_EQ(log_lines(partial / "log.jsonl", "handoff").back()["kept_from_interrupted_run"], 0);
+
   // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
   // compare every step loss with the uninterrupted run.
   const fs::path resumed = dir_ / "resumed";
