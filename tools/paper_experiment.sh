@@ -44,7 +44,7 @@ step_snapshot() {
     cp "$newest" "$tmp/checkpoints/${stage}_last_0.safetensors"
     cp "${newest%.safetensors}.optim.safetensors" "$tmp/checkpoints/${stage}_last_0.optim.safetensors"
   done
-  # The hand-off is an hour of compute and the edge stage's input: kept as one archive.
+  # The hand-off is the edge stage's input (≈ 11 min of compute): kept as one archive.
   [[ -f runs/base/predicted_junctions/manifest.json ]] &&
     tar -C runs/base -czf "$tmp/predicted_junctions.tar.gz" predicted_junctions
   cp tools/paper_experiment-snapshot.md "$tmp/README.md"
