@@ -1,5 +1,6 @@
 #include "tools/colmap/sift_matching.h"
 
+#include <Eigen/Core>
 #include <omp.h>
 
 #include <algorithm>
@@ -9,11 +10,16 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/gemm.h"
 #include "core/util/atomic_file.h"
 
 namespace lc2wf {
 namespace {
+
+using RowMatrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+Eigen::Map<const RowMatrix> descriptor_matrix(const ImageDescriptors& im) {
+  return {im.descriptors.data(), im.rows, kSiftDimensions};
+}
 
 // Angle between unit descriptors from their dot product (rounding can push it past 1).
 double angle_of(float dot) { return std::acos(std::clamp(static_cast<double>(dot), -1.0, 1.0)); }
@@ -64,15 +70,14 @@ void SiftMatchOptions::Check() const {
 FeatureMatches match_descriptors(const ImageDescriptors& a, const ImageDescriptors& b, const SiftMatchOptions& o) {
   FeatureMatches matches;
   if (a.rows == 0 || b.rows == 0) return matches;
+  const auto A = descriptor_matrix(a), B = descriptor_matrix(b);
   const float lowest = -std::numeric_limits<float>::infinity();
   std::vector<int32_t> best(a.rows, -1), best_of_b(b.rows, -1);
   std::vector<float> dot1(a.rows, lowest), dot2(a.rows, lowest), dot_of_b(b.rows, lowest);
-  std::vector<float> S(static_cast<size_t>(std::min(kRowBlock, a.rows) * b.rows));
+  RowMatrix S;
   for (int64_t r0 = 0; r0 < a.rows; r0 += kRowBlock) {
     const int64_t rows = std::min(kRowBlock, a.rows - r0);
-    // One thread per pair: the pairs already run in parallel.
-    gemm_serial<float>(false, true, rows, b.rows, kSiftDimensions, a.descriptors.data() + r0 * kSiftDimensions,
-                       kSiftDimensions, b.descriptors.data(), kSiftDimensions, S.data(), b.rows, false);
+    S.noalias() = A.middleRows(r0, rows) * B.transpose();
     for (int64_t i = 0; i < rows; ++i) {
       const int64_t ia = r0 + i;
       const float* row = S.data() + i * b.rows;
