@@ -44,9 +44,10 @@ step_snapshot() {
     cp "$newest" "$tmp/checkpoints/${stage}_last_0.safetensors"
     cp "${newest%.safetensors}.optim.safetensors" "$tmp/checkpoints/${stage}_last_0.optim.safetensors"
   done
-  # The hand-off is the edge stage's input (≈ 11 min of compute): kept as one archive.
+  # The hand-off is the edge stage's input: kept, or a restored run would predict it again and drop the edge
+  # stage's log lines. In parts of 19 MB: a committed file may have 20 MB at most.
   [[ -f runs/base/predicted_junctions/manifest.json ]] &&
-    tar -C runs/base -czf "$tmp/predicted_junctions.tar.gz" predicted_junctions
+    tar -C runs/base -czf - predicted_junctions | split -b 19m -d - "$tmp/predicted_junctions.tar.gz.part"
   cp tools/paper_experiment-snapshot.md "$tmp/README.md"
   # The learning curves so far, shown in the top README (skipped without matplotlib).
   /usr/bin/python3 tools/plots/plot_training.py runs/base --out "$tmp/learning_curves.png" >/dev/null ||
@@ -60,8 +61,10 @@ step_restore() {
   [[ ! -e runs/base ]] || { echo "paper_experiment.sh: runs/base exists; move it away to restore" >&2; exit 3; }
   mkdir -p runs/base.tmp
   cp -r "$snapshot_dir"/. runs/base.tmp/
-  rm -f runs/base.tmp/README.md runs/base.tmp/predicted_junctions.tar.gz runs/base.tmp/learning_curves.png
-  [[ -f $snapshot_dir/predicted_junctions.tar.gz ]] && tar -C runs/base.tmp -xzf "$snapshot_dir/predicted_junctions.tar.gz"
+  rm -f runs/base.tmp/README.md runs/base.tmp/predicted_junctions.tar.gz.part* runs/base.tmp/learning_curves.png
+  if compgen -G "$snapshot_dir/predicted_junctions.tar.gz.part*" >/dev/null; then
+    cat "$snapshot_dir"/predicted_junctions.tar.gz.part* | tar -C runs/base.tmp -xzf -
+  fi
   mv runs/base.tmp runs/base
   echo "runs/base restored from $snapshot_dir"
 }
