@@ -17,7 +17,8 @@ void set_matmul_precision(MatmulPrecision precision) { g_precision.store(precisi
 MatmulPrecision parse_matmul_precision(const std::string& text, const std::string& what) {
   if (text == "fp32") return MatmulPrecision::kFp32;
   if (text == "bf16") return MatmulPrecision::kBf16;
-  throw std::invalid_argument(what + " must be \"fp32\" or \"bf16\", got \"" + text + "\"");
+  if (text == "auto") return cpu_has_bf16_dot_product() ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32;
+  throw std::invalid_argument(what + " must be \"fp32\", \"bf16\" or \"auto\", got \"" + text + "\"");
 }
 
 std::string to_string(MatmulPrecision precision) { return precision == MatmulPrecision::kBf16 ? "bf16" : "fp32"; }

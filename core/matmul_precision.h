@@ -11,7 +11,9 @@ enum class MatmulPrecision { kFp32, kBf16 };
 MatmulPrecision matmul_precision();
 void set_matmul_precision(MatmulPrecision precision);
 
-// "fp32" or "bf16"; anything else throws std::invalid_argument naming `what` and the value.
+// "fp32", "bf16" or "auto" (bf16 where the CPU has a bf16 dot product, else fp32: a bf16 training run matched
+// fp32 within run-to-run noise, train/README.md); anything else throws std::invalid_argument naming `what`
+// and the value.
 MatmulPrecision parse_matmul_precision(const std::string& text, const std::string& what);
 std::string to_string(MatmulPrecision precision);
 

@@ -146,8 +146,8 @@ struct TrainConfig {
   uint64_t seed = 1555;
   int64_t threads = 2;         // compute threads (set_num_threads)
   int64_t loader_workers = 1;  // threads building batches ahead of the compute
-  // GEMM operands: "fp32" (the paper's numbers) or "bf16" (fp32 accumulation, master weights and optimiser
-  // state; emulated without AVX512-BF16). core/matmul_precision.h.
+  // GEMM operands: "fp32" (the paper's numbers), "bf16" (fp32 accumulation, master weights and optimiser
+  // state; emulated without AVX512-BF16) or "auto" (bf16 where the CPU has AVX512-BF16). core/matmul_precision.h.
   std::string precision = "fp32";
   std::string out = "runs/base";
   std::string init_weights;    // fine-tune: a trained model's folder (junction/edge.safetensors); "" = random init

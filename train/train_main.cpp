@@ -111,9 +111,9 @@ int train(const Args& a, Communicator& comm) {
   if (writer) write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");
   if (!run.quiet)
-    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %d rank(s) x %lld threads, matrix products by %s, output %s\n",
+    std::fprintf(stderr, "lc2wf-train: %zu training and %zu validation buildings, %d rank(s) x %lld threads, matrix products by %s in %s, output %s\n",
                  train.clouds.size(), val.clouds.size(), comm.size(), static_cast<long long>(config.threads),
-                 gemm_backend_name().c_str(), run.out.string().c_str());
+                 gemm_backend_name().c_str(), to_string(matmul_precision()).c_str(), run.out.string().c_str());
   if (!run.quiet && matmul_precision() == MatmulPrecision::kBf16 && !cpu_has_bf16_dot_product())
     std::fprintf(stderr, "lc2wf-train: precision bf16 is emulated (this CPU has no AVX512-BF16): same numbers, slower than fp32\n");
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);

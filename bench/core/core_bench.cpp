@@ -2,6 +2,7 @@
 // or bandwidth (GB/s) and the fraction of the GEMM peak / memcpy bandwidth measured in the same run.
 //   build-core/bench/core/lc2wf-core-bench [--benchmark_filter=...]   (threads: LC2WF_THREADS, default all)
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +15,7 @@
 #include "core/ops.h"
 #include "core/parallel.h"
 #include "core/rng.h"
+#include "core/storage_cache.h"
 
 namespace {
 
@@ -29,6 +31,12 @@ Tensor rand32(const Shape& s, uint64_t seed, bool grad = false) {
   Tensor t = Tensor::from_vector(v, s);
   if (grad) t.set_requires_grad();
   return t;
+}
+
+long minor_faults() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_minflt;
 }
 
 template <class F>
@@ -180,6 +188,8 @@ void BM_AttentionOverLinear(benchmark::State& state) {
   Tensor lseed = rand32({kTokens, kWidth}, 4);
   Rng rng(1);
   double attn_wall = 0, lin_wall = 0, attn_cpu = 0, lin_cpu = 0;
+  const StorageCacheStats cache_before = storage_cache_stats();
+  const long faults_before = minor_faults();
   for (auto _ : state) {
     auto t0 = std::chrono::steady_clock::now();
     double c0 = thread_cpu_seconds();
@@ -206,6 +216,11 @@ void BM_AttentionOverLinear(benchmark::State& state) {
   state.counters["linear_GFLOP/s"] = lin_flops * n / lin_wall / 1e9;
   state.counters["ratio"] = (attn_flops / attn_wall) / (lin_flops / lin_wall);
   state.counters["ratio_cpu"] = (attn_flops / attn_cpu) / (lin_flops / lin_cpu);
+  // Fresh pages are the allocator's cost, not the kernels': a training step in steady state maps none.
+  const StorageCacheStats cache_after = storage_cache_stats();
+  state.counters["misses_per_iter"] = static_cast<double>(cache_after.misses - cache_before.misses) / n;
+  state.counters["fresh_MB_per_iter"] = static_cast<double>(cache_after.fresh_bytes - cache_before.fresh_bytes) / n / 1e6;
+  state.counters["faults_per_iter"] = static_cast<double>(minor_faults() - faults_before) / n;
 }
 BENCHMARK(BM_AttentionOverLinear)
     ->ArgsProduct({{32, 64}, {0, 1}, {kTokens, 1024}})

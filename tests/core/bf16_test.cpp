@@ -42,6 +42,9 @@ TEST(Bf16, PrecisionNamesAndErrors) {
   EXPECT_EQ(parse_matmul_precision("bf16", "precision"), MatmulPrecision::kBf16);
   EXPECT_EQ(parse_matmul_precision("fp32", "precision"), MatmulPrecision::kFp32);
   EXPECT_EQ(to_string(MatmulPrecision::kBf16), "bf16");
+  // auto follows the CPU: bf16 only where the dot-product instruction makes it faster.
+  EXPECT_EQ(parse_matmul_precision("auto", "precision"),
+            cpu_has_bf16_dot_product() ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32);
   try {
     parse_matmul_precision("fp16", "config.precision");
     FAIL() << "fp16 accepted";

@@ -1,0 +1,1 @@
+// Compiled only to carry the precompiled headers of cmake/Lc2wfPch.cmake, which other targets reuse.
