@@ -1,5 +1,5 @@
 # Precompiled headers. CI builds from a clean clone, and most of the ~220 translation units parse the same
-# third-party headers (Eigen, nlohmann/json, GoogleTest, <filesystem>: 1-3 s each at -O3, README "Build time").
+# third-party headers (Eigen, nlohmann/json, GoogleTest, <filesystem>: 1-3 s each at -O3; README.md, "Build").
 # GCC ignores a header precompiled under other macro-defining flags, so there is one variant per combination
 # that occurs here: -fopenmp (defines _OPENMP and _REENTRANT), lc2wf_core's EIGEN_DONT_PARALLELIZE (Eigen
 # tests it) and GoogleTest (test programs only). Every target reuses the variant its own flags match; a
@@ -12,7 +12,7 @@ set(LC2WF_PCH_HEADERS
   <Eigen/Core> <Eigen/Geometry> <nlohmann/json.hpp>)
 set(LC2WF_PCH_TEST_HEADERS <gtest/gtest.h> <gmock/gmock.h>)
 
-# Every in-project target OUT_TARGET links, directly or through other in-project targets' interfaces.
+# Every target TARGET links, directly or through other in-project targets' interfaces.
 function(_lc2wf_link_closure target out)
   set(seen "")
   set(queue ${target})
