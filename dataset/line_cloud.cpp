@@ -4,6 +4,7 @@
 
 #include <Eigen/LU>  // determinant()
 
+#include "core/util/fnv1a.h"
 #include "dataset/errors.h"
 
 namespace lc2wf {
@@ -24,6 +25,14 @@ std::vector<int> endpoint_labels(const LineCloud& cloud, double max_distance_m) 
     if (l.d2 <= max_distance_m) out[2 * i + 1] = l.i2;
   }
   return out;
+}
+
+uint64_t segments_fingerprint(const LineCloud& cloud) {
+  std::string bytes = cloud.name;
+  bytes.reserve(bytes.size() + cloud.segments.size() * 6 * sizeof(double));
+  for (const Segment3& s : cloud.segments)
+    for (const Vec3* v : {&s.a, &s.b}) bytes.append(reinterpret_cast<const char*>(v->data()), 3 * sizeof(double));
+  return fnv1a64(bytes);
 }
 
 SegmentLabel make_edge_label(const Segment3& s, const Wireframe& wf, int j, int k) {

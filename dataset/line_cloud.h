@@ -2,6 +2,7 @@
 // wireframe, the raw<->metre transform and the per-segment label tuple (f, i1, d1, i2, d2).
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -46,6 +47,10 @@ std::vector<int> endpoint_labels(const LineCloud& cloud, double max_distance_m =
 // Label tuple for a segment known to lie on GT edge (j, k): orders the junctions to match the segment's
 // endpoints (the pairing with the smaller summed endpoint distance) and fills the distances.
 SegmentLabel make_edge_label(const Segment3& segment, const Wireframe& wireframe, int j, int k);
+
+// FNV-1a over the name and the segments' coordinates (as stored): tells whether predictions made from a
+// cloud still belong to it, e.g. after the dataset was regenerated on another machine.
+uint64_t segments_fingerprint(const LineCloud& cloud);
 
 // Throws DataError(source, "...") naming the first inconsistency: non-finite values, zero-length segments,
 // support/label counts, view ids or junction ids out of range, bad cameras or wireframe edges.

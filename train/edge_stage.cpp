@@ -143,7 +143,9 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
     return v;
   };
 
-  run_stage(stage_loop_options("edge", c, config.seed, run), net, net.dropout_rng(), log, cb);
+  StageLoopOptions loop = stage_loop_options("edge", c, config.seed, run);
+  loop.model_config["inputs"] = handoff_identity(handoff_dir);
+  run_stage(loop, net, net.dropout_rng(), log, cb);
 }
 
 }  // namespace lc2wf

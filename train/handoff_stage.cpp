@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "core/util/atomic_file.h"
+#include "core/util/fnv1a.h"
 #include "core/util/json_text.h"
 #include "core/util/progress.h"
 #include "infer/inference.h"
@@ -17,19 +18,30 @@ namespace lc2wf {
 
 namespace fs = std::filesystem;
 
-// Version 2: raw candidates; the edge stage selects and refines them as inference does (version 1 stored
-// refined candidates, so its selection ran in a different order).
-constexpr int kHandoffVersion = 2;
+// Version 3: the manifest names the clouds it was predicted from (their fingerprint). Version 2: raw
+// candidates; the edge stage selects and refines them as inference does (version 1 stored refined candidates).
+constexpr int kHandoffVersion = 3;
 
 namespace {
 
-// True when `file` (the manifest or the progress file) names this junction checkpoint step and version.
-bool made_by(const fs::path& file, int64_t step) {
+// One fingerprint of every cloud the hand-off predicts from, in order: regenerated clouds (another
+// machine renders slightly different images) make the predicted junctions stale.
+std::string clouds_fingerprint(const std::vector<const LineCloud*>& clouds) {
+  std::string all;
+  for (const LineCloud* c : clouds) all += std::to_string(segments_fingerprint(*c)) + ",";
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64(all)));
+  return hex;
+}
+
+// True when `file` (the manifest or the progress file) names this junction checkpoint step, these
+// clouds and this version.
+bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint) {
   if (!fs::exists(file)) return false;
   std::ifstream in(file);
   const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
   return !m.is_discarded() && m.is_object() && m.value("junction_step", int64_t{-1}) == step &&
-         m.value("version", 0) == kHandoffVersion;
+         m.value("clouds_fingerprint", std::string()) == fingerprint && m.value("version", 0) == kHandoffVersion;
 }
 
 }  // namespace
@@ -45,17 +57,18 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   std::vector<const LineCloud*> clouds;
   for (const BuildingSet* set : {&train, &val})
     for (const LineCloud& c : set->clouds) clouds.push_back(&c);
+  const std::string fingerprint = clouds_fingerprint(clouds);
 
   // Rank 0 decides (and clears the old manifest) for all ranks; each rank then predicts its share.
   Communicator& comm = run.communicator();
   const bool writer = comm.rank() == 0;
   std::string decision = "redo";
   if (writer && run.resume) {
-    bool complete = made_by(manifest, step);
+    bool complete = made_by(manifest, step, fingerprint);
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
     if (complete) decision = "keep";
     // An interrupted hand-off of the same weights: its files are whole (atomic writes), keep them.
-    else if (made_by(progress, step)) decision = "continue";
+    else if (made_by(progress, step, fingerprint)) decision = "continue";
   }
   comm.broadcast(decision, "hand-off decision");
   if (decision == "keep") {
@@ -67,7 +80,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
     log.rewind("handoff", 0, stage_order());
     if (decision == "redo")
       write_text_atomically(progress, json_text({{"format", "lc2wf-predicted-junctions-progress"}, {"junction_step", step},
-                                                 {"version", kHandoffVersion}}, 2) + "\n");
+                                                 {"clouds_fingerprint", fingerprint}, {"version", kHandoffVersion}}, 2) + "\n");
   }
   comm.barrier("hand-off progress");  // the progress file exists before any rank writes a prediction
 
@@ -95,6 +108,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   const nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
                             {"junction_checkpoint", weights.string()},
                             {"junction_step", step},
+                            {"clouds_fingerprint", fingerprint},
                             {"version", kHandoffVersion},
                             {"buildings", names}};
   write_text_atomically(manifest, json_text(m, 2) + "\n");
@@ -105,6 +119,15 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   if (comm.size() == 1) line["kept_from_interrupted_run"] = kept;  // other ranks' counts stay with them
   log.append(line);
   return dir;
+}
+
+nlohmann::json handoff_identity(const fs::path& dir) {
+  const fs::path manifest = dir / "manifest.json";
+  std::ifstream in(manifest);
+  const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
+  if (m.is_discarded() || !m.is_object() || !m.contains("junction_step") || !m.contains("clouds_fingerprint"))
+    throw std::runtime_error(manifest.string() + ": not a complete hand-off manifest (run --stage edge without --resume)");
+  return {{"junction_step", m["junction_step"]}, {"clouds_fingerprint", m["clouds_fingerprint"]}};
 }
 
 }  // namespace lc2wf

@@ -116,7 +116,16 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
       const fs::path p = last_checkpoint_path(o.out, stage, k);
       if (!fs::exists(p)) continue;
       try {
-        slots.push_back({read_checkpoint_info(p).position.step, k});
+        const CheckpointInfo info = read_checkpoint_info(p);
+        const nlohmann::json inputs = info.config.value("inputs", nlohmann::json());
+        if (inputs != o.model_config.value("inputs", nlohmann::json())) {
+          // E.g. the clouds were regenerated and the hand-off predicted again: this state learnt from other data.
+          std::fprintf(stderr, "%s: not resuming %s: it was trained on other inputs (%s, now %s); the stage starts again\n",
+                       stage.c_str(), p.string().c_str(), inputs.dump().c_str(),
+                       o.model_config.value("inputs", nlohmann::json()).dump().c_str());
+          continue;
+        }
+        slots.push_back({info.position.step, k});
       } catch (const std::exception& e) {
         if (!o.quiet) std::fprintf(stderr, "%s: ignoring %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
       }

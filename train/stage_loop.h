@@ -58,7 +58,9 @@ struct StageLoopOptions {
   std::string stage;          // "junction" or "edge"
   StageSchedule schedule;
   OptimConfig optim;
-  nlohmann::json model_config;  // {"stage", "net", ...}: stored in every checkpoint
+  // {"stage", "net", ...}: stored in every checkpoint. Its "inputs" (if any) name the data the stage trains
+  // on beyond the config (the edge stage: its hand-off); a checkpoint of other inputs is not resumed.
+  nlohmann::json model_config;
   std::filesystem::path out;
   bool resume = false;
   bool quiet = false;

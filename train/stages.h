@@ -52,6 +52,10 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
 std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val,
                                              RunLog& log, const StageRun& run);
 
+// What the edge stage trains on, from the hand-off's manifest: {"junction_step", "clouds_fingerprint"}.
+// Stored in its checkpoints, so a stage trained on another hand-off is never resumed.
+nlohmann::json handoff_identity(const std::filesystem::path& handoff_dir);
+
 // Best weights `<out>/edge.safetensors`; selection by mean sAP (eta 0.25/0.35/0.50 m) of the post-processed
 // wireframes of the validation buildings.
 void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const BuildingSet& val,

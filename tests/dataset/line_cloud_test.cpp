@@ -76,6 +76,19 @@ TEST(LineCloudIo, BinaryAndJsonRoundTripExactly) {
   EXPECT_LT(std::filesystem::file_size(dir / "b.lc2wf"), std::filesystem::file_size(dir / "j.json"));
 }
 
+TEST(LineCloudIo, FingerprintFollowsTheSegmentsAndTheName) {
+  const LineCloud c = small_cloud();
+  const LineCloud read_back = line_cloud_from_bytes(line_cloud_to_bytes(c), "mem");
+  EXPECT_EQ(segments_fingerprint(c), segments_fingerprint(read_back));  // what the stored cloud gives back
+  LineCloud moved = c, renamed = c, relabelled = c;
+  moved.segments.back().b.z() += 1e-9;
+  renamed.name += "x";
+  relabelled.labels.clear();
+  EXPECT_NE(segments_fingerprint(moved), segments_fingerprint(c));
+  EXPECT_NE(segments_fingerprint(renamed), segments_fingerprint(c));
+  EXPECT_EQ(segments_fingerprint(relabelled), segments_fingerprint(c));  // labels are not an input to prediction
+}
+
 TEST(LineCloudIo, EmptyCloudRoundTrips) {
   LineCloud c;
   c.name = "empty";

@@ -96,8 +96,8 @@ class TrainIntegration : public ::testing::Test {
     fs::remove(kCommandLog);
   }
 
-  static std::string train_cmd(const fs::path& out) {
-    return std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "tiny.json") + " --quiet --out " + quote(out);
+  static std::string train_cmd(const fs::path& out, const std::string& config = "tiny.json") {
+    return std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / config) + " --quiet --out " + quote(out);
   }
 
   static fs::path dir_;
@@ -143,6 +143,7 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   fs::remove(pj / "manifest.json");
   fs::remove(pj / "rect.json");
   std::ofstream(pj / "in_progress.json") << nlohmann::json{{"junction_step", manifest["junction_step"]},
+                                                           {"clouds_fingerprint", manifest["clouds_fingerprint"]},
                                                            {"version", manifest["version"]}}.dump();
   const auto old_time = fs::last_write_time(pj / "ell.json") - std::chrono::hours(1);
   fs::last_write_time(pj / "ell.json", old_time);
@@ -159,6 +160,30 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   ASSERT_EQ(run(train_cmd(partial) + " --stage edge --resume"), 0) << command_output();
   EXPECT_NE(fs::last_write_time(pj / "ell.json"), old_time);
   EXPECT_EQ(log_lines(partial / "log.jsonl", "handoff").back()["kept_from_interrupted_run"], 0);
+
+  // Regenerated clouds (another machine renders slightly different images): the hand-off no longer
+  // belongs to them, so it is predicted again, and the edge stage starts again instead of resuming a
+  // checkpoint trained on the old junctions. Here one segment of one cloud moved by 1 mm.
+  const fs::path regenerated = dir_ / "regenerated";
+  fs::copy(straight, regenerated, fs::copy_options::recursive);
+  fs::create_directories(dir_ / "clouds-regenerated");
+  fs::copy(dir_ / "clouds" / "ell.lcloud", dir_ / "clouds-regenerated" / "ell.lcloud");
+  LineCloud moved = read_line_cloud(dir_ / "clouds" / "rect.lcloud");
+  moved.segments.at(0).a.x() += 1e-3;
+  write_line_cloud(dir_ / "clouds-regenerated" / "rect.lcloud", moved);
+  nlohmann::json regenerated_config = config_;
+  regenerated_config["data"]["dir"] = (dir_ / "clouds-regenerated").string();
+  regenerated_config["edge"]["epochs"] = 2;  // resumed, the old state (30 epochs) would run no step at all
+  std::ofstream(dir_ / "regenerated.json") << regenerated_config.dump(2);
+  ASSERT_EQ(run(train_cmd(regenerated, "regenerated.json") + " --stage edge --resume"), 0) << command_output();
+  EXPECT_THAT(command_output(), HasSubstr("trained on other inputs"));
+  const nlohmann::json new_manifest = nlohmann::json::parse(read_text(regenerated / "predicted_junctions" / "manifest.json"));
+  EXPECT_EQ(new_manifest["junction_step"], manifest["junction_step"]);
+  EXPECT_NE(new_manifest["clouds_fingerprint"], manifest["clouds_fingerprint"]);
+  size_t edge_steps = 0;
+  for (const auto& j : step_losses(regenerated / "log.jsonl")) edge_steps += std::get<0>(j) == "edge";
+  EXPECT_EQ(edge_steps, 2u) << "the edge stage did not start again on the new hand-off";
+  EXPECT_EQ(log_lines(regenerated / "log.jsonl", "handoff").size(), 1u);
 
   // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
   // compare every step loss with the uninterrupted run.
