@@ -3,6 +3,7 @@
 # process per workload so peak RSS is per workload) and prints time and memory ratios.
 #
 #   bench/compare.sh [--build DIR] [--workloads "junction_train edge_train junction_infer edge_infer"]
+#                    (also junction_train_bf16, edge_train_bf16: our bf16 step against PyTorch's fp32 one)
 #                    [--train-iters N] [--infer-iters N] [--threads N]
 #
 # PyTorch runs at its best setting on this machine (OPENBLAS_CORETYPE=SkylakeX: OpenBLAS's fastest kernels here).
@@ -35,7 +36,10 @@ py=/usr/bin/python3
 
 export OMP_NUM_THREADS=$threads OPENBLAS_NUM_THREADS=$threads OPENBLAS_CORETYPE=SkylakeX
 
-declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1 [edge_train]=BM_EdgeTrainStep/fused:1
+# *_bf16: our step with bf16 GEMM operands against PyTorch's fp32 step (Debian's PyTorch cannot autocast
+# this model to bf16 on the CPU).
+declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1/bf16:0 [edge_train]=BM_EdgeTrainStep/fused:1/bf16:0
+                   [junction_train_bf16]=BM_JunctionTrainStep/fused:1/bf16:1 [edge_train_bf16]=BM_EdgeTrainStep/fused:1/bf16:1
                    [junction_infer]=BM_JunctionInference [edge_infer]=BM_EdgeInference)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
@@ -48,7 +52,7 @@ printf '%-15s %10s %10s %8s %10s %10s %8s\n' workload ours_s torch_s speedup our
 for w in $workloads; do
   [[ -n "${filter[$w]:-}" ]] || { echo "compare.sh: unknown workload '$w'" >&2; exit 2; }
   iters=$infer_iters
-  [[ $w == *_train ]] && iters=$train_iters
+  [[ $w == *_train* ]] && iters=$train_iters
   # Our benchmark fixes its iteration counts; it prints the mean seconds and the peak RSS counter.
   "$bench" --benchmark_filter="^${filter[$w]}/" --benchmark_format=json > "$tmp/ours.json"
   read -r ours_s ours_mb < <("$py" -c '
@@ -56,7 +60,7 @@ import json, sys
 b = json.load(open(sys.argv[1]))["benchmarks"][0]
 scale = {"s": 1.0, "ms": 1e-3, "us": 1e-6, "ns": 1e-9}[b["time_unit"]]
 print(b["real_time"] * scale, b["peak_rss_MB"])' "$tmp/ours.json")
-  line=$("$py" "$here/torch_lpt.py" "$w" --iters "$iters" --threads "$threads")
+  line=$("$py" "$here/torch_lpt.py" "${w%_bf16}" --iters "$iters" --threads "$threads")
   torch_s=$(sed -n 's/.*median_s=\([0-9.]*\).*/\1/p' <<<"$line")
   torch_mb=$(sed -n 's/.*peak_rss_MB=\([0-9.]*\).*/\1/p' <<<"$line")
   awk -v w="$w" -v a="$ours_s" -v b="$torch_s" -v c="$ours_mb" -v d="$torch_mb" \

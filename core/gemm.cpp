@@ -7,6 +7,7 @@
 
 #include "core/bf16.h"
 #include "core/blas_backend.h"
+#include "core/gemm_bf16.h"
 #include "core/matmul_precision.h"
 #include "core/parallel.h"
 
@@ -34,6 +35,11 @@ constexpr int64_t kBf16Chunk = 256;
 
 void gemm_tile_bf16(bool ta, bool tb, int64_t K, const float* A, int64_t lda, const float* B, int64_t ldb,
                     MutMap<float>& c, bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+  if (cpu_has_bf16_dot_product()) {  // the real instruction; below, its emulation on other CPUs
+    gemm_bf16_dot(ta, tb, rows, cols, K, A + (ta ? r0 : r0 * lda), lda, B + (tb ? c0 * ldb : c0), ldb, c.data(),
+                  c.outerStride(), accumulate);
+    return;
+  }
   thread_local std::vector<float> a_slice, b_slice;
   for (int64_t k0 = 0; k0 < K; k0 += kBf16Chunk) {
     const int64_t kn = std::min(kBf16Chunk, K - k0);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <vector>
 
+#include "core/matmul_precision.h"
 #include "core/ops.h"
 #include "core/parallel.h"
 #include "core/storage_cache.h"
@@ -75,12 +76,17 @@ class StepCost {
 
 // Arg "fused" 0 runs attention on the reference kernel (the one before core/attention_fused.cpp), for a
 // before/after of the training step from one build; run one variant per process for its peak RSS.
+// Arg "bf16" 1 runs the matrix products with bf16 operands (core/matmul_precision.h; the AVX512-BF16 kernel
+// where the CPU has it, else its emulation).
 struct AttentionKernel {
-  explicit AttentionKernel(const benchmark::State& state) : before(fused_attention_enabled()) {
+  explicit AttentionKernel(const benchmark::State& state)
+      : before(fused_attention_enabled()),
+        precision(state.range(1) != 0 ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32) {
     set_fused_attention(state.range(0) != 0);
   }
   ~AttentionKernel() { set_fused_attention(before); }
   bool before;
+  MatmulPrecisionGuard precision;
 };
 
 void BM_JunctionTrainStep(benchmark::State& state) {
@@ -141,8 +147,8 @@ void BM_EdgeInference(benchmark::State& state) {
   finish(state);
 }
 
-BENCHMARK(BM_JunctionTrainStep)->ArgName("fused")->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_EdgeTrainStep)->ArgName("fused")->Arg(1)->Arg(0)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_JunctionTrainStep)->ArgNames({"fused", "bf16"})->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_EdgeTrainStep)->ArgNames({"fused", "bf16"})->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_JunctionInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 BENCHMARK(BM_EdgeInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 

@@ -2,6 +2,7 @@
 // same at any thread count, and only when asked for (double products and the default stay exact fp32).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -11,6 +12,7 @@
 
 #include "core/bf16.h"
 #include "core/gemm.h"
+#include "core/gemm_bf16.h"
 #include "core/matmul_precision.h"
 #include "core/parallel.h"
 #include "random_floats.h"
@@ -104,6 +106,66 @@ TEST(Bf16, GemmRoundsOperandsAndSumsInFp32) {
       expect_bf16_product(ta, tb, 37, 19, 600, false);  // K spans three chunks
       expect_bf16_product(ta, tb, 300, 45, 70, true);   // several row tiles, accumulate into C
     }
+}
+
+// The AVX512-BF16 kernel itself, on shapes that leave partial blocks of rows (8), columns (32), pairs and
+// K chunks (256), for every transpose: small integers are exact in bf16 and so is their fp32 sum, so any
+// packing or pairing mistake shows as a wrong number; random operands against the rounded double product.
+TEST(Bf16, DotProductKernelPacksEveryShapeRight) {
+  if (!cpu_has_bf16_dot_product()) GTEST_SKIP() << "this CPU has no AVX512-BF16 (the emulated path is tested above)";
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> small(-8, 8);
+  const int64_t shapes[][3] = {{1, 1, 1}, {7, 33, 3}, {9, 31, 257}, {16, 64, 512}, {37, 19, 600}, {8, 32, 2}, {3, 70, 33}};
+  for (const auto& s : shapes)
+    for (bool ta : {false, true})
+      for (bool tb : {false, true})
+        for (bool accumulate : {false, true}) {
+          const int64_t M = s[0], N = s[1], K = s[2];
+          const int64_t lda = (ta ? M : K) + 3, ldb = (tb ? K : N) + 5, ldc = N + 2;  // strides wider than the rows
+          std::vector<float> A(static_cast<size_t>((ta ? K : M) * lda)), B(static_cast<size_t>((tb ? N : K) * ldb));
+          std::vector<float> C(static_cast<size_t>(M * ldc));
+          for (float& x : A) x = static_cast<float>(small(rng));
+          for (float& x : B) x = static_cast<float>(small(rng));
+          for (float& x : C) x = static_cast<float>(small(rng));
+          const std::vector<float> C0 = C;
+          gemm_bf16_dot(ta, tb, M, N, K, A.data(), lda, B.data(), ldb, C.data(), ldc, accumulate);
+          int64_t wrong = 0;
+          for (int64_t i = 0; i < M; ++i)
+            for (int64_t j = 0; j < ldc; ++j) {
+              const size_t at = static_cast<size_t>(i * ldc + j);
+              if (j >= N) {  // outside the product: untouched
+                wrong += C[at] != C0[at];
+                continue;
+              }
+              double want = accumulate ? C0[at] : 0.0;
+              for (int64_t k = 0; k < K; ++k)
+                want += double(ta ? A[k * lda + i] : A[i * lda + k]) * double(tb ? B[j * ldb + k] : B[k * ldb + j]);
+              wrong += C[at] != want;
+            }
+          EXPECT_EQ(wrong, 0) << "M " << M << " N " << N << " K " << K << " ta " << ta << " tb " << tb << " acc " << accumulate;
+        }
+  // Random operands: rounded to nearest even like round_to_bf16, summed in fp32.
+  const std::vector<float> A = random_floats(45 * 300, 21), B = random_floats(300 * 50, 22);
+  std::vector<float> C(45 * 50);
+  gemm_bf16_dot(false, true, 45, 50, 300, A.data(), 300, B.data(), 300, C.data(), 50, false);
+  double worst = 0;
+  for (int64_t i = 0; i < 45; ++i)
+    for (int64_t j = 0; j < 50; ++j) {
+      double want = 0, magnitude = 0;
+      for (int64_t k = 0; k < 300; ++k) {
+        const double p = double(round_to_bf16(A[i * 300 + k])) * double(round_to_bf16(B[j * 300 + k]));
+        want += p;
+        magnitude += std::abs(p);
+      }
+      worst = std::max(worst, std::abs(C[i * 50 + j] - want) / (magnitude + 1.0));
+    }
+  EXPECT_LT(worst, 4e-6);
+  // A NaN operand gives a NaN product, never an infinity or a number.
+  std::vector<float> a_nan(2 * 2, 1.0f), b(2 * 2, 1.0f), c(2 * 2);
+  a_nan[0] = std::numeric_limits<float>::quiet_NaN();
+  gemm_bf16_dot(false, false, 2, 2, 2, a_nan.data(), 2, b.data(), 2, c.data(), 2, false);
+  EXPECT_TRUE(std::isnan(c[0]) && std::isnan(c[1]));
+  EXPECT_EQ(c[2], 2.0f);
 }
 
 TEST(Bf16, DoubleProductsStayExact) {

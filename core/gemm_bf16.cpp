@@ -1,0 +1,178 @@
+#include "core/gemm_bf16.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+
+#include <immintrin.h>
+
+#include <algorithm>
+#include <vector>
+
+// Compiled for AVX512-BF16 function by function, so the library still runs on CPUs without it (callers
+// check cpu_has_bf16_dot_product() first).
+#define LC2WF_BF16_TARGET __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,avx512bf16")))
+
+namespace lc2wf {
+namespace {
+
+constexpr int64_t kChunk = 256;  // K values packed at a time: the packed slices stay in L2
+constexpr int kRows = 8;         // rows of C per micro-kernel call (16 accumulators + 2 B registers)
+constexpr int64_t kCols = 32;    // columns of C per micro-kernel call: two registers of 16 floats
+
+LC2WF_BF16_TARGET inline __mmask16 first_lanes(int64_t n) {
+  return n >= 16 ? __mmask16(0xffff) : n <= 0 ? __mmask16(0) : __mmask16((1u << n) - 1u);
+}
+
+// bf16 bits of 16 floats in the high half of each 32-bit lane (low half zero): nearest even, as round_to_bf16;
+// a NaN stays a NaN.
+LC2WF_BF16_TARGET inline __m512i bf16_high(__m512 x) {
+  const __m512i u = _mm512_castps_si512(x);
+  const __m512i lsb = _mm512_and_si512(_mm512_srli_epi32(u, 16), _mm512_set1_epi32(1));
+  __m512i r = _mm512_add_epi32(u, _mm512_add_epi32(_mm512_set1_epi32(0x7fff), lsb));
+  r = _mm512_mask_or_epi32(r, _mm512_cmp_ps_mask(x, x, _CMP_UNORD_Q), u, _mm512_set1_epi32(0x00400000));
+  return _mm512_and_si512(r, _mm512_set1_epi32(static_cast<int>(0xffff0000u)));
+}
+
+// A pair per lane, `first` in the low half: vdpbf16ps multiplies low halves together and high halves together.
+LC2WF_BF16_TARGET inline __m512i make_pairs(__m512i first_high, __m512i second_high) {
+  return _mm512_or_si512(second_high, _mm512_srli_epi32(first_high, 16));
+}
+
+// 32 consecutive floats (n of them present, the rest zero) -> 16 pairs (x[2t], x[2t+1]).
+LC2WF_BF16_TARGET inline __m512i pairs_of_consecutive(const float* x, int64_t n) {
+  const __m512i h0 = bf16_high(_mm512_maskz_loadu_ps(first_lanes(n), x));
+  const __m512i h1 = bf16_high(_mm512_maskz_loadu_ps(first_lanes(n - 16), x + 16));
+  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+  const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
+  return make_pairs(_mm512_permutex2var_epi32(h0, even, h1), _mm512_permutex2var_epi32(h0, odd, h1));
+}
+
+// 16 floats of two rows (n present) -> 16 pairs (x0[t], x1[t]); x1 null: the second halves are zero.
+LC2WF_BF16_TARGET inline __m512i pairs_of_rows(const float* x0, const float* x1, int64_t n) {
+  const __m512i h0 = bf16_high(_mm512_maskz_loadu_ps(first_lanes(n), x0));
+  const __m512i h1 = x1 ? bf16_high(_mm512_maskz_loadu_ps(first_lanes(n), x1)) : _mm512_setzero_si512();
+  return make_pairs(h0, h1);
+}
+
+// op(A)[r][k0 + k] for r < rows, k < kn as pairs, row-major: out[r * kp + p] = (A[r][2p], A[r][2p + 1]).
+LC2WF_BF16_TARGET void pack_a(bool ta, const float* A, int64_t lda, int64_t rows, int64_t k0, int64_t kn,
+                              uint32_t* out) {
+  const int64_t kp = (kn + 1) / 2;
+  if (!ta) {
+    for (int64_t r = 0; r < rows; ++r)
+      for (int64_t p = 0; p < kp; p += 16)
+        _mm512_mask_storeu_epi32(out + r * kp + p, first_lanes(kp - p),
+                                 pairs_of_consecutive(A + r * lda + k0 + 2 * p, kn - 2 * p));
+    return;
+  }
+  alignas(64) uint32_t lanes[16];
+  for (int64_t r = 0; r < rows; r += 16)
+    for (int64_t p = 0; p < kp; ++p) {
+      const float* x0 = A + (k0 + 2 * p) * lda + r;
+      const float* x1 = 2 * p + 1 < kn ? x0 + lda : nullptr;
+      _mm512_store_si512(lanes, pairs_of_rows(x0, x1, rows - r));
+      for (int64_t t = 0; t < std::min<int64_t>(16, rows - r); ++t) out[(r + t) * kp + p] = lanes[t];
+    }
+}
+
+// op(B)[k0 + k][j] for k < kn, j < cols as pairs in blocks of 32 columns:
+// out[(block * kp + p) * 32 + j % 32] = (B[2p][j], B[2p + 1][j]); columns past `cols` are zero.
+LC2WF_BF16_TARGET void pack_b(bool tb, const float* B, int64_t ldb, int64_t cols, int64_t k0, int64_t kn,
+                              uint32_t* out) {
+  const int64_t kp = (kn + 1) / 2, blocks = (cols + kCols - 1) / kCols;
+  if (!tb) {
+    for (int64_t blk = 0; blk < blocks; ++blk)
+      for (int64_t p = 0; p < kp; ++p)
+        for (int64_t h = 0; h < kCols; h += 16) {
+          const int64_t j = blk * kCols + h;
+          const float* x0 = B + (k0 + 2 * p) * ldb + j;
+          const float* x1 = 2 * p + 1 < kn ? x0 + ldb : nullptr;
+          _mm512_storeu_si512(out + (blk * kp + p) * kCols + h, pairs_of_rows(x0, x1, cols - j));
+        }
+    return;
+  }
+  if (cols % kCols) std::fill(out + (blocks - 1) * kp * kCols, out + blocks * kp * kCols, 0u);
+  alignas(64) uint32_t lanes[16];
+  for (int64_t j = 0; j < cols; ++j) {
+    uint32_t* column = out + (j / kCols) * kp * kCols + j % kCols;
+    for (int64_t p = 0; p < kp; p += 16) {
+      _mm512_store_si512(lanes, pairs_of_consecutive(B + j * ldb + k0 + 2 * p, kn - 2 * p));
+      for (int64_t t = 0; t < std::min<int64_t>(16, kp - p); ++t) column[(p + t) * kCols] = lanes[t];
+    }
+  }
+}
+
+// C[R x n] (+)= a (R rows of kp pairs) . b (kp x 32 pairs), n <= 32 columns stored.
+template <int R>
+LC2WF_BF16_TARGET void micro_kernel(const uint32_t* a, int64_t kp, const uint32_t* b, float* C, int64_t ldc, int64_t n,
+                                    bool add) {
+  __m512 acc[R][2];
+  for (int i = 0; i < R; ++i) acc[i][0] = acc[i][1] = _mm512_setzero_ps();
+  for (int64_t p = 0; p < kp; ++p) {
+    const __m512bh b0 = (__m512bh)_mm512_loadu_si512(b + p * kCols);
+    const __m512bh b1 = (__m512bh)_mm512_loadu_si512(b + p * kCols + 16);
+    for (int i = 0; i < R; ++i) {
+      const __m512bh ai = (__m512bh)_mm512_set1_epi32(static_cast<int>(a[i * kp + p]));
+      acc[i][0] = _mm512_dpbf16_ps(acc[i][0], ai, b0);
+      acc[i][1] = _mm512_dpbf16_ps(acc[i][1], ai, b1);
+    }
+  }
+  const __mmask16 m0 = first_lanes(n), m1 = first_lanes(n - 16);
+  for (int i = 0; i < R; ++i) {
+    float* row = C + i * ldc;
+    if (add) {
+      acc[i][0] = _mm512_add_ps(acc[i][0], _mm512_maskz_loadu_ps(m0, row));
+      acc[i][1] = _mm512_add_ps(acc[i][1], _mm512_maskz_loadu_ps(m1, row + 16));
+    }
+    _mm512_mask_storeu_ps(row, m0, acc[i][0]);
+    _mm512_mask_storeu_ps(row + 16, m1, acc[i][1]);
+  }
+}
+
+using MicroKernel = void (*)(const uint32_t*, int64_t, const uint32_t*, float*, int64_t, int64_t, bool);
+constexpr MicroKernel kKernels[kRows + 1] = {nullptr,          micro_kernel<1>, micro_kernel<2>, micro_kernel<3>, micro_kernel<4>,
+                                             micro_kernel<5>, micro_kernel<6>, micro_kernel<7>, micro_kernel<8>};
+
+}  // namespace
+
+void gemm_bf16_dot(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const float* A, int64_t lda, const float* B,
+                   int64_t ldb, float* C, int64_t ldc, bool accumulate) {
+  if (M == 0 || N == 0) return;
+  if (K == 0) {
+    if (!accumulate)
+      for (int64_t i = 0; i < M; ++i) std::fill(C + i * ldc, C + i * ldc + N, 0.0f);
+    return;
+  }
+  thread_local std::vector<uint32_t> a_pack, b_pack;
+  const int64_t blocks = (N + kCols - 1) / kCols;
+  for (int64_t k0 = 0; k0 < K; k0 += kChunk) {
+    const int64_t kn = std::min(kChunk, K - k0), kp = (kn + 1) / 2;
+    a_pack.resize(static_cast<size_t>(M * kp));
+    b_pack.resize(static_cast<size_t>(blocks * kp * kCols));
+    pack_a(ta, A, lda, M, k0, kn, a_pack.data());
+    pack_b(tb, B, ldb, N, k0, kn, b_pack.data());
+    const bool add = k0 > 0 || accumulate;
+    for (int64_t blk = 0; blk < blocks; ++blk)
+      for (int64_t r = 0; r < M; r += kRows) {
+        const int64_t rows = std::min<int64_t>(kRows, M - r);
+        kKernels[rows](a_pack.data() + r * kp, kp, b_pack.data() + blk * kp * kCols, C + r * ldc + blk * kCols, ldc,
+                       std::min(kCols, N - blk * kCols), add);
+      }
+  }
+}
+
+}  // namespace lc2wf
+
+#else
+
+#include <stdexcept>
+
+namespace lc2wf {
+
+void gemm_bf16_dot(bool, bool, int64_t, int64_t, int64_t, const float*, int64_t, const float*, int64_t, float*, int64_t,
+                   bool) {
+  throw std::logic_error("gemm_bf16_dot: this build has no AVX512-BF16 kernel");
+}
+
+}  // namespace lc2wf
+
+#endif
