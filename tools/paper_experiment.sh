@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The paper's experiment (LC2WF Table 2) end to end on Roof-Image, one resumable step at a time:
-#   tools/paper_experiment.sh dataset   Blender line clouds of all 3,583 buildings -> runs/dataset
+#   tools/paper_experiment.sh dataset   Blender line clouds of all 3,583 buildings -> runs/dataset (train + val
+#                                       first: `train` can run while the test clouds are made)
 #   tools/paper_experiment.sh train     lc2wf-train configs/base.json -> runs/base (continues with --resume)
 #   tools/paper_experiment.sh eval      Table 2 on the 757 test buildings (sound and --release-quirks),
 #                                       plots and the HTML report -> runs/base/test*
@@ -23,9 +24,28 @@ cd "$root"
 
 [[ -x "$build_dir/train/lc2wf-train" ]] || LC2WF_WITH_RENDER_TOOLS=1 LC2WF_BUILD_TESTS=OFF LC2WF_BUILD_BENCH=OFF "$root/tools/build.sh"
 
+# Links the meshes of the named split lists into DIR (lc2wf-dataset renders every mesh of one folder).
+link_meshes() {
+  local dir=$1
+  shift
+  mkdir -p "$dir"
+  cat "$@" | while read -r name; do
+    [[ -n "$name" ]] && ln -sfn "$(cd "$meshes" && pwd)/$name.polyshape" "$dir/$name.polyshape"
+  done
+}
+
 step_dataset() {
   LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
-  "$build_dir/tools/lc2wf-dataset" --meshes "$meshes" --out runs/dataset --renderer blender -j 2
+  # Train + validation first, so that `train` can start (or resume after a lost machine) before the test
+  # clouds exist; summary.json describes the training clouds (the model card quotes it).
+  link_meshes runs/trainval-meshes configs/splits/train.txt configs/splits/val.txt
+  "$build_dir/tools/lc2wf-dataset" --meshes runs/trainval-meshes --out runs/dataset --renderer blender -j 2 \
+    > runs/dataset-summary-trainval.json
+  link_meshes runs/test-meshes configs/splits/test.txt
+  "$build_dir/tools/lc2wf-dataset" --meshes runs/test-meshes --out runs/dataset --renderer blender -j 2 \
+    > runs/dataset-summary-test.json
+  cp runs/dataset-summary-trainval.json runs/dataset/summary.json.tmp && mv runs/dataset/summary.json.tmp runs/dataset/summary.json
+  cp runs/dataset-summary-test.json runs/dataset/summary-test.json
 }
 
 snapshot_dir=models/base-training
@@ -96,10 +116,7 @@ step_eval() {
 
 step_raster() {
   # Only the test buildings are rendered (the model is the Blender-trained one).
-  mkdir -p runs/raster-test-meshes
-  while read -r name; do
-    [[ -n "$name" ]] && ln -sfn "$(cd "$meshes" && pwd)/$name.polyshape" "runs/raster-test-meshes/$name.polyshape"
-  done < configs/splits/test.txt
+  link_meshes runs/raster-test-meshes configs/splits/test.txt
   "$build_dir/tools/lc2wf-dataset" --meshes runs/raster-test-meshes --out runs/raster-test --renderer raster -j 2
   evaluate runs/raster-test/clouds runs/base/test-raster "lc2wf on raster clouds"
 }
@@ -134,5 +151,5 @@ case "${1:-}" in
   restore) step_restore ;;
   ship) step_ship ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
-  *) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
