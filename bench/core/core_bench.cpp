@@ -122,15 +122,18 @@ BENCHMARK(BM_Memcpy_256MiB)->UseRealTime()->Unit(benchmark::kMillisecond);
 // ---------------------------------------------------------------- linear 8192x256 -> 256
 constexpr int64_t kTokens = 8192, kWidth = 256;
 
+// Arg "bf16" 1: bf16 GEMM operands (the AVX512-BF16 kernel where the CPU has it).
 void BM_LinearForward(benchmark::State& state) {
+  const MatmulPrecisionGuard precision(state.range(0) ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32);
   Tensor x = rand32({kTokens, kWidth}, 1), w = rand32({kWidth, kWidth}, 2), b = rand32({kWidth}, 3);
   NoGradGuard no_grad;
   for (auto _ : state) benchmark::DoNotOptimize(linear(x, w, b).impl());
   report_flops(state, 2.0 * kTokens * kWidth * kWidth);
 }
-BENCHMARK(BM_LinearForward)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LinearForward)->ArgName("bf16")->Arg(0)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 void BM_LinearForwardBackward(benchmark::State& state) {
+  const MatmulPrecisionGuard precision(state.range(0) ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32);
   Tensor x = rand32({kTokens, kWidth}, 1, true), w = rand32({kWidth, kWidth}, 2, true), b = rand32({kWidth}, 3, true);
   Tensor seed = rand32({kTokens, kWidth}, 4);
   for (auto _ : state) {
@@ -141,7 +144,7 @@ void BM_LinearForwardBackward(benchmark::State& state) {
   }
   report_flops(state, 3 * 2.0 * kTokens * kWidth * kWidth);
 }
-BENCHMARK(BM_LinearForwardBackward)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_LinearForwardBackward)->ArgName("bf16")->Arg(0)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // The LPT's first MLP layer: 7 line features -> 64 over B*G*N = 16384 lines (tiny K).
 void BM_LinearSmallKForward(benchmark::State& state) {
