@@ -5,6 +5,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <utility>
 #include <vector>
 
 // Compiled for AVX512-BF16 function by function, so the library still runs on CPUs without it (callers
@@ -22,56 +23,45 @@ LC2WF_BF16_TARGET inline __mmask16 first_lanes(int64_t n) {
   return n >= 16 ? __mmask16(0xffff) : n <= 0 ? __mmask16(0) : __mmask16((1u << n) - 1u);
 }
 
-// bf16 bits of 16 floats in the high half of each 32-bit lane (low half zero): nearest even, as round_to_bf16;
-// a NaN stays a NaN.
-LC2WF_BF16_TARGET inline __m512i bf16_high(__m512 x) {
-  const __m512i u = _mm512_castps_si512(x);
-  const __m512i lsb = _mm512_and_si512(_mm512_srli_epi32(u, 16), _mm512_set1_epi32(1));
-  __m512i r = _mm512_add_epi32(u, _mm512_add_epi32(_mm512_set1_epi32(0x7fff), lsb));
-  r = _mm512_mask_or_epi32(r, _mm512_cmp_ps_mask(x, x, _CMP_UNORD_Q), u, _mm512_set1_epi32(0x00400000));
-  return _mm512_and_si512(r, _mm512_set1_epi32(static_cast<int>(0xffff0000u)));
-}
+// The rounding is the CPU's (vcvtne2ps2bf16: nearest even like round_to_bf16; denormals become zero, as
+// vdpbf16ps would treat them anyway; a NaN stays a NaN). A pair per 32-bit lane, the lower index in the
+// low half: vdpbf16ps multiplies low halves together and high halves together.
 
-// A pair per lane, `first` in the low half: vdpbf16ps multiplies low halves together and high halves together.
-LC2WF_BF16_TARGET inline __m512i make_pairs(__m512i first_high, __m512i second_high) {
-  return _mm512_or_si512(second_high, _mm512_srli_epi32(first_high, 16));
-}
-
-// 32 consecutive floats (n of them present, the rest zero) -> 16 pairs (x[2t], x[2t+1]).
+// 32 consecutive floats (n of them present, the rest zero) -> 16 pairs (x[2t], x[2t + 1]).
 LC2WF_BF16_TARGET inline __m512i pairs_of_consecutive(const float* x, int64_t n) {
-  const __m512i h0 = bf16_high(_mm512_maskz_loadu_ps(first_lanes(n), x));
-  const __m512i h1 = bf16_high(_mm512_maskz_loadu_ps(first_lanes(n - 16), x + 16));
-  const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-  const __m512i odd = _mm512_setr_epi32(1, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31);
-  return make_pairs(_mm512_permutex2var_epi32(h0, even, h1), _mm512_permutex2var_epi32(h0, odd, h1));
+  const __m512 lo = _mm512_maskz_loadu_ps(first_lanes(n), x), hi = _mm512_maskz_loadu_ps(first_lanes(n - 16), x + 16);
+  return (__m512i)_mm512_cvtne2ps_pbh(hi, lo);
 }
 
 // 16 floats of two rows (n present) -> 16 pairs (x0[t], x1[t]); x1 null: the second halves are zero.
 LC2WF_BF16_TARGET inline __m512i pairs_of_rows(const float* x0, const float* x1, int64_t n) {
-  const __m512i h0 = bf16_high(_mm512_maskz_loadu_ps(first_lanes(n), x0));
-  const __m512i h1 = x1 ? bf16_high(_mm512_maskz_loadu_ps(first_lanes(n), x1)) : _mm512_setzero_si512();
-  return make_pairs(h0, h1);
+  const __m512 r0 = _mm512_maskz_loadu_ps(first_lanes(n), x0);
+  const __m512 r1 = x1 ? _mm512_maskz_loadu_ps(first_lanes(n), x1) : _mm512_setzero_ps();
+  const __m512i both = (__m512i)_mm512_cvtne2ps_pbh(r1, r0);  // x0's 16 values, then x1's
+  const __m512i interleave = _mm512_set_epi16(31, 15, 30, 14, 29, 13, 28, 12, 27, 11, 26, 10, 25, 9, 24, 8, 23, 7,
+                                              22, 6, 21, 5, 20, 4, 19, 3, 18, 2, 17, 1, 16, 0);
+  return _mm512_permutexvar_epi16(interleave, both);
 }
 
-// op(A)[r][k0 + k] for r < rows, k < kn as pairs, row-major: out[r * kp + p] = (A[r][2p], A[r][2p + 1]).
-LC2WF_BF16_TARGET void pack_a(bool ta, const float* A, int64_t lda, int64_t rows, int64_t k0, int64_t kn,
-                              uint32_t* out) {
+// op(A)[r][k0 + k] for r < rows, k < kn as pairs (A[r][2p], A[r][2p + 1]), laid out as A is read: pair (r, p)
+// at out[r * kp + p] (row-major) when !ta, at out[p * rows + r] when ta. Returns the two strides (row, pair).
+LC2WF_BF16_TARGET std::pair<int64_t, int64_t> pack_a(bool ta, const float* A, int64_t lda, int64_t rows, int64_t k0,
+                                                     int64_t kn, uint32_t* out) {
   const int64_t kp = (kn + 1) / 2;
   if (!ta) {
     for (int64_t r = 0; r < rows; ++r)
       for (int64_t p = 0; p < kp; p += 16)
         _mm512_mask_storeu_epi32(out + r * kp + p, first_lanes(kp - p),
                                  pairs_of_consecutive(A + r * lda + k0 + 2 * p, kn - 2 * p));
-    return;
+    return {kp, 1};
   }
-  alignas(64) uint32_t lanes[16];
-  for (int64_t r = 0; r < rows; r += 16)
-    for (int64_t p = 0; p < kp; ++p) {
-      const float* x0 = A + (k0 + 2 * p) * lda + r;
-      const float* x1 = 2 * p + 1 < kn ? x0 + lda : nullptr;
-      _mm512_store_si512(lanes, pairs_of_rows(x0, x1, rows - r));
-      for (int64_t t = 0; t < std::min<int64_t>(16, rows - r); ++t) out[(r + t) * kp + p] = lanes[t];
-    }
+  for (int64_t p = 0; p < kp; ++p) {
+    const float* x0 = A + (k0 + 2 * p) * lda;
+    const float* x1 = 2 * p + 1 < kn ? x0 + lda : nullptr;
+    for (int64_t r = 0; r < rows; r += 16)
+      _mm512_mask_storeu_epi32(out + p * rows + r, first_lanes(rows - r), pairs_of_rows(x0 + r, x1 ? x1 + r : nullptr, rows - r));
+  }
+  return {1, rows};
 }
 
 // op(B)[k0 + k][j] for k < kn, j < cols as pairs in blocks of 32 columns:
@@ -101,17 +91,18 @@ LC2WF_BF16_TARGET void pack_b(bool tb, const float* B, int64_t ldb, int64_t cols
   }
 }
 
-// C[R x n] (+)= a (R rows of kp pairs) . b (kp x 32 pairs), n <= 32 columns stored.
+// C[R x n] (+)= a (R rows of kp pairs; pair (i, p) at a[i * rs + p * ps]) . b (kp x 32 pairs), n <= 32
+// columns stored.
 template <int R>
-LC2WF_BF16_TARGET void micro_kernel(const uint32_t* a, int64_t kp, const uint32_t* b, float* C, int64_t ldc, int64_t n,
-                                    bool add) {
+LC2WF_BF16_TARGET void micro_kernel(const uint32_t* a, int64_t rs, int64_t ps, int64_t kp, const uint32_t* b, float* C,
+                                    int64_t ldc, int64_t n, bool add) {
   __m512 acc[R][2];
   for (int i = 0; i < R; ++i) acc[i][0] = acc[i][1] = _mm512_setzero_ps();
   for (int64_t p = 0; p < kp; ++p) {
     const __m512bh b0 = (__m512bh)_mm512_loadu_si512(b + p * kCols);
     const __m512bh b1 = (__m512bh)_mm512_loadu_si512(b + p * kCols + 16);
     for (int i = 0; i < R; ++i) {
-      const __m512bh ai = (__m512bh)_mm512_set1_epi32(static_cast<int>(a[i * kp + p]));
+      const __m512bh ai = (__m512bh)_mm512_set1_epi32(static_cast<int>(a[i * rs + p * ps]));
       acc[i][0] = _mm512_dpbf16_ps(acc[i][0], ai, b0);
       acc[i][1] = _mm512_dpbf16_ps(acc[i][1], ai, b1);
     }
@@ -128,7 +119,7 @@ LC2WF_BF16_TARGET void micro_kernel(const uint32_t* a, int64_t kp, const uint32_
   }
 }
 
-using MicroKernel = void (*)(const uint32_t*, int64_t, const uint32_t*, float*, int64_t, int64_t, bool);
+using MicroKernel = void (*)(const uint32_t*, int64_t, int64_t, int64_t, const uint32_t*, float*, int64_t, int64_t, bool);
 constexpr MicroKernel kKernels[kRows + 1] = {nullptr,          micro_kernel<1>, micro_kernel<2>, micro_kernel<3>, micro_kernel<4>,
                                              micro_kernel<5>, micro_kernel<6>, micro_kernel<7>, micro_kernel<8>};
 
@@ -148,14 +139,14 @@ void gemm_bf16_dot(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const floa
     const int64_t kn = std::min(kChunk, K - k0), kp = (kn + 1) / 2;
     a_pack.resize(static_cast<size_t>(M * kp));
     b_pack.resize(static_cast<size_t>(blocks * kp * kCols));
-    pack_a(ta, A, lda, M, k0, kn, a_pack.data());
+    const auto [rs, ps] = pack_a(ta, A, lda, M, k0, kn, a_pack.data());
     pack_b(tb, B, ldb, N, k0, kn, b_pack.data());
     const bool add = k0 > 0 || accumulate;
     for (int64_t blk = 0; blk < blocks; ++blk)
       for (int64_t r = 0; r < M; r += kRows) {
         const int64_t rows = std::min<int64_t>(kRows, M - r);
-        kKernels[rows](a_pack.data() + r * kp, kp, b_pack.data() + blk * kp * kCols, C + r * ldc + blk * kCols, ldc,
-                       std::min(kCols, N - blk * kCols), add);
+        kKernels[rows](a_pack.data() + r * rs, rs, ps, kp, b_pack.data() + blk * kp * kCols, C + r * ldc + blk * kCols,
+                       ldc, std::min(kCols, N - blk * kCols), add);
       }
   }
 }

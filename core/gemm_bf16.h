@@ -1,7 +1,7 @@
 // bf16 matrix products on the AVX512-BF16 dot product (vdpbf16ps): twice the multiply-adds per instruction
-// of an fp32 FMA. Operands are rounded to bf16 (nearest even, as round_to_bf16) while they are packed, and
-// the products are summed in fp32, so the result is what the emulated bf16 path computes up to the order of
-// the fp32 additions.
+// of an fp32 FMA. Operands are rounded to bf16 while they are packed (nearest even, as round_to_bf16;
+// denormals become zero) and the products are summed in fp32, so the result is what the emulated bf16 path
+// computes up to the order of the fp32 additions.
 #pragma once
 
 #include <cstdint>
