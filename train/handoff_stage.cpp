@@ -102,22 +102,24 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   if (bar) bar->finish();
   comm.barrier("hand-off");  // every rank's files are written before the manifest says so
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (!writer) return dir;
-  nlohmann::json names = nlohmann::json::array();
-  for (const LineCloud* c : clouds) names.push_back(c->name);
-  const nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
-                            {"junction_checkpoint", weights.string()},
-                            {"junction_step", step},
-                            {"clouds_fingerprint", fingerprint},
-                            {"version", kHandoffVersion},
-                            {"buildings", names}};
-  write_text_atomically(manifest, json_text(m, 2) + "\n");
-  fs::remove(progress);
-  const double predicted = static_cast<double>(clouds.size()) - static_cast<double>(kept);
-  nlohmann::json line = {{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},
-                         {"seconds", seconds}, {"buildings_per_s", seconds > 0 ? predicted / seconds : 0.0}};
-  if (comm.size() == 1) line["kept_from_interrupted_run"] = kept;  // other ranks' counts stay with them
-  log.append(line);
+  if (writer) {
+    nlohmann::json names = nlohmann::json::array();
+    for (const LineCloud* c : clouds) names.push_back(c->name);
+    const nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
+                              {"junction_checkpoint", weights.string()},
+                              {"junction_step", step},
+                              {"clouds_fingerprint", fingerprint},
+                              {"version", kHandoffVersion},
+                              {"buildings", names}};
+    write_text_atomically(manifest, json_text(m, 2) + "\n");
+    fs::remove(progress);
+    const double predicted = static_cast<double>(clouds.size()) - static_cast<double>(kept);
+    nlohmann::json line = {{"stage", "handoff"}, {"type", "handoff"}, {"step", 0}, {"buildings", clouds.size()},
+                           {"seconds", seconds}, {"buildings_per_s", seconds > 0 ? predicted / seconds : 0.0}};
+    if (comm.size() == 1) line["kept_from_interrupted_run"] = kept;  // other ranks' counts stay with them
+    log.append(line);
+  }
+  comm.barrier("hand-off manifest");  // every rank reads the manifest's identity next
   return dir;
 }
 
