@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "core/head_gemm.h"
 #include "core/ops.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "tests/core/gradcheck.h"
+#include "tests/core/random_floats.h"
 
 namespace lc2wf {
 namespace {
@@ -226,6 +228,58 @@ TEST(FusedAttention, BitIdenticalAtOneAndTwoThreads) {
   set_num_threads(before);
   EXPECT_EQ(results[0], results[1]);
 }
+
+
+#ifdef LC2WF_SIMD256
+// C[i][j] as one fmaf chain over k from zero: what every register block of the head products computes,
+// so both the AVX-512 and the AVX2 blocks must match it bit for bit (strides wider than the blocks).
+std::vector<float> fma_chain_product(bool trans_a, int64_t M, int64_t N, int64_t K, const std::vector<float>& A,
+                                     int64_t lda, const std::vector<float>& B, int64_t ldb) {
+  std::vector<float> C(static_cast<size_t>(M * N));
+  for (int64_t i = 0; i < M; ++i)
+    for (int64_t j = 0; j < N; ++j) {
+      float c = 0.0f;
+      for (int64_t k = 0; k < K; ++k)
+        c = std::fmaf(A[static_cast<size_t>(trans_a ? k * lda + i : i * lda + k)], B[static_cast<size_t>(k * ldb + j)], c);
+      C[static_cast<size_t>(i * N + j)] = c;
+    }
+  return C;
+}
+
+TEST(HeadGemm, EveryBlockIsOneFmaChainPerElement) {
+  int checked = 0;
+  for (const bool trans_a : {false, true})
+    for (const int64_t M : {1, 2, 5, 7, 8, 11, 12, 13, 32, 64})
+      for (const int64_t N : {8, 16, 24, 32, 40, 64, 72})
+        for (const int64_t K : {1, 5, 32, 64}) {
+          const int64_t lda = (trans_a ? M : K) + 3, ldb = N + 8, ldc = N + 16;
+          const std::vector<float> A = test::random_floats(static_cast<size_t>((trans_a ? K : M) * lda), 11);
+          const std::vector<float> B = test::random_floats(static_cast<size_t>(K * ldb), 12);
+          const std::vector<float> want = fma_chain_product(trans_a, M, N, K, A, lda, B, ldb);
+          // The dispatching product (AVX-512 panels where compiled in) and the AVX2 blocks alone.
+          for (const bool avx2_only : {false, true}) {
+            std::vector<float> C(static_cast<size_t>(M * ldc), -7.0f);
+            if (avx2_only && trans_a) head_gemm::columns_avx2<true>(M, 0, N, K, A.data(), lda, B.data(), ldb, C.data(), ldc);
+            else if (avx2_only) head_gemm::columns_avx2<false>(M, 0, N, K, A.data(), lda, B.data(), ldb, C.data(), ldc);
+            else if (trans_a) head_gemm::gemm_tn(M, N, K, A.data(), lda, B.data(), ldb, C.data(), ldc);
+            else head_gemm::gemm_nn(M, N, K, A.data(), lda, B.data(), ldb, C.data(), ldc);
+            for (int64_t i = 0; i < M; ++i)
+              for (int64_t j = 0; j < ldc; ++j) {
+                const float got = C[static_cast<size_t>(i * ldc + j)];
+                if (j >= N) {
+                  ASSERT_EQ(got, -7.0f) << "wrote past column " << N << " (M " << M << ", K " << K << ")";
+                  continue;
+                }
+                ASSERT_EQ(got, want[static_cast<size_t>(i * N + j)])
+                    << (trans_a ? "A^T B" : "A B") << (avx2_only ? " avx2" : "") << " M " << M << " N " << N << " K "
+                    << K << " at (" << i << ", " << j << ")";
+                ++checked;
+              }
+          }
+        }
+  EXPECT_GT(checked, 100000);
+}
+#endif
 
 }  // namespace
 }  // namespace lc2wf
