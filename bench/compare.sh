@@ -3,7 +3,8 @@
 # process per workload so peak RSS is per workload) and prints time and memory ratios.
 #
 #   bench/compare.sh [--build DIR] [--workloads "junction_train edge_train junction_infer edge_infer"]
-#                    (also junction_train_bf16, edge_train_bf16: our bf16 step against PyTorch's fp32 one)
+#                    (also junction_train_bf16, edge_train_bf16, junction_infer_bf16, edge_infer_bf16: ours
+#                    with bf16 operands against PyTorch's fp32)
 #                    [--train-iters N] [--infer-iters N] [--threads N]
 #
 # PyTorch runs at its best setting on this machine (OPENBLAS_CORETYPE=SkylakeX: OpenBLAS's fastest kernels here).
@@ -16,7 +17,7 @@ train_iters=3
 infer_iters=10
 threads=2
 
-usage() { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; }
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --build) build="$2"; shift 2 ;;
@@ -40,7 +41,8 @@ export OMP_NUM_THREADS=$threads OPENBLAS_NUM_THREADS=$threads OPENBLAS_CORETYPE=
 # this model to bf16 on the CPU).
 declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1/bf16:0 [edge_train]=BM_EdgeTrainStep/fused:1/bf16:0
                    [junction_train_bf16]=BM_JunctionTrainStep/fused:1/bf16:1 [edge_train_bf16]=BM_EdgeTrainStep/fused:1/bf16:1
-                   [junction_infer]=BM_JunctionInference [edge_infer]=BM_EdgeInference)
+                   [junction_infer]=BM_JunctionInference/bf16:0 [edge_infer]=BM_EdgeInference/bf16:0
+                   [junction_infer_bf16]=BM_JunctionInference/bf16:1 [edge_infer_bf16]=BM_EdgeInference/bf16:1)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 

@@ -5,17 +5,28 @@
 #include <memory>
 
 #include "core/parallel.h"
+#include "core/util/cli.h"
 #include "core/util/progress.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
 
 namespace lc2wf {
 
+MatmulPrecision precision_flag(const std::string& value) {
+  try {
+    return parse_matmul_precision(value, "--precision");
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
 BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const std::vector<std::filesystem::path>& clouds,
                                    const std::filesystem::path& out_dir, const BatchInferenceOptions& o) {
   o.post.Check();
+  const MatmulPrecisionGuard precision(o.precision);
   BatchInferenceSummary s;
   s.threads = num_threads();
+  s.precision = to_string(o.precision);
   std::unique_ptr<Progress> bar;
   if (!o.quiet) bar = std::make_unique<Progress>("inferring", static_cast<int64_t>(clouds.size()));
   for (const auto& path : clouds) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/matmul_precision.h"
 #include "dataset/cloud_input.h"
 #include "infer/inference.h"
 #include "infer/inference_timing.h"
@@ -22,7 +23,12 @@ struct BatchInferenceOptions {
   // Where the preview PNG of a building goes; empty function = no previews.
   std::function<std::filesystem::path(const std::string& name)> preview_path;
   bool quiet = false;
+  // fp32 gives the same numbers on every CPU; bf16 operands are faster where the CPU has AVX512-BF16.
+  MatmulPrecision precision = MatmulPrecision::kFp32;
 };
+
+// The --precision flag of the inference commands: fp32, bf16 or auto; a bad value is a usage error.
+MatmulPrecision precision_flag(const std::string& value);
 
 struct BatchInferenceSummary : InferenceTiming {
   int failed = 0;           // unreadable clouds (reported on stderr)

@@ -60,6 +60,7 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --ties T        list (default: equal scores ranked in building order, then prediction order, as the
                   release) or group (precision/recall taken only after a whole group of equal scores)
   --method NAME   row label in the tables (default: name of the --pred folder)
+  --precision P   with --weights: fp32 (default), bf16 or auto (see lc2wf-infer --help)
   -j, --threads N  with --weights: compute threads (default: all cores)
   -q, --quiet     no progress output
 
@@ -83,6 +84,7 @@ struct Args {
   ApTieRule ties = ApTieRule::kListOrder;
   std::string method;
   int threads = 0;                     // -j, with --weights
+  std::string precision = "fp32";      // --precision, with --weights
   bool html = false;                   // --html
   std::vector<fs::path> html_compare;  // --html-compare, repeatable
 };
@@ -98,6 +100,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--no-junction-refine") a.no_junction_refine = true;
     else if (f == "--previews") a.previews = true;
     else if (f == "--format") a.format = value(i);
+    else if (f == "--precision") a.precision = value(i);
     else if (f == "--gt") a.gt = value(i);
     else if (f == "--data") a.data = value(i);
     else if (f == "--split") a.split = value(i);
@@ -128,14 +131,15 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty()) throw UsageError("--weights needs lc2wf built with the nn module");
 #endif
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
-  if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine || a.format != "auto"))
-    throw UsageError("--release-quirks, --no-junction-refine, --previews and --format only apply with --weights");
+  if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine || a.format != "auto" || a.precision != "fp32"))
+    throw UsageError("--release-quirks, --no-junction-refine, --previews, --format and --precision only apply with --weights");
 #if LC2WF_EVAL_WITH_WEIGHTS
   try {
     parse_cloud_format(a.format, "--format");
   } catch (const std::invalid_argument& e) {
     throw UsageError(e.what());
   }
+  precision_flag(a.precision);
 #endif
   // With --weights, --data holds the clouds and --gt (optional) the ground truth.
   if (a.weights.empty() && a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
@@ -197,6 +201,7 @@ int run(const Args& a) {
     if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
     if (a.no_junction_refine) inference.post.selection.refine.radius = 0.0;
     inference.quiet = a.quiet;
+    inference.precision = precision_flag(a.precision);
     inference.format = parse_cloud_format(a.format, "--format");
     if (a.previews) inference.preview_path = [&a](const std::string& name) { return a.out / "previews" / (name + ".png"); };
     const BatchInferenceSummary s = infer_clouds(predictor, clouds, a.pred, inference);

@@ -179,9 +179,9 @@ std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   char line[400];
   std::snprintf(line, sizeof line,
-                "\nInference (%d buildings, %d threads): %.3f s per building on average (junction model %.3f, edge model "
+                "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
                 "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building.\n",
-                s.buildings, s.threads, s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
+                s.buildings, s.threads, s.precision.c_str(), s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
                 s.max_seconds, static_cast<double>(s.pairs) / n);
   return line;
 }
@@ -190,6 +190,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   return {{"buildings", s.buildings},
           {"threads", s.threads},
+          {"precision", s.precision},
           {"seconds_per_building", s.total_seconds / n},
           {"junction_seconds_per_building", s.junction_seconds / n},
           {"edge_seconds_per_building", s.edge_seconds / n},

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 namespace lc2wf {
 
@@ -14,6 +15,7 @@ struct InferenceTiming {
   double junction_seconds = 0, edge_seconds = 0, post_seconds = 0;
   int64_t pairs = 0;        // junction pairs the edge model classified, all buildings
   int threads = 1;          // compute threads the networks ran on
+  std::string precision = "fp32";  // the networks' matrix-product operands (fp32 or bf16)
 };
 
 }  // namespace lc2wf

@@ -128,6 +128,7 @@ void BM_EdgeTrainStep(benchmark::State& state) {
 }
 
 void BM_JunctionInference(benchmark::State& state) {
+  const MatmulPrecisionGuard precision(state.range(0) ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32);
   JunctionNet net{JunctionNetConfig{}};
   net.eval();
   const Batch b = make_batch(1, 256, 32, 7, 2, 3);
@@ -138,6 +139,7 @@ void BM_JunctionInference(benchmark::State& state) {
 }
 
 void BM_EdgeInference(benchmark::State& state) {
+  const MatmulPrecisionGuard precision(state.range(0) ? MatmulPrecision::kBf16 : MatmulPrecision::kFp32);
   EdgeNet net{EdgeNetConfig{}};
   net.eval();
   const Batch b = make_batch(1, 435, 64, 6, 5, 4);
@@ -149,8 +151,8 @@ void BM_EdgeInference(benchmark::State& state) {
 
 BENCHMARK(BM_JunctionTrainStep)->ArgNames({"fused", "bf16"})->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_EdgeTrainStep)->ArgNames({"fused", "bf16"})->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_JunctionInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
-BENCHMARK(BM_EdgeInference)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+BENCHMARK(BM_JunctionInference)->ArgName("bf16")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+BENCHMARK(BM_EdgeInference)->ArgName("bf16")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 
 }  // namespace
 }  // namespace lc2wf

@@ -10,26 +10,27 @@
 
 namespace lc2wf::test {
 
-inline LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features) {
+inline LptConfig tiny_lpt(int64_t patches, int64_t lines, int64_t features, int64_t width = 16) {
   LptConfig c;
   c.input_dim = features;
   c.patches = patches;
   c.lines_per_patch = lines;
-  c.mlp_dims = {8, 16};
-  c.hidden_dim = 16;
+  c.mlp_dims = {8, width};
+  c.hidden_dim = width;
   c.num_heads = 2;
-  c.ffn_dim = 16;
+  c.ffn_dim = width;
   return c;
 }
 
 // <dir>/junction.safetensors (32 samples of 8 lines) and <dir>/edge.safetensors (pairs of 2 x 8 lines).
-inline void write_tiny_weights(const std::filesystem::path& dir) {
+// A width above 16 sends the products through the GEMM (narrower ones take the small-K loop).
+inline void write_tiny_weights(const std::filesystem::path& dir, int64_t width = 16) {
   std::filesystem::create_directories(dir);
   JunctionNetConfig jc;
-  jc.lpt = tiny_lpt(32, 8, 7);
+  jc.lpt = tiny_lpt(32, 8, 7, width);
   jc.head.dims = {8};
   EdgeNetConfig ec;
-  ec.lpt = tiny_lpt(16, 16, 6);
+  ec.lpt = tiny_lpt(16, 16, 6, width);
   ec.head.dims = {8};
   JunctionNet j(jc, 3);
   EdgeNet e(ec, 4);

@@ -50,6 +50,9 @@ TEST(EvalCli, HelpAndUsageErrors) {
   EXPECT_THAT(bad.err, HasSubstr("--bogus"));
   const CliResult units = run_eval(dir.path(), "--pred . --gt . --out x --units feet");
   EXPECT_EQ(units.code, 2);
+  const CliResult precision = run_eval(dir.path(), "--pred . --gt . --out x --precision bf16");
+  EXPECT_EQ(precision.code, 2);
+  EXPECT_THAT(precision.err, HasSubstr("--precision only apply with --weights"));
 }
 
 TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {

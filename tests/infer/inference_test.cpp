@@ -13,6 +13,7 @@
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "dataset/line_cloud_io.h"
+#include "core/util/cli.h"
 #include "infer/batch_inference.h"
 #include "infer/inference.h"
 #include "infer/preview.h"
@@ -121,6 +122,32 @@ TEST_F(Inference, BatchSkipsACloudWhoseStemCannotNameAnOutput) {
   EXPECT_NE(err.find((in / "...lcloud").string() + ": its stem '..' cannot name an output file"), std::string::npos) << err;
   EXPECT_TRUE(fs::exists(out / "ok.obj"));
   EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 2);  // ok.obj, ok.json
+}
+
+TEST_F(Inference, BatchRunsInTheAskedPrecisionAndRestoresTheProcessOne) {
+  const fs::path in = dir_ / "clouds", wide = dir_ / "wide";
+  write_line_cloud(in / "b.lcloud", cloud_);
+  test::write_tiny_weights(wide, 32);  // products through the GEMM, where the precision applies
+  std::string scores[2];
+  for (const MatmulPrecision precision : {MatmulPrecision::kFp32, MatmulPrecision::kBf16}) {
+    BatchInferenceOptions o;
+    o.quiet = true;
+    o.post = keep_every_junction();
+    o.post.connect_threshold = 1e-6;  // random weights: keep every pair so that scores are written
+    o.precision = precision;
+    const fs::path out = dir_ / ("out_" + to_string(precision));
+    const BatchInferenceSummary s = infer_clouds(WireframePredictor(wide), {in / "b.lcloud"}, out, o);
+    EXPECT_EQ(s.buildings, 1);
+    EXPECT_EQ(s.precision, to_string(precision));
+    EXPECT_EQ(matmul_precision(), MatmulPrecision::kFp32);  // the batch's choice does not leak
+    std::ifstream json(out / "b.json");
+    scores[precision == MatmulPrecision::kBf16] = std::string(std::istreambuf_iterator<char>(json), {});
+  }
+  // bf16 operands move the scores (rounding), so the option reaches the networks.
+  EXPECT_FALSE(scores[0].empty());
+  EXPECT_NE(scores[0], scores[1]);
+  EXPECT_THROW(precision_flag("fp16"), UsageError);
+  EXPECT_EQ(precision_flag("bf16"), MatmulPrecision::kBf16);
 }
 
 TEST_F(Inference, WrongOrMissingWeightsAreNamed) {
