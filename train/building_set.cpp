@@ -9,7 +9,10 @@
 
 namespace lc2wf {
 
-BuildingSet load_building_set(const DataConfig& data, const std::filesystem::path& split_file, bool quiet) {
+BuildingSet load_building_set(const DataConfig& data, const std::filesystem::path& split_file, const std::string& key,
+                              bool quiet) {
+  std::error_code ec;
+  if (!std::filesystem::exists(split_file, ec)) throw DataError(split_file.string(), "no such split file (named by " + key + ")");
   BuildingSet set;
   set.split = split_file.string();
   const std::vector<std::string> names = read_name_list(split_file);

@@ -105,8 +105,8 @@ int train(const Args& a, Communicator& comm) {
   set_matmul_precision(parse_matmul_precision(config.precision, "precision"));
   const StageRun run{config.out, a.resume, a.quiet || !writer, config.init_weights, &comm};
   // Every input is read before OUT is touched: a bad split or cloud leaves no half-made run folder.
-  const BuildingSet train = load_building_set(config.data, config.data.train_split, run.quiet);
-  const BuildingSet val = load_building_set(config.data, config.data.val_split, run.quiet);
+  const BuildingSet train = load_building_set(config.data, config.data.train_split, "data.train_split of " + a.config.string(), run.quiet);
+  const BuildingSet val = load_building_set(config.data, config.data.val_split, "data.val_split of " + a.config.string(), run.quiet);
   fs::create_directories(run.out);
   if (writer) write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");

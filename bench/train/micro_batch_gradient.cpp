@@ -129,7 +129,7 @@ int run(const Options& o) {
     std::ofstream f(split);
     for (int64_t k = 0; k < o.buildings; ++k) f << names[static_cast<size_t>(k)] << '\n';
   }
-  const BuildingSet train = load_building_set(config.data, split, true);
+  const BuildingSet train = load_building_set(config.data, split, "data.train_split", true);
   fs::remove(split);
 
   // The hand-off and the edge stage's junction selection, as lc2wf-train makes them.

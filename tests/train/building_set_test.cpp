@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 std::string error_of(const DataConfig& data, const fs::path& split) {
   try {
-    load_building_set(data, split, /*quiet=*/true);
+    load_building_set(data, split, "data.train_split", /*quiet=*/true);
   } catch (const DataError& e) {
     return e.what();
   }
@@ -31,6 +31,8 @@ TEST(BuildingSet, ProblemsNameTheSplitOrTheCloudFile) {
   fs::create_directories(dir / "clouds");
   DataConfig data;
   data.dir = (dir / "clouds").string();
+  // A split path that does not exist (a typo in the config) names the config key.
+  EXPECT_EQ(error_of(data, dir / "nosuch.txt"), (dir / "nosuch.txt").string() + ": no such split file (named by data.train_split)");
   std::ofstream(dir / "split.txt") << "typo\n";
   EXPECT_EQ(error_of(data, dir / "split.txt"),
             (dir / "split.txt").string() + ": lists 'typo', but " + data.dir + ": no line-cloud file for building 'typo'");
