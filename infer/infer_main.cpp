@@ -38,7 +38,7 @@ wireframe and a note, never a failure.
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in
                       their own frame as metres, z up (dataset/README.md)
   --precision P       fp32 (default: the same numbers on every CPU), bf16 (operands rounded to bf16,
-                      fp32 sums: ≈ 1.3-1.6x faster model passes where the CPU has AVX512-BF16) or auto
+                      fp32 sums: 1.3-2x faster model passes where the CPU has AVX512-BF16) or auto
                       (bf16 where it has, else fp32)
   -j, --threads N     compute threads (default: all cores)
   -q, --quiet         no progress output
