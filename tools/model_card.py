@@ -43,8 +43,12 @@ def training_time(records):
     out = {}
     for r in records:
         stage = r.get("stage", "handoff" if r.get("type") == "handoff" else "?")
-        t = out.setdefault(stage, {"wall": 0.0, "cpu": 0.0, "steps": 0})
-        if r.get("type") == "step":
+        t = out.setdefault(stage, {"wall": 0.0, "cpu": 0.0, "steps": 0, "kernels": {}})
+        if r.get("type") == "epoch":
+            # Epoch lines name the matrix products' precision and backend (not logged before 2026-12-03).
+            kind = f"{r['precision']} products by {r.get('gemm', '?')}" if "precision" in r else "not recorded"
+            t["kernels"][kind] = t["kernels"].get(kind, 0) + 1
+        elif r.get("type") == "step":
             t["wall"] += r.get("seconds", 0.0)
             t["cpu"] += r.get("cpu_seconds", 0.0)
             t["steps"] += 1
@@ -130,12 +134,15 @@ def main():
             continue
         metric = "vAP mean" if stage == "junction" else "sAP mean"
         best = f", kept epoch {k['epoch']} of {config[stage]['epochs']} ({metric} {100 * k['score']:.1f} % on the validation split)" if k else ""
+        kernels = "; ".join(f"{n} epoch(s): {kind}" for kind, n in t["kernels"].items())
         lines.append(f"- {stage}: {t['steps']} steps of {config[stage]['batch_size']} buildings, "
-                     f"{t['wall'] / 3600:.1f} h wall ({t['cpu'] / 3600:.1f} CPU-h in steps){best}.")
+                     f"{t['wall'] / 3600:.1f} h wall ({t['cpu'] / 3600:.1f} CPU-h in steps){best}"
+                     + (f"; {kernels}." if kernels else "."))
     if "handoff" in times:
         lines.append(f"- hand-off: {times['handoff']['wall'] / 3600:.2f} h.")
-    lines.append(f"- machine: {cpu_model()}, {os.cpu_count()} cores, `threads: {config.get('threads')}`; the run "
-                 "continued over several sessions with `--resume` (exact resume: the same losses as one run).")
+    lines.append(f"- machine of the last session: {cpu_model()}, {os.cpu_count()} cores, `threads: {config.get('threads')}`; "
+                 "the run continued over several sessions with `--resume` (exact resume: the same losses as one run), "
+                 "possibly on other machines (the stages' lines above say what their products ran in).")
     lines.append("- config: `config.json` here (configs/base.json as resolved); the card of the run, with its "
                  "lc2wf commit, is `training-card.md`; the learning curves are `learning_curves.png`.")
     if dataset:

@@ -9,6 +9,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include "core/blas_backend.h"
+#include "core/matmul_precision.h"
 #include "core/util/progress.h"
 #include "nn/checkpoint.h"
 #include "nn/optimizer.h"
@@ -271,7 +273,9 @@ int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Ru
     if (writer)
       log.append({{"stage", stage}, {"type", "epoch"}, {"epoch", epoch + 1}, {"step", pos.step},
                 {"train_loss", epoch_steps ? epoch_loss / epoch_steps : 0.0}, {"lr", lr}, {"seconds", epoch_seconds},
-                {"buildings_per_s", epoch_seconds > 0 ? epoch_buildings / epoch_seconds : 0.0}});
+                {"buildings_per_s", epoch_seconds > 0 ? epoch_buildings / epoch_seconds : 0.0},
+                // A run resumed on another machine mixes them: the model card lists what each stage ran on.
+                {"precision", to_string(matmul_precision())}, {"gemm", gemm_backend_name()}});
     save_last();
   }
   return steps_run;

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # tools/model_card.py on fixtures: a training log with kept epochs, the resolved base config and a test
 # evaluation; the card must carry the licence, the test metrics as read from metrics.json, the inference
-# time and the training time summed from the log, and a missing metrics file must be named.
+# time, the training time summed from the log and each stage's matrix-product precision (or that it was
+# not recorded), and a missing metrics file must be named.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -12,9 +13,11 @@ cp "$root/configs/base.json" "$out/run/config.json"
 cat > "$out/run/log.jsonl" <<'LOG'
 {"stage":"junction","type":"step","epoch":1,"step":1,"loss":2.0,"seconds":1800.0,"cpu_seconds":3600.0}
 {"stage":"junction","type":"val","epoch":1,"step":1,"score":0.5,"best":true,"seconds":1800.0}
+{"stage":"junction","type":"epoch","epoch":1,"step":1,"train_loss":2.0,"seconds":1800.0}
 {"stage":"handoff","type":"handoff","step":0,"seconds":360.0}
 {"stage":"edge","type":"step","epoch":1,"step":1,"loss":1.0,"seconds":7200.0,"cpu_seconds":14400.0}
 {"stage":"edge","type":"val","epoch":1,"step":1,"score":0.25,"best":true,"seconds":0.0}
+{"stage":"edge","type":"epoch","epoch":1,"step":1,"train_loss":1.0,"seconds":7200.0,"precision":"bf16","gemm":"openblas (SkylakeX)"}
 LOG
 /usr/bin/python3 - "$here/plots/metrics.json" "$out/test/metrics.json" <<'PY'
 import json, sys
@@ -30,7 +33,8 @@ vap=$(/usr/bin/python3 -c "import json; m = json.load(open('$out/test/metrics.js
 for want in "CC BY-NC 4.0" "non-commercial use only" "Roof-Image" "| LC2WF paper, Table 2 | 93.0 | 80.4 | 5.301 / 27.33 |" \
             "| lc2wf, sound post-processing | $vap / " "0.500 s per building" "210 pairs" \
             "junction: 1 steps of 16 buildings, 1.0 h wall (1.0 CPU-h in steps), kept epoch 1 of 41 (vAP mean 50.0 %" \
-            "edge: 1 steps of 32 buildings, 2.0 h wall" "hand-off: 0.10 h"; do
+            "edge: 1 steps of 32 buildings, 2.0 h wall" "hand-off: 0.10 h" \
+            "1 epoch(s): not recorded." "1 epoch(s): bf16 products by openblas (SkylakeX)."; do
   grep -qF -- "$want" "$card" || { echo "model card lacks: $want"; cat "$card"; exit 1; }
 done
 # A missing evaluation is named, and nothing is written.

@@ -126,7 +126,10 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   for (const std::string stage : {"junction", "edge"}) {
     std::vector<double> losses;
     for (const auto& e : epochs)
-      if (e["stage"] == stage) losses.push_back(e["train_loss"]);
+      if (e["stage"] == stage) {
+        losses.push_back(e["train_loss"]);
+        EXPECT_EQ(e.value("precision", ""), "fp32") << stage;  // what the products ran in, for the model card
+      }
     ASSERT_GE(losses.size(), 6u) << stage;
     EXPECT_LT(losses.back(), losses.front()) << stage;
   }
