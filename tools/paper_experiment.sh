@@ -25,12 +25,14 @@ cd "$root"
 [[ -x "$build_dir/train/lc2wf-train" ]] || LC2WF_WITH_RENDER_TOOLS=1 LC2WF_BUILD_TESTS=OFF LC2WF_BUILD_BENCH=OFF "$root/tools/build.sh"
 
 # Links the meshes of the named split lists into DIR (lc2wf-dataset renders every mesh of one folder).
+# The meshes' absolute folder is resolved once: a subshell per name took minutes at low priority.
 link_meshes() {
-  local dir=$1
+  local dir=$1 from
   shift
+  from=$(cd "$meshes" && pwd)
   mkdir -p "$dir"
   cat "$@" | while read -r name; do
-    [[ -n "$name" ]] && ln -sfn "$(cd "$meshes" && pwd)/$name.polyshape" "$dir/$name.polyshape"
+    [[ -n "$name" ]] && ln -sfn "$from/$name.polyshape" "$dir/$name.polyshape"
   done
 }
 
