@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <atomic>
 #include <type_traits>
 #include <vector>
 
@@ -34,10 +35,11 @@ using MutMap = Eigen::Map<RowMat<T>, Eigen::Unaligned, Eigen::OuterStride<>>;
 constexpr int64_t kBf16Chunk = 256;
 
 void gemm_tile_bf16(bool ta, bool tb, int64_t K, const float* A, int64_t lda, const float* B, int64_t ldb,
-                    MutMap<float>& c, bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+                    MutMap<float>& c, bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols,
+                    uint64_t product) {
   if (cpu_has_bf16_dot_product()) {  // the real instruction; below, its emulation on other CPUs
     gemm_bf16_dot(ta, tb, rows, cols, K, A + (ta ? r0 : r0 * lda), lda, B + (tb ? c0 * ldb : c0), ldb, c.data(),
-                  c.outerStride(), accumulate);
+                  c.outerStride(), accumulate, product);
     return;
   }
   thread_local std::vector<float> a_slice, b_slice;
@@ -66,10 +68,10 @@ void gemm_tile_bf16(bool ta, bool tb, int64_t K, const float* A, int64_t lda, co
 // The tile's product with bf16 operands when that precision is set (float only); false: fp32 as usual.
 template <class T>
 bool bf16_tile(bool ta, bool tb, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb, MutMap<T>& c,
-               bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+               bool accumulate, int64_t r0, int64_t rows, int64_t c0, int64_t cols, uint64_t product) {
   if constexpr (std::is_same_v<T, float>) {
     if (matmul_precision() != MatmulPrecision::kBf16) return false;
-    gemm_tile_bf16(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols);
+    gemm_tile_bf16(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols, product);
     return true;
   }
   return false;
@@ -85,14 +87,15 @@ bool openblas_tile(bool ta, bool tb, int64_t K, const T* A, int64_t lda, const T
   return false;
 }
 
-// One tile C[r0:r0+rows, c0:c0+cols].
+// One tile C[r0:r0+rows, c0:c0+cols] of the product numbered `product` (tiles of one product share it).
 template <class T>
 void gemm_tile(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb,
-               T* C, int64_t ldc, bool accumulate, const T* bias, int64_t r0, int64_t rows, int64_t c0, int64_t cols) {
+               T* C, int64_t ldc, bool accumulate, const T* bias, int64_t r0, int64_t rows, int64_t c0, int64_t cols,
+               uint64_t product) {
   MutMap<T> c(C + r0 * ldc + c0, rows, cols, Eigen::OuterStride<>(ldc));
   if (K == 0) {
     if (!accumulate) c.setZero();
-  } else if (bf16_tile(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols)) {
+  } else if (bf16_tile(ta, tb, K, A, lda, B, ldb, c, accumulate, r0, rows, c0, cols, product)) {
     // done with bf16 operands (core/matmul_precision.h)
   } else if (openblas_tile(ta, tb, K, A, lda, B, ldb, C, ldc, accumulate, r0, rows, c0, cols)) {
     // done by OpenBLAS (core/blas_backend.h)
@@ -118,6 +121,12 @@ void gemm_tile(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, in
   }
 }
 
+// A number per product, never reused: the bf16 kernel keeps a packed op(B) only within one product.
+uint64_t next_product() {
+  static std::atomic<uint64_t> counter{0};
+  return counter.fetch_add(1, std::memory_order_relaxed) + 1;
+}
+
 }  // namespace
 
 template <class T>
@@ -129,12 +138,13 @@ void gemm(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, int64_t
   // Few row tiles: also split the columns so both cores get work.
   int64_t col_tile = row_tiles >= 4 ? N : kTileCols;
   int64_t col_tiles = (N + col_tile - 1) / col_tile;
+  const uint64_t product = next_product();
   parallel_for_work(row_tiles * col_tiles, 1, tile_rows * col_tile * std::max<int64_t>(K, 1), [&](int64_t t0, int64_t t1) {
     for (int64_t t = t0; t < t1; ++t) {
       int64_t rt = t / col_tiles, ct = t % col_tiles;
       int64_t r0 = rt * tile_rows, c0 = ct * col_tile;
       gemm_tile(ta, tb, M, N, K, A, lda, B, ldb, C, ldc, accumulate, bias, r0, std::min(tile_rows, M - r0), c0,
-                std::min(col_tile, N - c0));
+                std::min(col_tile, N - c0), product);
     }
   });
 }
@@ -143,7 +153,7 @@ template <class T>
 void gemm_serial(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const T* A, int64_t lda, const T* B, int64_t ldb,
                  T* C, int64_t ldc, bool accumulate, const T* bias) {
   if (M == 0 || N == 0) return;
-  gemm_tile(ta, tb, M, N, K, A, lda, B, ldb, C, ldc, accumulate, bias, 0, M, 0, N);
+  gemm_tile(ta, tb, M, N, K, A, lda, B, ldb, C, ldc, accumulate, bias, 0, M, 0, N, next_product());
 }
 
 template void gemm<float>(bool, bool, int64_t, int64_t, int64_t, const float*, int64_t, const float*, int64_t, float*,

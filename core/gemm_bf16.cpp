@@ -18,6 +18,9 @@ namespace {
 constexpr int64_t kChunk = 256;  // K values packed at a time: the packed slices stay in L2
 constexpr int kRows = 8;         // rows of C per micro-kernel call (16 accumulators + 2 B registers)
 constexpr int64_t kCols = 32;    // columns of C per micro-kernel call: two registers of 16 floats
+// Largest packed op(B) a thread keeps for the next tile of the same product (pairs; 1 MiB): a Linear
+// layer's 256 x 256 weights are 128 KiB, an activation operand is not kept.
+constexpr int64_t kKeptPairs = int64_t{1} << 18;
 
 LC2WF_BF16_TARGET inline __mmask16 first_lanes(int64_t n) {
   return n >= 16 ? __mmask16(0xffff) : n <= 0 ? __mmask16(0) : __mmask16((1u << n) - 1u);
@@ -126,7 +129,7 @@ constexpr MicroKernel kKernels[kRows + 1] = {nullptr,          micro_kernel<1>, 
 }  // namespace
 
 void gemm_bf16_dot(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const float* A, int64_t lda, const float* B,
-                   int64_t ldb, float* C, int64_t ldc, bool accumulate) {
+                   int64_t ldb, float* C, int64_t ldc, bool accumulate, uint64_t product) {
   if (M == 0 || N == 0) return;
   if (K == 0) {
     if (!accumulate)
@@ -134,21 +137,28 @@ void gemm_bf16_dot(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const floa
     return;
   }
   thread_local std::vector<uint32_t> a_pack, b_pack;
-  const int64_t blocks = (N + kCols - 1) / kCols;
+  thread_local struct { uint64_t product = 0; const float* B = nullptr; int64_t N = -1, K = -1; } packed;
+  const int64_t blocks = (N + kCols - 1) / kCols, chunks = (K + kChunk - 1) / kChunk;
+  const int64_t chunk_size = blocks * (kChunk / 2) * kCols;  // packed pairs of one K chunk of op(B), at most
+  const bool keep = product != 0 && chunks * chunk_size <= kKeptPairs;
+  const bool reuse = keep && packed.product == product && packed.B == B && packed.N == N && packed.K == K;
+  if (!reuse) packed.product = 0;  // b_pack is overwritten below
+  b_pack.resize(static_cast<size_t>((keep ? chunks : 1) * chunk_size));
   for (int64_t k0 = 0; k0 < K; k0 += kChunk) {
     const int64_t kn = std::min(kChunk, K - k0), kp = (kn + 1) / 2;
+    uint32_t* b = b_pack.data() + (keep ? k0 / kChunk * chunk_size : 0);
     a_pack.resize(static_cast<size_t>(M * kp));
-    b_pack.resize(static_cast<size_t>(blocks * kp * kCols));
     const auto [rs, ps] = pack_a(ta, A, lda, M, k0, kn, a_pack.data());
-    pack_b(tb, B, ldb, N, k0, kn, b_pack.data());
+    if (!reuse) pack_b(tb, B, ldb, N, k0, kn, b);
     const bool add = k0 > 0 || accumulate;
     for (int64_t blk = 0; blk < blocks; ++blk)
       for (int64_t r = 0; r < M; r += kRows) {
         const int64_t rows = std::min<int64_t>(kRows, M - r);
-        kKernels[rows](a_pack.data() + r * rs, rs, ps, kp, b_pack.data() + blk * kp * kCols, C + r * ldc + blk * kCols,
-                       ldc, std::min(kCols, N - blk * kCols), add);
+        kKernels[rows](a_pack.data() + r * rs, rs, ps, kp, b + blk * kp * kCols, C + r * ldc + blk * kCols, ldc,
+                       std::min(kCols, N - blk * kCols), add);
       }
   }
+  if (keep) packed = {product, B, N, K};
 }
 
 }  // namespace lc2wf
@@ -160,7 +170,7 @@ void gemm_bf16_dot(bool ta, bool tb, int64_t M, int64_t N, int64_t K, const floa
 namespace lc2wf {
 
 void gemm_bf16_dot(bool, bool, int64_t, int64_t, int64_t, const float*, int64_t, const float*, int64_t, float*, int64_t,
-                   bool) {
+                   bool, uint64_t) {
   throw std::logic_error("gemm_bf16_dot: this build has no AVX512-BF16 kernel");
 }
 

@@ -168,6 +168,35 @@ TEST(Bf16, DotProductKernelPacksEveryShapeRight) {
   EXPECT_EQ(c[2], 2.0f);
 }
 
+// The row tiles of one product (same `product` number) reuse the packed op(B) of the first tile: the
+// tiles must equal products made alone, for both layouts of B and with K over several chunks; another
+// B under the same number (a column tile) is packed anew.
+TEST(Bf16, TilesOfOneProductReuseThePackedWeights) {
+  if (!cpu_has_bf16_dot_product()) GTEST_SKIP() << "this CPU has no AVX512-BF16";
+  for (const bool tb : {false, true})
+    for (const int64_t K : {int64_t{40}, int64_t{600}}) {
+      const int64_t M = 20, N = 48, tile = 7;
+      const std::vector<float> A = random_floats(static_cast<size_t>(M * K), 31), B = random_floats(static_cast<size_t>(K * N), 32);
+      const std::vector<float> B2 = random_floats(static_cast<size_t>(K * N), 33);
+      const int64_t ldb = tb ? K : N;
+      std::vector<float> alone[2], tiled[2];
+      const std::vector<float>* bs[2] = {&B, &B2};
+      for (int which = 0; which < 2; ++which) {
+        alone[which].resize(static_cast<size_t>(M * N));
+        gemm_bf16_dot(false, tb, M, N, K, A.data(), K, bs[which]->data(), ldb, alone[which].data(), N, false);
+      }
+      // Both Bs under one number, back to back: the second must not take the first one's packing.
+      const uint64_t product = 0x5eed0000 + static_cast<uint64_t>(K) + (tb ? 1 : 0);
+      for (int which = 0; which < 2; ++which) {
+        tiled[which].resize(static_cast<size_t>(M * N));
+        for (int64_t r = 0; r < M; r += tile)
+          gemm_bf16_dot(false, tb, std::min(tile, M - r), N, K, A.data() + r * K, K, bs[which]->data(), ldb,
+                        tiled[which].data() + r * N, N, false, product);
+        EXPECT_EQ(tiled[which], alone[which]) << "tb " << tb << " K " << K << (which ? " (second B)" : "");
+      }
+    }
+}
+
 TEST(Bf16, DoubleProductsStayExact) {
   const std::vector<float> af = random_floats(64 * 32, 6), bf = random_floats(32 * 16, 7);
   const std::vector<double> A(af.begin(), af.end()), B(bf.begin(), bf.end());
