@@ -177,12 +177,13 @@ std::string eval_per_building_csv(const EvalReport& r) {
 
 std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
+  const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
   char line[400];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
-                "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building.\n",
+                "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building%s.\n",
                 s.buildings, s.threads, s.precision.c_str(), s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
-                s.max_seconds, static_cast<double>(s.pairs) / n);
+                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str());
   return line;
 }
 
@@ -197,6 +198,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"post_seconds_per_building", s.post_seconds / n},
           {"max_seconds", s.max_seconds},
           {"pairs_per_building", static_cast<double>(s.pairs) / n},
+          {"pair_support", s.pair_support},
           {"empty_wireframes", s.empty}};
 }
 

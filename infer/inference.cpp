@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/tensor.h"
+#include "dataset/pair_support.h"
 #include "infer/patch_tensors.h"
 
 #include "core/util/seconds_since.h"
@@ -86,9 +87,13 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   auto t0 = Clock::now();
   r.selection = select_junctions(junctions, cloud.segments, options.selection);
   r.notes = r.selection.notes;
-  r.pairs = selection_pairs(r.selection, label_against, PairSamplingOptions{}.fp_distance_m);
+  r.pairs = supported_pairs(selection_pairs(r.selection, label_against, PairSamplingOptions{}.fp_distance_m),
+                            cloud.segments, options.pair_support);
   r.post_seconds = seconds_since(t0);
-  if (r.pairs.empty()) return r;  // select_junctions' note says why
+  if (r.pairs.empty() && r.selection.positions.size() >= 2)
+    r.notes.push_back("no pair of junctions has line support >= " + std::to_string(options.pair_support.min_support) +
+                      ": empty wireframe");
+  if (r.pairs.empty()) return r;  // otherwise select_junctions' note says why
 
   t0 = Clock::now();
   const Tensor z = predict_pair_logits(edge_net, cloud, r.pairs);

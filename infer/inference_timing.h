@@ -16,6 +16,7 @@ struct InferenceTiming {
   int64_t pairs = 0;        // junction pairs the edge model classified, all buildings
   int threads = 1;          // compute threads the networks ran on
   std::string precision = "fp32";  // the networks' matrix-product operands (fp32 or bf16)
+  double pair_support = 0;  // PairSupportOptions::min_support: 0 = every pair of junctions was classified
 };
 
 }  // namespace lc2wf

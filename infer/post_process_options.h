@@ -4,12 +4,16 @@
 #pragma once
 
 #include "dataset/junction_selection.h"
+#include "dataset/pair_support.h"
 
 namespace lc2wf {
 
 struct PostProcessOptions {
   // Junction selection before pairing: the rule training uses too (dataset/junction_selection.h).
   JunctionSelectionOptions selection;
+  // Which pairs of the selection the edge model classifies: all of them unless min_support > 0
+  // (dataset/pair_support.h); a skipped pair is no edge and no identical pair.
+  PairSupportOptions pair_support;
 
   // Identical-pair pruning (post-processing step 2): P(identical) > merge_threshold marks the less confident junction.
   double merge_threshold = 0.2;

@@ -64,6 +64,7 @@ Options:
   --reference-cameras F  evaluation: also write wireframe_aligned.obj in the frame of these cameras
                          (cameras JSON, one per image; similarity fitted on the camera centres)
   --release-quirks       post-process as the paper's release (see lc2wf-infer --help)
+  --pair-support S       classify only pairs with line support >= S (0-1; see lc2wf-infer --help)
   --workspace DIR        intermediate files there (must be new or empty; never deleted)
   --keep                 keep the private temporary workspace (its path is printed)
   -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)
@@ -84,6 +85,7 @@ Vec3 parse_vector(const std::string& flag, const std::string& value) {
 
 ReconstructOptions parse_args(int argc, char** argv) {
   ReconstructOptions o;
+  double pair_support = 0.0;  // applied after the loop: --release-quirks replaces the whole post options
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     auto value = [&] { return flag_value(argc, argv, i); };
@@ -96,6 +98,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "-q" || f == "--quiet") o.quiet = true;
     else if (f == "-j" || f == "--threads") o.threads = threads_flag(f, value());
     else if (f == "--release-quirks") o.post = PostProcessOptions::release_quirks();
+    else if (f == "--pair-support") pair_support = number_flag(f, value());
     else if (f == "--focal-35mm") o.focal_35mm = number_flag(f, value());
     else if (f == "--max-features") o.colmap.max_features = int_flag(f, value());
     else if (f == "--first-octave") o.colmap.first_octave = int_flag(f, value());
@@ -141,7 +144,9 @@ ReconstructOptions parse_args(int argc, char** argv) {
   if (o.images.empty()) throw UsageError("IMAGES_DIR is required");
   if (o.weights.empty()) throw UsageError("--weights DIR is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
-  check_options([&] { o.Check(); }, {{"ReconstructOptions.focal_35mm", "--focal-35mm"},
+  o.post.pair_support.min_support = pair_support;
+  check_options([&] { o.Check(); }, {{"PairSupportOptions.min_support", "--pair-support"},
+                                     {"ReconstructOptions.focal_35mm", "--focal-35mm"},
                                      {"ReconstructOptions.intrinsics", "--intrinsics"},
                                      {"ReconstructOptions: a known distance", "--known-distance"},
                                      {"ColmapOptions.max_features", "--max-features"},

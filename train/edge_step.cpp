@@ -21,7 +21,9 @@ PairSampleOptions edge_training_sample_options(const EdgeStageConfig& c) {
 }
 
 PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
-  return c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
+  PostProcessOptions o = c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
+  o.pair_support.min_support = c.pair_support;
+  return o;
 }
 
 JunctionSelectionOptions edge_training_selection(const EdgeStageConfig& c) {

@@ -109,6 +109,7 @@ void EdgeStageConfig::Check() const {
   require(top_k >= 2, "edge.top_k", "must be >= 2");
   require(post_process == "sound" || post_process == "release", "edge.post_process",
           "must be \"sound\" or \"release\"");
+  require(pair_support >= 0 && pair_support <= 1, "edge.pair_support", "must be in [0, 1]");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

@@ -123,6 +123,9 @@ struct EdgeStageConfig {
   // Junction selection and post-processing of the training pairs and the validation wireframes, as
   // lc2wf-infer: "sound" (its defaults) or "release" (--release-quirks).
   std::string post_process = "sound";
+  // Validation classifies only pairs with at least this line support, as lc2wf-infer --pair-support
+  // (dataset/pair_support.h); 0 = every pair, as the release.
+  double pair_support = 0.0;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -134,6 +137,7 @@ struct EdgeStageConfig {
     v("max_static_pairs", s.max_static_pairs);
     v("top_k", s.top_k);
     v("post_process", s.post_process);
+    v("pair_support", s.pair_support);
   }
   void Check() const;
   nlohmann::json to_json() const;

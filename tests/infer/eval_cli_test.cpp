@@ -53,6 +53,12 @@ TEST(EvalCli, HelpAndUsageErrors) {
   const CliResult precision = run_eval(dir.path(), "--pred . --gt . --out x --precision bf16");
   EXPECT_EQ(precision.code, 2);
   EXPECT_THAT(precision.err, HasSubstr("--precision only apply with --weights"));
+  const CliResult support = run_eval(dir.path(), "--pred . --gt . --out x --pair-support 0.1");
+  EXPECT_EQ(support.code, 2);
+  EXPECT_THAT(support.err, HasSubstr("--pair-support"));
+  const CliResult range = run_eval(dir.path(), "--weights . --data . --out x --pair-support 2");
+  EXPECT_EQ(range.code, 2);
+  EXPECT_THAT(range.err, HasSubstr("--pair-support must be in [0, 1]"));
 }
 
 TEST(EvalCli, PolyshapeGroundTruthRawPredictionsAndAMissingOne) {

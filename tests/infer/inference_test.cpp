@@ -106,6 +106,33 @@ TEST_F(Inference, DegenerateCloudsGiveEmptyWireframesWithNotes) {
   EXPECT_FALSE(r.notes.empty());
 }
 
+TEST_F(Inference, PairSupportScreensThePairsTheEdgeModelSees) {
+  const WireframePredictor predictor(dir_);
+  const InferenceResult all = predictor.predict(cloud_, keep_every_junction());
+  PostProcessOptions screened = keep_every_junction();
+  screened.pair_support.min_support = 0.5;
+  const InferenceResult some = predictor.predict(cloud_, screened);
+  EXPECT_EQ(some.selection.positions, all.selection.positions);  // the same junctions
+  EXPECT_LT(some.pairs.size(), all.pairs.size());
+  const SegmentSupport support(cloud_.segments);
+  size_t expected = 0;
+  for (const JunctionPair& p : all.pairs) {
+    const bool keep = (p.v - p.u).norm() < 1.0 || support.support(p.u, p.v, 0.35, 20.0) >= 0.5;
+    expected += keep;
+  }
+  EXPECT_EQ(some.pairs.size(), expected);
+  EXPECT_NO_THROW(some.wireframe.check("screened"));
+  // No pair passes: an empty wireframe and a note saying why.
+  screened.pair_support.min_support = 1.0;
+  screened.pair_support.radius_m = 1e-9;
+  screened.pair_support.keep_shorter_than_m = 0.0;
+  const InferenceResult none = predictor.predict(cloud_, screened);
+  EXPECT_TRUE(none.pairs.empty());
+  EXPECT_TRUE(none.wireframe.wireframe.edges.empty());
+  ASSERT_FALSE(none.notes.empty());
+  EXPECT_THAT(none.notes.back(), HasSubstr("line support"));
+}
+
 TEST_F(Inference, BatchSkipsACloudWhoseStemCannotNameAnOutput) {
   // "..lcloud" has the stem "." and "...lcloud" the stem "..": the batch used to end on them, naming
   // neither file; now they are skipped by name and the other clouds are written.

@@ -60,7 +60,8 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.junction.optim.optimizer, "adamw");
   EXPECT_DOUBLE_EQ(c.junction.optim.lr, 1e-3);
   EXPECT_EQ(c.junction.loss.kind, "release");
-  EXPECT_EQ(c.precision, "auto");  // bf16 only where the CPU has the dot product (evidence: train/README)
+  EXPECT_EQ(c.precision, "auto");
+  EXPECT_EQ(c.edge.pair_support, 0.0);  // the release classifies every pair  // bf16 only where the CPU has the dot product (evidence: train/README)
   // The networks are the nn defaults (the release's): base.json only spells them out.
   EXPECT_EQ(c.junction.net.to_json(), JunctionNetConfig().to_json());
   EXPECT_EQ(c.edge.net.to_json(), EdgeNetConfig().to_json());
@@ -109,6 +110,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"junction", "net", "lpt", "input_dim"}, 6, "junction.net.lpt.input_dim"},
       {{"edge", "cloud_augment", "drop_max"}, 1.5, "edge.cloud_augment.drop_max"},
       {{"junction", "cloud_augment", "enabled"}, "yes", "junction.cloud_augment.enabled"},
+      {{"edge", "pair_support"}, 1.5, "edge.pair_support"},
   };
   for (const Case& c : cases) {
     nlohmann::json j = read_json(kConfigs / "base.json");
