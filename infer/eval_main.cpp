@@ -12,7 +12,7 @@
 #include "core/util/cli.h"
 #include "core/util/input_file.h"
 #include "core/util/progress.h"
-#include "dataset/pair_support.h"
+#include "infer/post_process_flags.h"
 #include "infer/eval_inputs.h"
 #include "infer/eval_report_io.h"
 #include "infer/building3d_io.h"
@@ -44,6 +44,7 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
                   line clouds of --data; predictions go to OUT/predictions
   --release-quirks  with --weights: the release's post-processing instead of the sound rules
   --no-junction-refine  with --weights: keep the regressed junction positions (see lc2wf-infer --help)
+  --min-confidence C  with --weights: junctions paired by the edge model have confidence > C (default 0.85)
   --pair-support S  with --weights: classify only pairs with line support >= S (see lc2wf-infer --help)
   --previews      with --weights: also write OUT/previews/<name>.png
   --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
@@ -79,8 +80,8 @@ inference failed on some clouds); with no prediction at all nothing is evaluated
 
 struct Args {
   fs::path pred, gt, data, split, out, weights;
-  bool release_quirks = false, previews = false, no_junction_refine = false;
-  double pair_support = 0.0;  // --pair-support, with --weights
+  bool previews = false;
+  PostProcessFlags post;  // --release-quirks, --no-junction-refine, --min-confidence, --pair-support
   std::string format = "auto";
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
@@ -99,9 +100,7 @@ Args parse_args(int argc, char** argv) {
     const std::string f = argv[i];
     if (f == "--pred") a.pred = value(i);
     else if (f == "--weights") a.weights = value(i);
-    else if (f == "--release-quirks") a.release_quirks = true;
-    else if (f == "--no-junction-refine") a.no_junction_refine = true;
-    else if (f == "--pair-support") a.pair_support = number_flag(f, value(i));
+    else if (a.post.parse(f, argc, argv, i)) continue;
     else if (f == "--previews") a.previews = true;
     else if (f == "--format") a.format = value(i);
     else if (f == "--precision") a.precision = value(i);
@@ -135,16 +134,11 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty()) throw UsageError("--weights needs lc2wf built with the nn module");
 #endif
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
-  if (a.weights.empty() && (a.release_quirks || a.previews || a.no_junction_refine || a.pair_support != 0 ||
-                            a.format != "auto" || a.precision != "fp32"))
+  if (a.weights.empty() && (a.post.any() || a.previews || a.format != "auto" || a.precision != "fp32"))
     throw UsageError(
-        "--release-quirks, --no-junction-refine, --pair-support, --previews, --format and --precision only apply with "
-        "--weights");
-  {
-    PairSupportOptions support;
-    support.min_support = a.pair_support;
-    check_options([&] { support.Check(); }, {{"PairSupportOptions.min_support", "--pair-support"}});
-  }
+        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --previews, --format and "
+        "--precision only apply with --weights");
+  a.post.options();  // checks the values before anything is written
 #if LC2WF_EVAL_WITH_WEIGHTS
   try {
     parse_cloud_format(a.format, "--format");
@@ -172,7 +166,7 @@ Args parse_args(int argc, char** argv) {
     throw std::runtime_error("split file '" + a.split.string() + "' does not exist");
   if (!a.weights.empty()) a.pred = a.out / "predictions";
   if (a.method.empty() && !a.weights.empty())
-    a.method = fs::absolute(a.weights).lexically_normal().filename().string() + (a.release_quirks ? " (release quirks)" : "");
+    a.method = fs::absolute(a.weights).lexically_normal().filename().string() + (a.post.release_quirks ? " (release quirks)" : "");
   if (a.method.empty()) a.method = fs::absolute(a.pred).lexically_normal().filename().string();
   if (a.method.empty()) a.method = "prediction";
   return a;
@@ -210,9 +204,7 @@ int run(const Args& a) {
     for (const std::string& name : names) clouds.push_back(find_cloud_file(a.data, name));
     const WireframePredictor predictor(a.weights);  // before OUT is created: missing weights write nothing
     BatchInferenceOptions inference;
-    if (a.release_quirks) inference.post = PostProcessOptions::release_quirks();
-    if (a.no_junction_refine) inference.post.selection.refine.radius = 0.0;
-    inference.post.pair_support.min_support = a.pair_support;
+    inference.post = a.post.options();
     inference.quiet = a.quiet;
     inference.precision = precision_flag(a.precision);
     inference.format = parse_cloud_format(a.format, "--format");

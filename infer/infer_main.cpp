@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "core/util/cli.h"
 #include "infer/batch_inference.h"
+#include "infer/post_process_flags.h"
 
 namespace {
 
@@ -33,6 +34,9 @@ wireframe and a note, never a failure.
                       refinement); default: sound rules
   --no-junction-refine  keep the regressed junction positions (default: each selected junction moves
                       to the meeting point of the cloud's segments ending within 0.5 m of it)
+  --min-confidence C  junctions paired by the edge model: confidence > C (default 0.85, the release's;
+                      lower finds more junctions and more false ones: bench/README.md, "where a model
+                      loses its score")
   --pair-support S    classify only pairs of junctions whose straight line is covered by the cloud's
                       segments for at least S of its length (0-1; segments within 0.35 m and 20 degrees
                       of it; pairs shorter than 1 m always): 3x faster edge model, about 3 sAP points less
@@ -56,7 +60,7 @@ struct Args {
   std::string preview;
   std::vector<fs::path> clouds;
   BatchInferenceOptions options;
-  double pair_support = 0.0;  // applied after the loop: --release-quirks replaces the whole post options
+  PostProcessFlags post;
   int threads = 0;
 };
 
@@ -68,9 +72,7 @@ Args parse_args(int argc, char** argv) {
     if (f == "--weights") a.weights = value();
     else if (f == "-o" || f == "--out") a.out = value();
     else if (f == "--preview") a.preview = value();
-    else if (f == "--release-quirks") a.options.post = PostProcessOptions::release_quirks();
-    else if (f == "--no-junction-refine") a.options.post.selection.refine.radius = 0.0;
-    else if (f == "--pair-support") a.pair_support = number_flag(f, value());
+    else if (a.post.parse(f, argc, argv, i)) continue;
     else if (f == "-q" || f == "--quiet") a.options.quiet = true;
     else if (f == "--precision") a.options.precision = precision_flag(value());
     else if (f == "--format") {
@@ -94,8 +96,7 @@ Args parse_args(int argc, char** argv) {
   if (a.weights.empty()) throw UsageError("--weights DIR is required");
   if (a.out.empty()) throw UsageError("-o OUT is required");
   if (a.clouds.empty()) throw UsageError("no line cloud given");
-  a.options.post.pair_support.min_support = a.pair_support;
-  check_options([&] { a.options.post.Check(); }, {{"PairSupportOptions.min_support", "--pair-support"}});
+  a.options.post = a.post.options();
   if (!a.preview.empty()) {
     const fs::path p = a.preview;
     if (a.clouds.size() == 1) a.options.preview_path = [p](const std::string&) { return p; };

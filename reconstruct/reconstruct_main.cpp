@@ -8,6 +8,7 @@
 
 #include "core/util/cli.h"
 #include "dataset/errors.h"
+#include "infer/post_process_flags.h"
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"
 
@@ -64,6 +65,8 @@ Options:
   --reference-cameras F  evaluation: also write wireframe_aligned.obj in the frame of these cameras
                          (cameras JSON, one per image; similarity fitted on the camera centres)
   --release-quirks       post-process as the paper's release (see lc2wf-infer --help)
+  --no-junction-refine   keep the regressed junction positions (see lc2wf-infer --help)
+  --min-confidence C     junctions paired by the edge model: confidence > C (default 0.85)
   --pair-support S       classify only pairs with line support >= S (0-1; see lc2wf-infer --help)
   --workspace DIR        intermediate files there (must be new or empty; never deleted)
   --keep                 keep the private temporary workspace (its path is printed)
@@ -85,7 +88,7 @@ Vec3 parse_vector(const std::string& flag, const std::string& value) {
 
 ReconstructOptions parse_args(int argc, char** argv) {
   ReconstructOptions o;
-  double pair_support = 0.0;  // applied after the loop: --release-quirks replaces the whole post options
+  PostProcessFlags post;
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     auto value = [&] { return flag_value(argc, argv, i); };
@@ -97,8 +100,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--keep") o.keep = true;
     else if (f == "-q" || f == "--quiet") o.quiet = true;
     else if (f == "-j" || f == "--threads") o.threads = threads_flag(f, value());
-    else if (f == "--release-quirks") o.post = PostProcessOptions::release_quirks();
-    else if (f == "--pair-support") pair_support = number_flag(f, value());
+    else if (post.parse(f, argc, argv, i)) continue;
     else if (f == "--focal-35mm") o.focal_35mm = number_flag(f, value());
     else if (f == "--max-features") o.colmap.max_features = int_flag(f, value());
     else if (f == "--first-octave") o.colmap.first_octave = int_flag(f, value());
@@ -144,9 +146,8 @@ ReconstructOptions parse_args(int argc, char** argv) {
   if (o.images.empty()) throw UsageError("IMAGES_DIR is required");
   if (o.weights.empty()) throw UsageError("--weights DIR is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
-  o.post.pair_support.min_support = pair_support;
-  check_options([&] { o.Check(); }, {{"PairSupportOptions.min_support", "--pair-support"},
-                                     {"ReconstructOptions.focal_35mm", "--focal-35mm"},
+  o.post = post.options();
+  check_options([&] { o.Check(); }, {{"ReconstructOptions.focal_35mm", "--focal-35mm"},
                                      {"ReconstructOptions.intrinsics", "--intrinsics"},
                                      {"ReconstructOptions: a known distance", "--known-distance"},
                                      {"ColmapOptions.max_features", "--max-features"},

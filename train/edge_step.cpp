@@ -22,6 +22,7 @@ PairSampleOptions edge_training_sample_options(const EdgeStageConfig& c) {
 
 PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
   PostProcessOptions o = c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
+  o.selection.min_confidence = c.min_confidence;
   o.pair_support.min_support = c.pair_support;
   return o;
 }

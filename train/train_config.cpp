@@ -109,6 +109,7 @@ void EdgeStageConfig::Check() const {
   require(top_k >= 2, "edge.top_k", "must be >= 2");
   require(post_process == "sound" || post_process == "release", "edge.post_process",
           "must be \"sound\" or \"release\"");
+  require(min_confidence >= 0 && min_confidence <= 1, "edge.min_confidence", "must be in [0, 1]");
   require(pair_support >= 0 && pair_support <= 1, "edge.pair_support", "must be in [0, 1]");
 }
 

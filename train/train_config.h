@@ -123,6 +123,9 @@ struct EdgeStageConfig {
   // Junction selection and post-processing of the training pairs and the validation wireframes, as
   // lc2wf-infer: "sound" (its defaults) or "release" (--release-quirks).
   std::string post_process = "sound";
+  // Validation pairs the junctions above this confidence, as lc2wf-infer --min-confidence (the
+  // release's 0.85; training pairs take the top_k instead).
+  double min_confidence = 0.85;
   // Validation classifies only pairs with at least this line support, as lc2wf-infer --pair-support
   // (dataset/pair_support.h); 0 = every pair, as the release.
   double pair_support = 0.0;
@@ -137,6 +140,7 @@ struct EdgeStageConfig {
     v("max_static_pairs", s.max_static_pairs);
     v("top_k", s.top_k);
     v("post_process", s.post_process);
+    v("min_confidence", s.min_confidence);
     v("pair_support", s.pair_support);
   }
   void Check() const;

@@ -53,9 +53,11 @@ TEST(EvalCli, HelpAndUsageErrors) {
   const CliResult precision = run_eval(dir.path(), "--pred . --gt . --out x --precision bf16");
   EXPECT_EQ(precision.code, 2);
   EXPECT_THAT(precision.err, HasSubstr("--precision only apply with --weights"));
-  const CliResult support = run_eval(dir.path(), "--pred . --gt . --out x --pair-support 0.1");
-  EXPECT_EQ(support.code, 2);
-  EXPECT_THAT(support.err, HasSubstr("--pair-support"));
+  for (const char* flag : {"--pair-support 0.1", "--min-confidence 0.5"}) {
+    const CliResult without_weights = run_eval(dir.path(), std::string("--pred . --gt . --out x ") + flag);
+    EXPECT_EQ(without_weights.code, 2) << flag;
+    EXPECT_THAT(without_weights.err, HasSubstr("only apply with --weights")) << flag;
+  }
   const CliResult range = run_eval(dir.path(), "--weights . --data . --out x --pair-support 2");
   EXPECT_EQ(range.code, 2);
   EXPECT_THAT(range.err, HasSubstr("--pair-support must be in [0, 1]"));

@@ -1,4 +1,5 @@
 #include "infer/post_process.h"
+#include "infer/post_process_flags.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -231,6 +232,61 @@ TEST(PostProcess, RejectsMalformedInputAndOptions) {
   o.pruned_junctions_in_merge = true;
   EXPECT_THROW(o.Check(), std::invalid_argument);
   EXPECT_NO_THROW(PostProcessOptions::release_quirks().Check());
+}
+
+}  // namespace
+}  // namespace lc2wf
+
+namespace lc2wf {
+namespace {
+
+// Parses a command line's worth of post-processing flags the way the inference commands do.
+PostProcessFlags parse_flags(std::vector<std::string> words) {
+  std::vector<char*> argv{const_cast<char*>("cmd")};
+  for (std::string& w : words) argv.push_back(w.data());
+  PostProcessFlags flags;
+  for (int i = 1; i < static_cast<int>(argv.size()); ++i)
+    EXPECT_TRUE(flags.parse(argv[i], static_cast<int>(argv.size()), argv.data(), i)) << argv[i];
+  return flags;
+}
+
+TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
+  const PostProcessOptions a =
+      parse_flags({"--pair-support", "0.2", "--min-confidence", "0.5", "--release-quirks"}).options();
+  const PostProcessOptions b =
+      parse_flags({"--release-quirks", "--min-confidence", "0.5", "--pair-support", "0.2"}).options();
+  for (const PostProcessOptions& o : {a, b}) {
+    EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.2);
+    EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5);
+    EXPECT_FALSE(o.transfer_edges_on_merge);  // the release's rule
+  }
+  const PostProcessOptions none = PostProcessFlags{}.options();
+  EXPECT_DOUBLE_EQ(none.selection.min_confidence, 0.85);
+  EXPECT_DOUBLE_EQ(none.pair_support.min_support, 0.0);
+  EXPECT_GT(none.selection.refine.radius, 0.0);
+  EXPECT_EQ(parse_flags({"--no-junction-refine"}).options().selection.refine.radius, 0.0);
+  EXPECT_FALSE(PostProcessFlags{}.any());
+  EXPECT_TRUE(parse_flags({"--min-confidence", "0.85"}).any());
+}
+
+TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
+  auto message = [](std::vector<std::string> words) {
+    try {
+      parse_flags(std::move(words)).options();
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_THAT(message({"--min-confidence", "1.5"}), HasSubstr("--min-confidence must be in [0, 1]"));
+  EXPECT_THAT(message({"--pair-support", "-1"}), HasSubstr("--pair-support must be in [0, 1]"));
+  EXPECT_THAT(message({"--min-confidence", "high"}), HasSubstr("--min-confidence expects a number"));
+  EXPECT_THAT(message({"--pair-support"}), HasSubstr("--pair-support"));
+  PostProcessFlags flags;
+  int i = 1;
+  char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};
+  EXPECT_FALSE(flags.parse("--other", 2, argv, i));
+  EXPECT_EQ(i, 1);
 }
 
 }  // namespace

@@ -89,11 +89,12 @@ TEST_F(CliContract, InferUsageAndDataErrors) {
   r = run_cli(kInfer + " --weights w -o out --precision fp16 c.lcloud");
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("--precision must be \"fp32\", \"bf16\" or \"auto\", got \"fp16\"")) << r.err;
-  for (const char* bad : {"1.5", "-0.1", "nan", "some"}) {
-    r = run_cli(kInfer + " --weights w -o out --pair-support " + bad + " c.lcloud");
-    EXPECT_EQ(r.code, 2) << bad;
-    EXPECT_THAT(r.err, HasSubstr("--pair-support")) << r.err;
-  }
+  for (const std::string flag : {"--pair-support", "--min-confidence"})
+    for (const char* bad : {"1.5", "-0.1", "nan", "some"}) {
+      r = run_cli(kInfer + " --weights w -o out " + flag + " " + bad + " c.lcloud");
+      EXPECT_EQ(r.code, 2) << flag << " " << bad;
+      EXPECT_THAT(r.err, HasSubstr(flag)) << r.err;
+    }
   const fs::path weights = dir_ / "no_weights";
   fs::create_directories(weights);
   r = run_cli(kInfer + " --quiet --weights " + weights.string() + " -o " + (dir_ / "out").string() + " c.lcloud");

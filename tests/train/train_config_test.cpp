@@ -61,7 +61,8 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_DOUBLE_EQ(c.junction.optim.lr, 1e-3);
   EXPECT_EQ(c.junction.loss.kind, "release");
   EXPECT_EQ(c.precision, "auto");
-  EXPECT_EQ(c.edge.pair_support, 0.0);  // the release classifies every pair  // bf16 only where the CPU has the dot product (evidence: train/README)
+  EXPECT_EQ(c.edge.pair_support, 0.0);     // the release classifies every pair
+  EXPECT_EQ(c.edge.min_confidence, 0.85);  // and pairs the junctions above 0.85  // bf16 only where the CPU has the dot product (evidence: train/README)
   // The networks are the nn defaults (the release's): base.json only spells them out.
   EXPECT_EQ(c.junction.net.to_json(), JunctionNetConfig().to_json());
   EXPECT_EQ(c.edge.net.to_json(), EdgeNetConfig().to_json());
@@ -111,6 +112,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "cloud_augment", "drop_max"}, 1.5, "edge.cloud_augment.drop_max"},
       {{"junction", "cloud_augment", "enabled"}, "yes", "junction.cloud_augment.enabled"},
       {{"edge", "pair_support"}, 1.5, "edge.pair_support"},
+      {{"edge", "min_confidence"}, -0.5, "edge.min_confidence"},
   };
   for (const Case& c : cases) {
     nlohmann::json j = read_json(kConfigs / "base.json");

@@ -1,0 +1,44 @@
+// The post-processing flags every inference command shares (lc2wf-infer, lc2wf-eval --weights,
+// lc2wf-reconstruct): read in any order, turned into PostProcessOptions once the whole command line is
+// read (so --release-quirks never undoes a flag written before it).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "core/util/cli.h"
+#include "infer/post_process_options.h"
+
+namespace lc2wf {
+
+struct PostProcessFlags {
+  bool release_quirks = false;              // --release-quirks
+  bool no_junction_refine = false;          // --no-junction-refine
+  std::optional<double> min_confidence;     // --min-confidence C
+  std::optional<double> pair_support;       // --pair-support S
+
+  bool any() const { return release_quirks || no_junction_refine || min_confidence || pair_support; }
+
+  // Consumes argv[i] (and its value) when it is one of these flags.
+  bool parse(const std::string& flag, int argc, char** argv, int& i) {
+    if (flag == "--release-quirks") release_quirks = true;
+    else if (flag == "--no-junction-refine") no_junction_refine = true;
+    else if (flag == "--min-confidence") min_confidence = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
+    else return false;
+    return true;
+  }
+
+  // The options asked for; a value out of range is a usage error naming its flag.
+  PostProcessOptions options() const {
+    PostProcessOptions o = release_quirks ? PostProcessOptions::release_quirks() : PostProcessOptions{};
+    if (no_junction_refine) o.selection.refine.radius = 0.0;
+    if (min_confidence) o.selection.min_confidence = *min_confidence;
+    if (pair_support) o.pair_support.min_support = *pair_support;
+    check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
+                                       {"PairSupportOptions.min_support", "--pair-support"}});
+    return o;
+  }
+};
+
+}  // namespace lc2wf
