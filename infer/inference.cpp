@@ -9,6 +9,7 @@
 #include "dataset/pair_support.h"
 #include "infer/patch_tensors.h"
 
+#include "core/util/number_format.h"
 #include "core/util/seconds_since.h"
 
 namespace lc2wf {
@@ -91,7 +92,7 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
                             cloud.segments, options.pair_support);
   r.post_seconds = seconds_since(t0);
   if (r.pairs.empty() && r.selection.positions.size() >= 2)
-    r.notes.push_back("no pair of junctions has line support >= " + std::to_string(options.pair_support.min_support) +
+    r.notes.push_back("no pair of junctions has line support >= " + format_number("%g", options.pair_support.min_support) +
                       ": empty wireframe");
   if (r.pairs.empty()) return r;  // otherwise select_junctions' note says why
 
