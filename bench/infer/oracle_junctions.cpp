@@ -16,6 +16,7 @@
 #include <string>
 
 #include "core/matmul_precision.h"
+#include "core/util/cli.h"
 #include "dataset/cloud_input.h"
 #include "dataset/pair_sampling.h"
 #include "dataset/splits.h"
@@ -46,7 +47,7 @@ PredictedJunctions junctions(const WireframePredictor& predictor, const LineClou
   return out;
 }
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   fs::path weights, data, split, out, junction_weights;
   std::string precision = "fp32", mode = "gt";
   double min_confidence = JunctionSelectionOptions{}.min_confidence;
@@ -59,7 +60,7 @@ int main(int argc, char** argv) {
     else if (f == "--precision") precision = v;
     else if (f == "--junctions") mode = v;
     else if (f == "--junction-weights") junction_weights = v;
-    else if (f == "--min-confidence") min_confidence = std::stod(v);
+    else if (f == "--min-confidence") min_confidence = number_flag(f, v);
     else {
       std::fprintf(stderr, "lc2wf_oracle_junctions: unknown argument '%s'\n", f.c_str());
       return 2;
@@ -101,4 +102,13 @@ int main(int argc, char** argv) {
     return 3;
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // a bad flag value
+    std::fprintf(stderr, "lc2wf_oracle_junctions: %s\n", e.what());
+    return 2;
+  }
 }
