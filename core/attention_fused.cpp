@@ -11,6 +11,7 @@
 #include "core/head_gemm.h"
 #include "core/parallel.h"
 #include "core/simd256.h"
+#include "core/simd512.h"
 #include "core/small_gemm.h"
 
 namespace lc2wf::attention {
@@ -40,49 +41,111 @@ float* thread_scratch(size_t floats) {
   return buffer.data();
 }
 
-inline __m256 lanes8(const int32_t* valid, int64_t v) {
-  return _mm256_castsi256_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(valid + 8 * v)));
-}
+// The softmax rows are written once over a lane width: 8 lanes (AVX2) for any key count that is a multiple
+// of 8, 16 lanes (AVX-512) where the CPU has them and the key count is a multiple of 16, which halves the
+// instructions of the exp, the reductions and the dropout hash. Keep bits are one bit per key either way.
+struct Lanes8 {
+  static constexpr int64_t kN = 8;
+  using V = __m256;
+  using M = __m256;  // all-ones lanes
+  static V load(const float* p) { return _mm256_loadu_ps(p); }
+  static void store(float* p, V x) { _mm256_storeu_ps(p, x); }
+  static V set1(float x) { return _mm256_set1_ps(x); }
+  static V add(V a, V b) { return _mm256_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+  static V fmadd(V a, V b, V c) { return _mm256_fmadd_ps(a, b, c); }
+  static V fmsub(V a, V b, V c) { return _mm256_fmsub_ps(a, b, c); }
+  static V max(V a, V b) { return _mm256_max_ps(a, b); }
+  static V exp_nonpositive(V x) { return exp8_nonpositive(x); }
+  static float hmax(V x) { return hmax8(x); }
+  static float hsum(V x) { return hsum8(x); }
+  static V zero_unless(M m, V x) { return _mm256_and_ps(x, m); }
+  static V select(M m, V x, V otherwise) { return _mm256_blendv_ps(otherwise, x, m); }
+  static M key_mask(const int32_t* valid, int64_t v) {
+    return _mm256_castsi256_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(valid + kN * v)));
+  }
+  static M keep(const DropoutMask& mask, uint64_t first) { return _mm256_castsi256_ps(mask.keep8(first)); }
+  static void store_bits(uint8_t* bits, int64_t v, M m) { bits[v] = static_cast<uint8_t>(_mm256_movemask_ps(m)); }
+  static M load_bits(const uint8_t* bits, int64_t v) { return bits_to_mask8(bits[v]); }
+};
 
-// exp(s * scale - m) of 8 keys, masked keys zero: the forward pass and the backward recomputation
-// both go through here, so P = e * inv has the same bits in both.
-inline __m256 shifted_exp8(__m256 s, __m256 scale, __m256 m, const int32_t* valid, int64_t v) {
-  __m256 e = exp8_nonpositive(_mm256_fmsub_ps(s, scale, m));
-  return valid ? _mm256_and_ps(e, lanes8(valid, v)) : e;
+#ifdef __AVX512F__
+struct Lanes16 {
+  static constexpr int64_t kN = 16;
+  using V = __m512;
+  using M = __mmask16;
+  static V load(const float* p) { return _mm512_loadu_ps(p); }
+  static void store(float* p, V x) { _mm512_storeu_ps(p, x); }
+  static V set1(float x) { return _mm512_set1_ps(x); }
+  static V add(V a, V b) { return _mm512_add_ps(a, b); }
+  static V sub(V a, V b) { return _mm512_sub_ps(a, b); }
+  static V mul(V a, V b) { return _mm512_mul_ps(a, b); }
+  static V fmadd(V a, V b, V c) { return _mm512_fmadd_ps(a, b, c); }
+  static V fmsub(V a, V b, V c) { return _mm512_fmsub_ps(a, b, c); }
+  static V max(V a, V b) { return _mm512_max_ps(a, b); }
+  static V exp_nonpositive(V x) { return exp16(x); }
+  static float hmax(V x) { return _mm512_reduce_max_ps(x); }
+  static float hsum(V x) { return _mm512_reduce_add_ps(x); }
+  static V zero_unless(M m, V x) { return _mm512_maskz_mov_ps(m, x); }
+  static V select(M m, V x, V otherwise) { return _mm512_mask_mov_ps(otherwise, m, x); }
+  static M key_mask(const int32_t* valid, int64_t v) {
+    const __m512i lanes = _mm512_loadu_si512(valid + kN * v);
+    return _mm512_test_epi32_mask(lanes, lanes);
+  }
+  static M keep(const DropoutMask& mask, uint64_t first) { return mask.keep16(first); }
+  // Two bytes, low keys first: the layout of two 8-lane chunks.
+  static void store_bits(uint8_t* bits, int64_t v, M m) {
+    bits[2 * v] = static_cast<uint8_t>(m), bits[2 * v + 1] = static_cast<uint8_t>(m >> 8);
+  }
+  static M load_bits(const uint8_t* bits, int64_t v) {
+    return static_cast<M>(bits[2 * v] | (static_cast<unsigned>(bits[2 * v + 1]) << 8));
+  }
+};
+#endif
+
+// exp(s * scale - m) of one chunk of keys, masked keys zero: the forward pass and the backward
+// recomputation both go through here, so P = e * inv has the same bits in both.
+template <class T>
+inline typename T::V shifted_exp(typename T::V s, typename T::V scale, typename T::V m, const int32_t* valid,
+                                 int64_t v) {
+  const typename T::V e = T::exp_nonpositive(T::fmsub(s, scale, m));
+  return valid ? T::zero_unless(T::key_mask(valid, v), e) : e;
 }
 
 // Query rows whose softmax runs interleaved: one row alone is a chain of dependent reductions (max, exp,
 // sum, reciprocal) that leaves most of the core idle; independent rows fill it.
 constexpr int kRowGroup = 4;
 
-// Softmax and dropout of R consecutive score rows of Lk = 8 * nv keys in place: s holds raw scores on entry
-// and the dropped-out probabilities on exit; p (optional) gets the probabilities. A row whose keys are all
-// masked is zero. Element j of query row `first / Lk` has dropout index first + j. Each row's arithmetic
-// is that of R = 1, so the grouping does not change a bit.
-template <int R>
-void forward_rows(float* s, float* p, int64_t nv, float scale, const int32_t* valid, const DropoutPlan& drop,
+// Softmax and dropout of R consecutive score rows of n keys (nc chunks of T::kN) in place: s holds raw
+// scores on entry and the dropped-out probabilities on exit; p (optional) gets the probabilities. A row
+// whose keys are all masked is zero. Element j of query row `first / n` has dropout index first + j. Each
+// row's arithmetic is that of R = 1, so the grouping does not change a bit.
+template <class T, int R>
+void forward_rows(float* s, float* p, int64_t n, float scale, const int32_t* valid, const DropoutPlan& drop,
                   uint64_t first, float* stat, uint8_t* bits) {
-  const int64_t n = 8 * nv;
-  const __m256 neg_inf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
-  __m256 mx[R], sum[R], vm[R], vinv[R];
+  using V = typename T::V;
+  const int64_t nc = n / T::kN, row_bytes = n / 8;
+  const V neg_inf = T::set1(-std::numeric_limits<float>::infinity());
+  V mx[R], sum[R], vm[R], vinv[R];
 #pragma GCC unroll 8
-  for (int r = 0; r < R; ++r) mx[r] = neg_inf, sum[r] = _mm256_setzero_ps();
-  for (int64_t v = 0; v < nv; ++v)
+  for (int r = 0; r < R; ++r) mx[r] = neg_inf, sum[r] = T::set1(0.0f);
+  for (int64_t v = 0; v < nc; ++v)
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
-      __m256 x = _mm256_loadu_ps(s + r * n + 8 * v);
-      mx[r] = _mm256_max_ps(mx[r], valid ? _mm256_blendv_ps(neg_inf, x, lanes8(valid, v)) : x);
+      const V x = T::load(s + r * n + T::kN * v);
+      mx[r] = T::max(mx[r], valid ? T::select(T::key_mask(valid, v), x, neg_inf) : x);
     }
   float m[R];
 #pragma GCC unroll 8
   for (int r = 0; r < R; ++r) {
-    const float top = hmax8(mx[r]);
+    const float top = T::hmax(mx[r]);
     if (top == -std::numeric_limits<float>::infinity()) {
       if constexpr (R > 1) {
         // Rare (every key masked): each row on its own path.
         for (int q = 0; q < R; ++q)
-          forward_rows<1>(s + q * n, p ? p + q * n : nullptr, nv, scale, valid, drop, first + q * n,
-                          stat ? stat + 2 * q : nullptr, bits ? bits + q * nv : nullptr);
+          forward_rows<T, 1>(s + q * n, p ? p + q * n : nullptr, n, scale, valid, drop, first + q * n,
+                             stat ? stat + 2 * q : nullptr, bits ? bits + q * row_bytes : nullptr);
         return;
       }
       for (int64_t j = 0; j < n; ++j) s[j] = 0.0f;
@@ -90,78 +153,99 @@ void forward_rows(float* s, float* p, int64_t nv, float scale, const int32_t* va
         for (int64_t j = 0; j < n; ++j) p[j] = 0.0f;
       if (stat) stat[0] = stat[1] = 0.0f;
       if (bits)
-        for (int64_t v = 0; v < nv; ++v) bits[v] = 0;
+        for (int64_t v = 0; v < row_bytes; ++v) bits[v] = 0;
       return;
     }
     // Rounding is monotonic, so max(s) * scale is the maximum of the scaled scores.
     m[r] = top * scale;
-    vm[r] = _mm256_set1_ps(m[r]);
+    vm[r] = T::set1(m[r]);
   }
-  const __m256 vscale = _mm256_set1_ps(scale);
-  for (int64_t v = 0; v < nv; ++v)
+  const V vscale = T::set1(scale);
+  for (int64_t v = 0; v < nc; ++v)
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
-      const __m256 e = shifted_exp8(_mm256_loadu_ps(s + r * n + 8 * v), vscale, vm[r], valid, v);
-      _mm256_storeu_ps(s + r * n + 8 * v, e);
-      sum[r] = _mm256_add_ps(sum[r], e);
+      const V e = shifted_exp<T>(T::load(s + r * n + T::kN * v), vscale, vm[r], valid, v);
+      T::store(s + r * n + T::kN * v, e);
+      sum[r] = T::add(sum[r], e);
     }
   float inv[R];
 #pragma GCC unroll 8
-  for (int r = 0; r < R; ++r) inv[r] = 1.0f / hsum8(sum[r]), vinv[r] = _mm256_set1_ps(inv[r]);
-  const __m256 keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
-  for (int64_t v = 0; v < nv; ++v)
+  for (int r = 0; r < R; ++r) inv[r] = 1.0f / T::hsum(sum[r]), vinv[r] = T::set1(inv[r]);
+  const V keep_scale = T::set1(static_cast<float>(drop.scale));
+  for (int64_t v = 0; v < nc; ++v)
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
       float* row = s + r * n;
-      __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(row + 8 * v), vinv[r]);
-      if (p) _mm256_storeu_ps(p + r * n + 8 * v, pv);
+      V pv = T::mul(T::load(row + T::kN * v), vinv[r]);
+      if (p) T::store(p + r * n + T::kN * v, pv);
       if (drop.active) {
-        const __m256 keep = _mm256_castsi256_ps(drop.mask.keep8(first + r * n + 8 * static_cast<uint64_t>(v)));
-        if (bits) bits[r * nv + v] = static_cast<uint8_t>(_mm256_movemask_ps(keep));
-        pv = _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), keep);
+        const typename T::M keep = T::keep(drop.mask, first + r * n + T::kN * static_cast<uint64_t>(v));
+        if (bits) T::store_bits(bits + r * row_bytes, v, keep);
+        pv = T::zero_unless(keep, T::mul(pv, keep_scale));
       }
-      _mm256_storeu_ps(row + 8 * v, pv);
+      T::store(row + T::kN * v, pv);
     }
   if (stat)
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) stat[2 * r] = m[r], stat[2 * r + 1] = inv[r];
 }
 
-// R consecutive rows of the backward pass (Lk = 8 * nv keys). s holds raw scores, dp the gradient of the
+// R consecutive rows of the backward pass (n keys). s holds raw scores, dp the gradient of the
 // dropped-out probabilities; on exit pd holds the dropped-out probabilities and dp the score gradient
 // dS = P * (dP - sum(P * dP)) * scale with dP = dP~ * keep * keep_scale (sum(P dP) = sum(P~ dP~)).
 // Interleaved like forward_rows, each row's arithmetic that of R = 1.
-template <int R>
-void backward_rows(float* s, float* dp, float* pd, int64_t nv, float scale, const int32_t* valid,
+template <class T, int R>
+void backward_rows(float* s, float* dp, float* pd, int64_t n, float scale, const int32_t* valid,
                    const DropoutPlan& drop, const float* stat, const uint8_t* bits) {
-  const int64_t n = 8 * nv;
-  const __m256 vscale = _mm256_set1_ps(scale), keep_scale = _mm256_set1_ps(static_cast<float>(drop.scale));
-  __m256 vm[R], vinv[R], dot[R];
+  using V = typename T::V;
+  const int64_t nc = n / T::kN, row_bytes = n / 8;
+  const V vscale = T::set1(scale), keep_scale = T::set1(static_cast<float>(drop.scale));
+  V vm[R], vinv[R], dot[R];
 #pragma GCC unroll 8
-  for (int r = 0; r < R; ++r)
-    vm[r] = _mm256_set1_ps(stat[2 * r]), vinv[r] = _mm256_set1_ps(stat[2 * r + 1]), dot[r] = _mm256_setzero_ps();
-  for (int64_t v = 0; v < nv; ++v)
-#pragma GCC unroll 8
-    for (int r = 0; r < R; ++r) {
-      const int64_t at = r * n + 8 * v;
-      const __m256 pv = _mm256_mul_ps(shifted_exp8(_mm256_loadu_ps(s + at), vscale, vm[r], valid, v), vinv[r]);
-      const __m256 pt =
-          drop.active ? _mm256_and_ps(_mm256_mul_ps(pv, keep_scale), bits_to_mask8(bits[r * nv + v])) : pv;
-      _mm256_storeu_ps(s + at, pv);
-      _mm256_storeu_ps(pd + at, pt);
-      dot[r] = _mm256_fmadd_ps(pt, _mm256_loadu_ps(dp + at), dot[r]);
-    }
-#pragma GCC unroll 8
-  for (int r = 0; r < R; ++r) dot[r] = _mm256_set1_ps(hsum8(dot[r]));
-  for (int64_t v = 0; v < nv; ++v)
+  for (int r = 0; r < R; ++r) vm[r] = T::set1(stat[2 * r]), vinv[r] = T::set1(stat[2 * r + 1]), dot[r] = T::set1(0.0f);
+  for (int64_t v = 0; v < nc; ++v)
 #pragma GCC unroll 8
     for (int r = 0; r < R; ++r) {
-      const int64_t at = r * n + 8 * v;
-      __m256 g = _mm256_loadu_ps(dp + at);
-      if (drop.active) g = _mm256_and_ps(_mm256_mul_ps(g, keep_scale), bits_to_mask8(bits[r * nv + v]));
-      const __m256 pv = _mm256_mul_ps(_mm256_loadu_ps(s + at), vscale);
-      _mm256_storeu_ps(dp + at, _mm256_mul_ps(pv, _mm256_sub_ps(g, dot[r])));
+      const int64_t at = r * n + T::kN * v;
+      const V pv = T::mul(shifted_exp<T>(T::load(s + at), vscale, vm[r], valid, v), vinv[r]);
+      const V pt = drop.active ? T::zero_unless(T::load_bits(bits + r * row_bytes, v), T::mul(pv, keep_scale)) : pv;
+      T::store(s + at, pv);
+      T::store(pd + at, pt);
+      dot[r] = T::fmadd(pt, T::load(dp + at), dot[r]);
     }
+#pragma GCC unroll 8
+  for (int r = 0; r < R; ++r) dot[r] = T::set1(T::hsum(dot[r]));
+  for (int64_t v = 0; v < nc; ++v)
+#pragma GCC unroll 8
+    for (int r = 0; r < R; ++r) {
+      const int64_t at = r * n + T::kN * v;
+      V g = T::load(dp + at);
+      if (drop.active) g = T::zero_unless(T::load_bits(bits + r * row_bytes, v), T::mul(g, keep_scale));
+      const V pv = T::mul(T::load(s + at), vscale);
+      T::store(dp + at, T::mul(pv, T::sub(g, dot[r])));
+    }
+}
+
+// The row kernels for a key count: 16 lanes where the build has AVX-512 and n is a multiple of 16.
+struct RowKernels {
+  void (*forward_group)(float*, float*, int64_t, float, const int32_t*, const DropoutPlan&, uint64_t, float*, uint8_t*);
+  void (*forward_one)(float*, float*, int64_t, float, const int32_t*, const DropoutPlan&, uint64_t, float*, uint8_t*);
+  void (*backward_group)(float*, float*, float*, int64_t, float, const int32_t*, const DropoutPlan&, const float*,
+                         const uint8_t*);
+  void (*backward_one)(float*, float*, float*, int64_t, float, const int32_t*, const DropoutPlan&, const float*,
+                       const uint8_t*);
+};
+
+template <class T>
+constexpr RowKernels row_kernels_of() {
+  return {forward_rows<T, kRowGroup>, forward_rows<T, 1>, backward_rows<T, kRowGroup>, backward_rows<T, 1>};
+}
+
+RowKernels row_kernels(int64_t n) {
+#ifdef __AVX512F__
+  if (n % 16 == 0) return row_kernels_of<Lanes16>();
+#endif
+  return row_kernels_of<Lanes8>();
 }
 
 }  // namespace
@@ -172,24 +256,25 @@ void fused_forward(const Shape4& s, const float* q, Layout lq, const float* k, L
                    float* o, Layout lo, const uint8_t* mask, float scale, const DropoutPlan& drop, float* probs,
                    float* stats, uint8_t* keep_bits) {
   const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8;
+  const RowKernels kernels = row_kernels(Lk);
   parallel_for_work(s.B, 1, H * 4 * Lq * Lk * (D + 4), [&](int64_t b0, int64_t b1) {
-    float* kt = thread_scratch(static_cast<size_t>(D * Lk + Lq * D + Lk * D + Lq * Lk));
-    float *qc = kt + D * Lk, *vc = qc + Lq * D, *S = vc + Lk * D;
+    float* kt = thread_scratch(static_cast<size_t>(D * Lk + Lk * D + Lq * Lk));
+    float *vc = kt + D * Lk, *S = vc + Lk * D;
     std::vector<int32_t> valid;
     for (int64_t b = b0; b < b1; ++b) {
       if (mask) key_lanes(mask + b * Lk, Lk, valid);
       for (int64_t h = 0; h < H; ++h) {
         const int64_t p = b * H + h;
         transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt);
-        copy_head(Lq, D, q + lq.at(b, h), lq.row, qc);
         copy_head(Lk, D, v + lv.at(b, h), lv.row, vc);
-        head_gemm::gemm_nn(Lq, Lk, D, qc, D, kt, Lk, S, Lk);
+        // q is read in place: each row block of the product touches a few of its rows (see head_gemm).
+        head_gemm::gemm_nn(Lq, Lk, D, q + lq.at(b, h), lq.row, kt, Lk, S, Lk);
         const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv);
         for (int64_t i = 0; i < Lq;) {
           const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
           for (int64_t r = i; r < i + group; ++r) next.share(r);
-          auto rows = group == kRowGroup ? forward_rows<kRowGroup> : forward_rows<1>;
-          rows(S + i * Lk, probs ? probs + row * Lk : nullptr, nv, scale, mask ? valid.data() : nullptr, drop,
+          auto rows = group == kRowGroup ? kernels.forward_group : kernels.forward_one;
+          rows(S + i * Lk, probs ? probs + row * Lk : nullptr, Lk, scale, mask ? valid.data() : nullptr, drop,
                static_cast<uint64_t>(row * Lk), stats ? stats + 2 * row : nullptr,
                keep_bits ? keep_bits + row * nv : nullptr);
           i += group;
@@ -206,6 +291,7 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
                     float* dv, Layout ldv) {
   const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8;
   const int64_t qn = Lq * D, kn = Lk * D, sn = Lq * Lk;
+  const RowKernels kernels = row_kernels(Lk);
   parallel_for_work(s.B, 1, H * 12 * Lq * Lk * (D + 4), [&](int64_t b0, int64_t b1) {
     float* kt = thread_scratch(static_cast<size_t>(2 * D * Lk + 2 * qn + kn + 3 * sn));
     float *vt = kt + D * Lk, *Q = vt + D * Lk, *K = Q + qn, *G = K + kn, *S = G + qn, *dP = S + sn, *Pd = dP + sn;
@@ -225,8 +311,8 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
         for (int64_t i = 0; i < Lq;) {
           const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
           for (int64_t r = i; r < i + group; ++r) next.share(r);
-          auto rows = group == kRowGroup ? backward_rows<kRowGroup> : backward_rows<1>;
-          rows(S + i * Lk, dP + i * Lk, Pd + i * Lk, nv, scale, mask ? valid.data() : nullptr, drop, stats + 2 * row,
+          auto rows = group == kRowGroup ? kernels.backward_group : kernels.backward_one;
+          rows(S + i * Lk, dP + i * Lk, Pd + i * Lk, Lk, scale, mask ? valid.data() : nullptr, drop, stats + 2 * row,
                keep_bits ? keep_bits + row * nv : nullptr);
           i += group;
         }

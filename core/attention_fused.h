@@ -1,5 +1,6 @@
-// The fused float attention kernel (AVX2 + FMA): forward and backward of every (batch item, head) in
-// one cache-resident pass each; the reference kernel in ops_attention.cpp covers the other cases.
+// The fused float attention kernel (AVX2 + FMA; softmax rows on AVX-512 where the build has it): forward
+// and backward of every (batch item, head) in one cache-resident pass each; the reference kernel in
+// ops_attention.cpp covers the other cases.
 #pragma once
 
 #include <cstdint>

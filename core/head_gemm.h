@@ -119,19 +119,22 @@ inline void block512_rows(int rows, int64_t K, const float* A, int64_t lda, cons
 #endif
 
 // Whole 32-column panels on the AVX-512 blocks where the CPU has them (rows in blocks of 12, the rest
-// in even blocks), the remaining columns on the AVX2 ones.
+// in even blocks), the remaining columns on the AVX2 ones. A row block runs across every panel before the
+// next one starts, so A may be read in place from a strided layout: its few rows stay in L1 meanwhile.
 template <bool kTransA>
 __attribute__((noinline)) void product(int64_t M, int64_t N, int64_t K, const float* A, int64_t lda, const float* B,
                                        int64_t ldb, float* C, int64_t ldc) {
   int64_t j = 0;
 #ifdef __AVX512F__
-  for (; j + 32 <= N; j += 32)
-    for (int64_t i = 0; i < M;) {
-      const int64_t left = M - i;
-      const int rows = left >= 12 ? 12 : left >= 2 ? static_cast<int>(left & ~int64_t{1}) : 1;
-      block512_rows<kTransA>(rows, K, kTransA ? A + i : A + i * lda, lda, B + j, ldb, C + i * ldc + j, ldc);
-      i += rows;
-    }
+  const int64_t panels_end = N / 32 * 32;
+  for (int64_t i = 0; i < M;) {
+    const int64_t left = M - i;
+    const int rows = left >= 12 ? 12 : left >= 2 ? static_cast<int>(left & ~int64_t{1}) : 1;
+    for (int64_t jp = 0; jp < panels_end; jp += 32)
+      block512_rows<kTransA>(rows, K, kTransA ? A + i : A + i * lda, lda, B + jp, ldb, C + i * ldc + jp, ldc);
+    i += rows;
+  }
+  j = panels_end;
 #endif
   columns_avx2<kTransA>(M, j, N, K, A, lda, B, ldb, C, ldc);
 }
