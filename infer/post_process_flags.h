@@ -16,8 +16,9 @@ struct PostProcessFlags {
   bool no_junction_refine = false;          // --no-junction-refine
   std::optional<double> min_confidence;     // --min-confidence C
   std::optional<double> pair_support;       // --pair-support S
+  std::optional<double> nms_radius;         // --nms-radius M
 
-  bool any() const { return release_quirks || no_junction_refine || min_confidence || pair_support; }
+  bool any() const { return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius; }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
   bool parse(const std::string& flag, int argc, char** argv, int& i) {
@@ -25,6 +26,7 @@ struct PostProcessFlags {
     else if (flag == "--no-junction-refine") no_junction_refine = true;
     else if (flag == "--min-confidence") min_confidence = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else return false;
     return true;
   }
@@ -35,8 +37,10 @@ struct PostProcessFlags {
     if (no_junction_refine) o.selection.refine.radius = 0.0;
     if (min_confidence) o.selection.min_confidence = *min_confidence;
     if (pair_support) o.pair_support.min_support = *pair_support;
+    if (nms_radius) o.selection.nms_radius_m = *nms_radius;
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
-                                       {"PairSupportOptions.min_support", "--pair-support"}});
+                                       {"PairSupportOptions.min_support", "--pair-support"},
+                                       {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"}});
     return o;
   }
 };

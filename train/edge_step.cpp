@@ -24,6 +24,7 @@ PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
   PostProcessOptions o = c.post_process == "release" ? PostProcessOptions::release_quirks() : PostProcessOptions{};
   o.selection.min_confidence = c.min_confidence;
   o.pair_support.min_support = c.pair_support;
+  o.selection.nms_radius_m = c.nms_radius_m;
   return o;
 }
 

@@ -111,6 +111,7 @@ void EdgeStageConfig::Check() const {
           "must be \"sound\" or \"release\"");
   require(min_confidence >= 0 && min_confidence <= 1, "edge.min_confidence", "must be in [0, 1]");
   require(pair_support >= 0 && pair_support <= 1, "edge.pair_support", "must be in [0, 1]");
+  require(nms_radius_m > 0 && std::isfinite(nms_radius_m), "edge.nms_radius_m", "must be a positive distance in metres");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

@@ -129,6 +129,9 @@ struct EdgeStageConfig {
   // Validation classifies only pairs with at least this line support, as lc2wf-infer --pair-support
   // (dataset/pair_support.h); 0 = every pair, as the release.
   double pair_support = 0.0;
+  // Candidate junctions within this of a more confident one are dropped before the cut, in the training
+  // pairs, validation and lc2wf-infer --nms-radius alike (the release's 5 raw units).
+  double nms_radius_m = 0.25;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -142,6 +145,7 @@ struct EdgeStageConfig {
     v("post_process", s.post_process);
     v("min_confidence", s.min_confidence);
     v("pair_support", s.pair_support);
+    v("nms_radius_m", s.nms_radius_m);
   }
   void Check() const;
   nlohmann::json to_json() const;

@@ -252,17 +252,19 @@ PostProcessFlags parse_flags(std::vector<std::string> words) {
 
 TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
   const PostProcessOptions a =
-      parse_flags({"--pair-support", "0.2", "--min-confidence", "0.5", "--release-quirks"}).options();
+      parse_flags({"--pair-support", "0.2", "--nms-radius", "0.5", "--min-confidence", "0.5", "--release-quirks"}).options();
   const PostProcessOptions b =
-      parse_flags({"--release-quirks", "--min-confidence", "0.5", "--pair-support", "0.2"}).options();
+      parse_flags({"--release-quirks", "--min-confidence", "0.5", "--pair-support", "0.2", "--nms-radius", "0.5"}).options();
   for (const PostProcessOptions& o : {a, b}) {
     EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.2);
     EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5);
+    EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.5);
     EXPECT_FALSE(o.transfer_edges_on_merge);  // the release's rule
   }
   const PostProcessOptions none = PostProcessFlags{}.options();
   EXPECT_DOUBLE_EQ(none.selection.min_confidence, 0.85);
   EXPECT_DOUBLE_EQ(none.pair_support.min_support, 0.0);
+  EXPECT_DOUBLE_EQ(none.selection.nms_radius_m, 0.25);  // the release's 5 raw units
   EXPECT_GT(none.selection.refine.radius, 0.0);
   EXPECT_EQ(parse_flags({"--no-junction-refine"}).options().selection.refine.radius, 0.0);
   EXPECT_FALSE(PostProcessFlags{}.any());
@@ -282,6 +284,7 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--pair-support", "-1"}), HasSubstr("--pair-support must be in [0, 1]"));
   EXPECT_THAT(message({"--min-confidence", "high"}), HasSubstr("--min-confidence expects a number"));
   EXPECT_THAT(message({"--pair-support"}), HasSubstr("--pair-support"));
+  EXPECT_THAT(message({"--nms-radius", "0"}), HasSubstr("--nms-radius must be a positive distance"));
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};

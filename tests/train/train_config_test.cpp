@@ -8,6 +8,7 @@
 #include <set>
 #include <string>
 
+#include "train/edge_step.h"
 #include "train/stage_loop.h"
 #include "train/train_config.h"
 
@@ -62,6 +63,7 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.junction.loss.kind, "release");
   EXPECT_EQ(c.precision, "auto");
   EXPECT_EQ(c.edge.pair_support, 0.0);     // the release classifies every pair
+  EXPECT_EQ(c.edge.nms_radius_m, 0.25);    // NMS radius of the release's 5 raw units
   EXPECT_EQ(c.edge.min_confidence, 0.85);  // and pairs the junctions above 0.85  // bf16 only where the CPU has the dot product (evidence: train/README)
   // The networks are the nn defaults (the release's): base.json only spells them out.
   EXPECT_EQ(c.junction.net.to_json(), JunctionNetConfig().to_json());
@@ -113,6 +115,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"junction", "cloud_augment", "enabled"}, "yes", "junction.cloud_augment.enabled"},
       {{"edge", "pair_support"}, 1.5, "edge.pair_support"},
       {{"edge", "min_confidence"}, -0.5, "edge.min_confidence"},
+      {{"edge", "nms_radius_m"}, 0.0, "edge.nms_radius_m"},
   };
   for (const Case& c : cases) {
     nlohmann::json j = read_json(kConfigs / "base.json");
@@ -157,6 +160,26 @@ TEST(TrainConfig, ANumberBeyondADoubleNamesTheFile) {
     EXPECT_THAT(std::string(e.what()), HasSubstr("1e309"));
   }
   fs::remove(p);
+}
+
+// The edge stage's selection keys reach the one selection rule the hand-off pairs, validation and
+// inference share; the release's post-processing keeps them too.
+TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
+  for (const char* mode : {"sound", "release"}) {
+    EdgeStageConfig c;
+    c.post_process = mode;
+    c.min_confidence = 0.5;
+    c.nms_radius_m = 0.6;
+    c.pair_support = 0.1;
+    c.top_k = 40;
+    const PostProcessOptions o = edge_post_process_options(c);
+    EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5) << mode;
+    EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.6) << mode;
+    EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.1) << mode;
+    const JunctionSelectionOptions training = edge_training_selection(c);
+    EXPECT_DOUBLE_EQ(training.nms_radius_m, 0.6) << mode;
+    EXPECT_EQ(training.top_k, 40) << mode;
+  }
 }
 
 }  // namespace
