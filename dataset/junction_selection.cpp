@@ -8,6 +8,7 @@ namespace lc2wf {
 void JunctionSelectionOptions::Check() const {
   auto fail = [](const std::string& what) { throw std::invalid_argument("JunctionSelectionOptions." + what); };
   if (!(nms_radius_m > 0) || !std::isfinite(nms_radius_m)) fail("nms_radius_m must be a positive distance in metres");
+  if (!(max_offset_m > 0)) fail("max_offset_m must be a positive distance in metres (infinity: no limit)");
   if (!(min_confidence >= 0 && min_confidence <= 1)) fail("min_confidence must be in [0, 1]");
   if (top_k < 2) fail("top_k must be >= 2");
   refine.Check();
@@ -29,8 +30,21 @@ JunctionSelection select_junctions(const PredictedJunctions& c, const std::vecto
   for (size_t k = 0; k < c.positions.size(); ++k)
     if (!c.positions[k].allFinite() || !std::isfinite(c.confidence[k]))
       throw std::invalid_argument("select_junctions: candidate " + std::to_string(k) + " has a non-finite value");
+  // The candidates near enough to their sample point, as indices into c.
+  std::vector<int> eligible;
+  const bool limited = std::isfinite(o.max_offset_m);
+  if (limited && c.offset_m.size() != c.positions.size())
+    throw std::invalid_argument("select_junctions: max_offset_m needs each candidate's offset, but " +
+                                std::to_string(c.offset_m.size()) + " offsets came with " +
+                                std::to_string(c.positions.size()) + " candidates (predict the junctions again)");
+  for (size_t k = 0; k < c.positions.size(); ++k)
+    if (!limited || c.offset_m[k] <= o.max_offset_m) eligible.push_back(static_cast<int>(k));
+  std::vector<Vec3> positions;
+  std::vector<double> confidence;
+  for (int k : eligible) positions.push_back(c.positions[k]), confidence.push_back(c.confidence[k]);
   JunctionSelection s;
-  for (int k : point_nms(c.positions, c.confidence, o.nms_radius_m, o.nms)) {
+  for (int e : point_nms(positions, confidence, o.nms_radius_m, o.nms)) {
+    const int k = eligible[static_cast<size_t>(e)];
     if (cut == SelectionCut::kConfidence ? c.confidence[k] <= o.min_confidence : static_cast<int>(s.kept.size()) >= o.top_k)
       continue;
     s.kept.push_back(k);

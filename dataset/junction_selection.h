@@ -4,6 +4,7 @@
 // then refinement of the survivors against the cloud's segments.
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ namespace lc2wf {
 struct PredictedJunctions {
   std::vector<Vec3> positions;
   std::vector<double> confidence;
+  // How far each hypothesis was regressed from its patch's sample point (metres); empty when unknown
+  // (predicted-junction files written before it was kept). Needed only for max_offset_m.
+  std::vector<double> offset_m;
 };
 
 struct JunctionSelectionOptions {
@@ -24,6 +28,11 @@ struct JunctionSelectionOptions {
   double nms_radius_m = 0.25;                // release: 5 raw
   double min_confidence = 0.85;              // inference and validation keep c > this
   int top_k = 100;                           // training keeps the top_k after NMS, whatever their confidence
+  // Not in the release: candidates regressed farther than this from their sample point take no part.
+  // Trained on fragment clouds, a patch on an edge votes for a junction metres away and its regression
+  // lands between the edge's two junctions: most false junctions are such votes (bench/README.md).
+  // Infinity = every candidate, as the release.
+  double max_offset_m = std::numeric_limits<double>::infinity();
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h.
   JunctionRefineOptions refine{.radius = 0.5};
 

@@ -29,6 +29,7 @@ void write_endpoints(const Segment3& s, const Vec3& c, double inv_scale, float* 
 void PatchOptions::Check() const {
   if (lines_per_patch < 1) throw std::invalid_argument("PatchOptions.lines_per_patch must be >= 1");
   if (!(radius_m > 0)) throw std::invalid_argument("PatchOptions.radius_m must be > 0");
+  if (!(positive_radius_m > 0)) throw std::invalid_argument("PatchOptions.positive_radius_m must be > 0");
   if (negative_noise_count < 1 || negative_noise_count > lines_per_patch) {
     throw std::invalid_argument("PatchOptions.negative_noise_count must be in [1, lines_per_patch]");
   }
@@ -170,6 +171,7 @@ JunctionPatches build_junction_patches(const SegmentSet& segs, const std::vector
       throw std::out_of_range("build_junction_patches: label " + std::to_string(label) + " but only " +
                               std::to_string(gt.size()) + " GT junctions");
     }
+    if (label >= 0 && (gt[label] - x).norm() > o.positive_radius_m) label = -1;
     P.label[g] = label;
     if (label >= 0) {
       const Vec3 off = (gt[label] - x) * inv;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "dataset/geometry.h"
@@ -23,6 +24,11 @@ struct PatchOptions {
   int lines_per_patch = 32;
   double radius_m = 0.2 * kReleaseStdRaw / kRawUnitsPerMetre;  // 0.2 network units = 2.662 m
   int negative_noise_count = 16;                       // patch negative if >= this many noise lines
+  // Not in the release: a patch whose majority junction lies farther than this from its sample point is
+  // negative too, so the junction model learns to find nearby junctions instead of voting for ones metres
+  // away (with the plain labels of our fragment clouds, 58 % of the patches are positive and most offsets
+  // exceed 1 m: bench/README.md). Infinity = the release's rule.
+  double positive_radius_m = std::numeric_limits<double>::infinity();
   PaddingMode padding = PaddingMode::Release;
   NetworkFrame frame;
   void Check() const;

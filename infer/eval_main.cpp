@@ -47,6 +47,7 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --min-confidence C  with --weights: junctions paired by the edge model have confidence > C (default 0.85)
   --pair-support S  with --weights: classify only pairs with line support >= S (see lc2wf-infer --help)
   --nms-radius M  with --weights: point-NMS radius of the candidate junctions (default 0.25 m)
+  --max-offset M  with --weights: ignore candidates regressed more than M metres from their sample point
   --previews      with --weights: also write OUT/previews/<name>.png
   --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
                   line3dpp (Line3D++ .txt), limap (finaltracks/ folder) or obj (line OBJ); clouds
@@ -82,7 +83,7 @@ inference failed on some clouds); with no prediction at all nothing is evaluated
 struct Args {
   fs::path pred, gt, data, split, out, weights;
   bool previews = false;
-  PostProcessFlags post;  // --release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius
+  PostProcessFlags post;  // the post-processing flags of infer/post_process_flags.h
   std::string format = "auto";
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
@@ -137,7 +138,7 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
   if (a.weights.empty() && (a.post.any() || a.previews || a.format != "auto" || a.precision != "fp32"))
     throw UsageError(
-        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius, --previews, --format and "
+        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius, --max-offset, --previews, --format and "
         "--precision only apply with --weights");
   a.post.options();  // checks the values before anything is written
 #if LC2WF_EVAL_WITH_WEIGHTS

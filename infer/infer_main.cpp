@@ -45,6 +45,9 @@ wireframe and a note, never a failure.
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
                       before the cut (default 0.25, the release's 5 raw units); 0.5 gives the same
                       scores with 2.5x fewer pairs on our validation buildings (bench/README.md)
+  --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample
+                      point (default: none, as the release); 1 removes most false junctions of a model
+                      trained on fragment clouds (bench/README.md, "where a model loses its score")
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in

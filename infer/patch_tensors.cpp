@@ -45,6 +45,7 @@ std::vector<PredictedJunctions> junction_candidates(const JunctionOutput& y, con
       const Vec3 point(p.points[3 * k], p.points[3 * k + 1], p.points[3 * k + 2]);
       const Vec3 offset(offsets[3 * k], offsets[3 * k + 1], offsets[3 * k + 2]);
       out[b].positions.push_back(frame.to_metres(point + offset));
+      out[b].offset_m.push_back(offset.norm() * frame.scale_m);
     }
   }
   return out;

@@ -17,8 +17,11 @@ struct PostProcessFlags {
   std::optional<double> min_confidence;     // --min-confidence C
   std::optional<double> pair_support;       // --pair-support S
   std::optional<double> nms_radius;         // --nms-radius M
+  std::optional<double> max_offset;         // --max-offset M
 
-  bool any() const { return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius; }
+  bool any() const {
+    return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset;
+  }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
   bool parse(const std::string& flag, int argc, char** argv, int& i) {
@@ -27,6 +30,7 @@ struct PostProcessFlags {
     else if (flag == "--min-confidence") min_confidence = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else return false;
     return true;
   }
@@ -38,9 +42,11 @@ struct PostProcessFlags {
     if (min_confidence) o.selection.min_confidence = *min_confidence;
     if (pair_support) o.pair_support.min_support = *pair_support;
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
+    if (max_offset) o.selection.max_offset_m = *max_offset;
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
-                                       {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"}});
+                                       {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
+                                       {"JunctionSelectionOptions.max_offset_m", "--max-offset"}});
     return o;
   }
 };

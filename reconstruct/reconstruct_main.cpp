@@ -69,6 +69,7 @@ Options:
   --min-confidence C     junctions paired by the edge model: confidence > C (default 0.85)
   --pair-support S       classify only pairs with line support >= S (0-1; see lc2wf-infer --help)
   --nms-radius M         point-NMS radius of the candidate junctions (default 0.25 m; see lc2wf-infer --help)
+  --max-offset M         ignore candidates regressed more than M metres from their sample point (see lc2wf-infer --help)
   --workspace DIR        intermediate files there (must be new or empty; never deleted)
   --keep                 keep the private temporary workspace (its path is printed)
   -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)

@@ -25,6 +25,7 @@ PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
   o.selection.min_confidence = c.min_confidence;
   o.pair_support.min_support = c.pair_support;
   o.selection.nms_radius_m = c.nms_radius_m;
+  if (c.max_offset_m > 0) o.selection.max_offset_m = c.max_offset_m;
   return o;
 }
 

@@ -73,6 +73,7 @@ void JunctionStageConfig::Check() const {
   schedule.Check("junction");
   require(near_gt_samples >= 0 && near_gt_samples <= net.lpt.patches, "junction.near_gt_samples",
           "must be in [0, net.lpt.patches]");
+  require(std::isfinite(positive_radius_m), "junction.positive_radius_m", "must be a number of metres (<= 0: the release's labels)");
 }
 
 nlohmann::json JunctionStageConfig::to_json() const { return fields_to_json(*this); }
@@ -112,6 +113,7 @@ void EdgeStageConfig::Check() const {
   require(min_confidence >= 0 && min_confidence <= 1, "edge.min_confidence", "must be in [0, 1]");
   require(pair_support >= 0 && pair_support <= 1, "edge.pair_support", "must be in [0, 1]");
   require(nms_radius_m > 0 && std::isfinite(nms_radius_m), "edge.nms_radius_m", "must be a positive distance in metres");
+  require(std::isfinite(max_offset_m), "edge.max_offset_m", "must be a number of metres (<= 0: every candidate)");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

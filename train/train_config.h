@@ -97,6 +97,7 @@ struct JunctionStageConfig {
   StageSchedule schedule;
   int64_t near_gt_samples = 0;                // the paper's near-GT training samples (the release has none)
   double endpoint_label_max_distance_m = -1;  // <= 0: the plain (f, i1, i2) endpoint labels
+  double positive_radius_m = -1;  // > 0: patches whose junction is farther than this are negative (PatchOptions)
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -107,6 +108,7 @@ struct JunctionStageConfig {
     StageSchedule::fields(s.schedule, v);
     v("near_gt_samples", s.near_gt_samples);
     v("endpoint_label_max_distance_m", s.endpoint_label_max_distance_m);
+    v("positive_radius_m", s.positive_radius_m);
   }
   void Check() const;
   nlohmann::json to_json() const;
@@ -132,6 +134,9 @@ struct EdgeStageConfig {
   // Candidate junctions within this of a more confident one are dropped before the cut, in the training
   // pairs, validation and lc2wf-infer --nms-radius alike (the release's 5 raw units).
   double nms_radius_m = 0.25;
+  // > 0: candidates regressed farther than this from their sample point take no part, as lc2wf-infer
+  // --max-offset; <= 0: every candidate (the release).
+  double max_offset_m = -1;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -146,6 +151,7 @@ struct EdgeStageConfig {
     v("min_confidence", s.min_confidence);
     v("pair_support", s.pair_support);
     v("nms_radius_m", s.nms_radius_m);
+    v("max_offset_m", s.max_offset_m);
   }
   void Check() const;
   nlohmann::json to_json() const;

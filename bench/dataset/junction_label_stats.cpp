@@ -1,9 +1,11 @@
 // What the junction stage is taught: over a split, the share of junction patches labelled positive, how far
 // their offset targets reach, and how many GT junctions some patch is labelled with (the recall a perfect
-// junction model could reach with this sampling), for the plain endpoint labels and for endpoint labels
-// kept only within a distance of their junction (`junction.endpoint_label_max_distance_m`).
-//   lc2wf_junction_label_stats --data CLOUDS --split FILE [--max-distance D]... [--limit N]
-// Prints a Markdown table, one row per label rule (inf = the plain derivation, the release's).
+// junction model could reach with this sampling), for the release's labels, for endpoint labels kept
+// only within a distance of their junction (`junction.endpoint_label_max_distance_m`, --max-distance) and
+// for patches kept positive only within a distance of their junction (`junction.positive_radius_m`,
+// --positive-radius).
+//   lc2wf_junction_label_stats --data CLOUDS --split FILE [--max-distance D]... [--positive-radius R]... [--limit N]
+// Prints a Markdown table, one row per label rule (the first: the release's).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +24,9 @@ namespace fs = std::filesystem;
 using namespace lc2wf;
 
 struct RuleStats {
-  double max_distance_m = 0;
+  std::string name;
+  double max_distance_m = std::numeric_limits<double>::infinity();
+  double positive_radius_m = std::numeric_limits<double>::infinity();
   int64_t patches = 0, positives = 0, gt_junctions = 0, labelled_junctions = 0, near_junctions = 0;
   std::vector<double> offsets_m;  // positives' |target - sample point|
 
@@ -60,13 +64,15 @@ struct RuleStats {
 
 int run(int argc, char** argv) {
   fs::path data, split;
-  std::vector<double> distances{std::numeric_limits<double>::infinity()};
+  std::vector<RuleStats> rules{RuleStats{"the release's"}};
   int64_t limit = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string f = argv[i], v = argv[i + 1];
     if (f == "--data") data = v;
     else if (f == "--split") split = v;
-    else if (f == "--max-distance") distances.push_back(number_flag(f, v));
+    else if (f == "--max-distance") rules.push_back(RuleStats{"endpoints within " + v + " m", number_flag(f, v)});
+    else if (f == "--positive-radius")
+      rules.push_back(RuleStats{"patches within " + v + " m", std::numeric_limits<double>::infinity(), number_flag(f, v)});
     else if (f == "--limit") limit = static_cast<int64_t>(number_flag(f, v));
     else {
       std::fprintf(stderr, "lc2wf_junction_label_stats: unknown argument '%s'\n", f.c_str());
@@ -74,11 +80,10 @@ int run(int argc, char** argv) {
     }
   }
   if (data.empty() || split.empty()) {
-    std::fprintf(stderr, "usage: lc2wf_junction_label_stats --data CLOUDS --split FILE [--max-distance D]... [--limit N]\n");
+    std::fprintf(stderr, "usage: lc2wf_junction_label_stats --data CLOUDS --split FILE [--max-distance D]... "
+                 "[--positive-radius R]... [--limit N]\n");
     return 2;
   }
-  std::vector<RuleStats> rules;
-  for (double d : distances) rules.push_back(RuleStats{d});
   std::vector<std::string> names = read_name_list(split);
   if (limit > 0 && static_cast<int64_t>(names.size()) > limit) names.resize(static_cast<size_t>(limit));
   for (const std::string& name : names) {
@@ -86,16 +91,16 @@ int run(int argc, char** argv) {
     for (RuleStats& rule : rules) {
       JunctionSampleOptions options;  // inference's sampling: no augmentation, no near-GT samples
       options.endpoint_label_max_distance_m = rule.max_distance_m;
+      options.patch.positive_radius_m = rule.positive_radius_m;
       rule.add(cloud, make_junction_sample(cloud, options, 1), options.patch.frame);
     }
   }
   std::printf("%zu buildings of %s\n\n", names.size(), split.string().c_str());
-  std::printf("| endpoint labels kept within | positive patches | offset target, m (median / p90) | offsets > 1 m "
+  std::printf("| label rule | positive patches | offset target, m (median / p90) | offsets > 1 m "
               "| GT junctions some patch is labelled with | GT junctions with a sample point within 0.35 m |\n");
   std::printf("|---|---|---|---|---|---|\n");
   for (RuleStats& r : rules) {
-    const std::string within = std::isinf(r.max_distance_m) ? "any distance (plain)" : std::to_string(r.max_distance_m).substr(0, 4) + " m";
-    std::printf("| %s | %.1f %% | %.2f / %.2f | %.1f %% | %.1f %% | %.1f %% |\n", within.c_str(),
+    std::printf("| %s | %.1f %% | %.2f / %.2f | %.1f %% | %.1f %% | %.1f %% |\n", r.name.c_str(),
                 100.0 * static_cast<double>(r.positives) / static_cast<double>(std::max<int64_t>(r.patches, 1)), r.percentile(0.5),
                 r.percentile(0.9), 100.0 * r.share_beyond(1.0),
                 100.0 * static_cast<double>(r.labelled_junctions) / static_cast<double>(std::max<int64_t>(r.gt_junctions, 1)),

@@ -4,16 +4,19 @@
 // and misplaced junctions) from what the edge stage and the post-processing cost.
 //   lc2wf_oracle_junctions --weights DIR --data CLOUDS --split FILE -o OUT [--precision fp32|bf16|auto]
 //                          [--junctions gt|predicted|true-only|snapped|true-snapped] [--min-confidence C]
-//                          [--junction-weights FILE] [--nms-radius M]
+//                          [--junction-weights FILE] [--nms-radius M] [--max-offset M]
 // --junctions: gt = the GT junctions (confidence 1); predicted = the junction model's selection (the
 // pipeline of lc2wf-eval --weights); true-only = that selection without its false positives (farther
 // than 0.35 m from every GT junction); snapped = the selection with each true junction moved onto its GT
 // junction; true-snapped = both. --min-confidence replaces the selection's cut (default 0.85);
 // --junction-weights another junction model than DIR's (e.g. a checkpoint of another epoch); --nms-radius
-// the selection's point-NMS radius (default 0.25 m, the release's 5 raw). Writes OUT/metrics.md, metrics.json and per_building.csv (as lc2wf-eval).
+// the selection's point-NMS radius (default 0.25 m, the release's 5 raw); --max-offset the selection's
+// max_offset_m (candidates regressed farther from their sample point take no part; default: none).
+// Writes OUT/metrics.md, metrics.json and per_building.csv (as lc2wf-eval).
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <string>
 
 #include "core/matmul_precision.h"
@@ -51,7 +54,8 @@ PredictedJunctions junctions(const WireframePredictor& predictor, const LineClou
 int run(int argc, char** argv) {
   fs::path weights, data, split, out, junction_weights;
   std::string precision = "fp32", mode = "gt";
-  double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius = JunctionSelectionOptions{}.nms_radius_m;
+  double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius = JunctionSelectionOptions{}.nms_radius_m,
+         max_offset = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string f = argv[i], v = argv[i + 1];
     if (f == "--weights") weights = v;
@@ -63,6 +67,7 @@ int run(int argc, char** argv) {
     else if (f == "--junction-weights") junction_weights = v;
     else if (f == "--min-confidence") min_confidence = number_flag(f, v);
     else if (f == "--nms-radius") nms_radius = number_flag(f, v);
+    else if (f == "--max-offset") max_offset = number_flag(f, v);
     else {
       std::fprintf(stderr, "lc2wf_oracle_junctions: unknown argument '%s'\n", f.c_str());
       return 2;
@@ -81,8 +86,10 @@ int run(int argc, char** argv) {
     PostProcessOptions pipeline;  // lc2wf-eval's, with the asked confidence cut
     pipeline.selection.min_confidence = min_confidence;
     pipeline.selection.nms_radius_m = nms_radius;
+    if (max_offset > 0) pipeline.selection.max_offset_m = max_offset;
     PostProcessOptions options = pipeline;  // junctions already selected (or GT): refine nothing again
     options.selection.refine.radius = 0.0;
+    options.selection.max_offset_m = std::numeric_limits<double>::infinity();  // no offsets to screen
     pipeline.Check();
     Evaluator evaluator{EvalOptions{}};
     InferenceTiming timing;

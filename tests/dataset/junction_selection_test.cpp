@@ -67,6 +67,25 @@ TEST(SelectJunctions, TopKCutIgnoresConfidence) {
   EXPECT_EQ(s.kept, (std::vector<int>{0, 2, 3}));  // 1 suppressed by 0, then the 3 most confident
 }
 
+// max_offset_m: far-regressed candidates take no part, not even as suppressors in the NMS; without offsets
+// the limit is an error, never a silent no-op.
+TEST(SelectJunctions, MaxOffsetDropsFarVotesBeforeTheNms) {
+  PredictedJunctions c = candidates({{0, 0, 0}, {0.1, 0, 0}, {3, 0, 0}, {6, 0, 0}}, {.99, .9, .95, .97});
+  c.offset_m = {2.5, 0.3, 0.9, 1.2};
+  JunctionSelectionOptions o = no_refine();
+  EXPECT_EQ(select_junctions(c, {}, o).kept, (std::vector<int>{0, 3, 2}));  // 1 suppressed by the far vote 0
+  o.max_offset_m = 1.0;
+  EXPECT_EQ(select_junctions(c, {}, o).kept, (std::vector<int>{2, 1}));  // 0 and 3 ignored, so 1 survives
+  o.max_offset_m = 0.2;
+  const JunctionSelection none = select_junctions(c, {}, o);
+  EXPECT_TRUE(none.kept.empty());
+  EXPECT_FALSE(none.notes.empty());
+  c.offset_m.clear();
+  EXPECT_THROW(select_junctions(c, {}, o), std::invalid_argument);
+  o.max_offset_m = 0;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+}
+
 TEST(SelectJunctions, NmsRunsOnRegressedPositionsBeforeRefinement) {
   // Two candidates 0.3 m apart (both kept by the 0.25 m NMS) snap onto the same corner: refinement comes
   // after the NMS in every caller, so both stay (the edge model's "identical" class handles them).

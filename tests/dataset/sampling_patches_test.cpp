@@ -200,6 +200,28 @@ TEST(JunctionPatch, TiesBreakToTheSmallestJunctionAndZeroLengthIsFar) {
   EXPECT_EQ(build_junction_patches(SegmentSet(segs), labels, gt, {0}, unit_frame(2, 2)).label[0], 2);
 }
 
+// positive_radius_m: the majority junction only counts when it lies within the radius of the sample point.
+TEST(JunctionPatch, PositiveRadiusMakesFarJunctionsNegative) {
+  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)},
+                                      {Vec3(0, 1.5, 0), Vec3(0, 0.5, 0)},
+                                      {Vec3(5, 5, 5), Vec3(6, 5, 5)}};
+  const std::vector<int> labels = {0, 1, -1, 2, -1, -1};
+  const std::vector<Vec3> gt = {Vec3(0.1, 0.1, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
+  const SegmentSet set(segs);
+  PatchOptions o = unit_frame(3, 2);
+  o.positive_radius_m = 0.2;  // junction 0 is 0.141 away from the sample point (0, 0, 0)
+  const auto kept = build_junction_patches(set, labels, gt, {0}, o);
+  EXPECT_EQ(kept.label[0], 0);
+  EXPECT_FLOAT_EQ(kept.offset[0], 0.1f);
+  o.positive_radius_m = 0.1;
+  const auto dropped = build_junction_patches(set, labels, gt, {0}, o);
+  EXPECT_EQ(dropped.label[0], -1);
+  EXPECT_EQ(dropped.offset[0], 0.0f);
+  EXPECT_EQ(dropped.features, kept.features);  // the input is the same, only the target changes
+  o.positive_radius_m = 0;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+}
+
 TEST(JunctionPatch, BadInputs) {
   EXPECT_THROW(build_junction_patches(SegmentSet({}), {}, {}, {0}, unit_frame(3, 2)), std::invalid_argument);
   const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};

@@ -53,7 +53,7 @@ TEST(EvalCli, HelpAndUsageErrors) {
   const CliResult precision = run_eval(dir.path(), "--pred . --gt . --out x --precision bf16");
   EXPECT_EQ(precision.code, 2);
   EXPECT_THAT(precision.err, HasSubstr("--precision only apply with --weights"));
-  for (const char* flag : {"--pair-support 0.1", "--min-confidence 0.5", "--nms-radius 0.5"}) {
+  for (const char* flag : {"--pair-support 0.1", "--min-confidence 0.5", "--nms-radius 0.5", "--max-offset 1"}) {
     const CliResult without_weights = run_eval(dir.path(), std::string("--pred . --gt . --out x ") + flag);
     EXPECT_EQ(without_weights.code, 2) << flag;
     EXPECT_THAT(without_weights.err, HasSubstr("only apply with --weights")) << flag;

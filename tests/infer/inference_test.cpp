@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "tests/common/tiny_weights.h"
+#include <algorithm>
 #include <unistd.h>
 
 #include <filesystem>
@@ -58,6 +59,21 @@ TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {
   const InferenceResult again = predictor.predict(cloud_, keep_every_junction());
   EXPECT_EQ(again.junctions.confidence, r.junctions.confidence);
   EXPECT_EQ(again.wireframe.edge_scores, r.wireframe.edge_scores);
+}
+
+// Each candidate carries how far it was regressed from its sample point, so --max-offset can screen it.
+TEST_F(Inference, CandidatesCarryTheirOffsetsForMaxOffset) {
+  const WireframePredictor predictor(dir_);
+  const InferenceResult all = predictor.predict(cloud_, keep_every_junction());
+  ASSERT_EQ(all.junctions.offset_m.size(), all.junctions.positions.size());
+  std::vector<double> sorted = all.junctions.offset_m;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_GE(sorted.front(), 0.0);
+  PostProcessOptions near = keep_every_junction();
+  near.selection.max_offset_m = sorted[sorted.size() / 2];  // the nearer half of the candidates
+  const InferenceResult screened = predictor.predict(cloud_, near);
+  EXPECT_LT(screened.selection.kept.size(), all.selection.kept.size());
+  for (int k : screened.selection.kept) EXPECT_LE(all.junctions.offset_m[static_cast<size_t>(k)], near.selection.max_offset_m);
 }
 
 TEST_F(Inference, PairProbabilitiesAreDistributions) {

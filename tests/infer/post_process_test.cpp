@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -265,6 +266,8 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
   EXPECT_DOUBLE_EQ(none.selection.min_confidence, 0.85);
   EXPECT_DOUBLE_EQ(none.pair_support.min_support, 0.0);
   EXPECT_DOUBLE_EQ(none.selection.nms_radius_m, 0.25);  // the release's 5 raw units
+  EXPECT_TRUE(std::isinf(none.selection.max_offset_m));  // every candidate, as the release
+  EXPECT_DOUBLE_EQ(parse_flags({"--max-offset", "1"}).options().selection.max_offset_m, 1.0);
   EXPECT_GT(none.selection.refine.radius, 0.0);
   EXPECT_EQ(parse_flags({"--no-junction-refine"}).options().selection.refine.radius, 0.0);
   EXPECT_FALSE(PostProcessFlags{}.any());
@@ -285,6 +288,7 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--min-confidence", "high"}), HasSubstr("--min-confidence expects a number"));
   EXPECT_THAT(message({"--pair-support"}), HasSubstr("--pair-support"));
   EXPECT_THAT(message({"--nms-radius", "0"}), HasSubstr("--nms-radius must be a positive distance"));
+  EXPECT_THAT(message({"--max-offset", "-1"}), HasSubstr("--max-offset must be a positive distance"));
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};

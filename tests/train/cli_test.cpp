@@ -89,8 +89,8 @@ TEST_F(CliContract, InferUsageAndDataErrors) {
   r = run_cli(kInfer + " --weights w -o out --precision fp16 c.lcloud");
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("--precision must be \"fp32\", \"bf16\" or \"auto\", got \"fp16\"")) << r.err;
-  for (const std::string flag : {"--pair-support", "--min-confidence", "--nms-radius"})
-    for (const char* bad : {flag == "--nms-radius" ? "0" : "1.5", "-0.1", "nan", "some"}) {
+  for (const std::string flag : {"--pair-support", "--min-confidence", "--nms-radius", "--max-offset"})
+    for (const char* bad : {flag == "--nms-radius" || flag == "--max-offset" ? "0" : "1.5", "-0.1", "nan", "some"}) {
       r = run_cli(kInfer + " --weights w -o out " + flag + " " + bad + " c.lcloud");
       EXPECT_EQ(r.code, 2) << flag << " " << bad;
       EXPECT_THAT(r.err, HasSubstr(flag)) << r.err;

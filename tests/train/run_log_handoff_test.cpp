@@ -93,6 +93,10 @@ TEST(JunctionHandoff, RoundTrips) {
   EXPECT_EQ(q.positions[0], p.positions[0]);
   EXPECT_EQ(q.positions[1], p.positions[1]);
   EXPECT_EQ(q.confidence, p.confidence);
+  EXPECT_TRUE(q.offset_m.empty());  // a file without offsets (as older hand-offs wrote) stays readable
+  p.offset_m = {0.75, 2.5};
+  write_predicted_junctions(s.dir, "b2", p);
+  EXPECT_EQ(read_predicted_junctions(predicted_junctions_path(s.dir, "b2")).offset_m, p.offset_m);
 }
 
 TEST(JunctionHandoff, RejectsBadFilesNamingThem) {
@@ -103,6 +107,8 @@ TEST(JunctionHandoff, RejectsBadFilesNamingThem) {
         std::string("{\"format\": \"lc2wf-predicted-junctions\", \"version\": 1, \"positions\": [[0,0,0]], \"confidences\": []}"),
         std::string("{\"format\": \"lc2wf-predicted-junctions\", \"version\": 1, \"positions\": [[0,0]], \"confidences\": [0.5]}"),
         std::string("{\"format\": \"lc2wf-predicted-junctions\", \"version\": 1, \"positions\": [[0,0,0]], \"confidences\": [1.5]}"),
+        std::string("{\"format\": \"lc2wf-predicted-junctions\", \"version\": 1, \"positions\": [[0,0,0]], \"confidences\": [0.5], \"offsets\": [1, 2]}"),
+        std::string("{\"format\": \"lc2wf-predicted-junctions\", \"version\": 1, \"positions\": [[0,0,0]], \"confidences\": [0.5], \"offsets\": [-1]}"),
         std::string("not json")}) {
     std::ofstream(bad) << text;
     try {

@@ -116,6 +116,8 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "pair_support"}, 1.5, "edge.pair_support"},
       {{"edge", "min_confidence"}, -0.5, "edge.min_confidence"},
       {{"edge", "nms_radius_m"}, 0.0, "edge.nms_radius_m"},
+      {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
+      {{"junction", "positive_radius_m"}, "near", "junction.positive_radius_m"},
   };
   for (const Case& c : cases) {
     nlohmann::json j = read_json(kConfigs / "base.json");
@@ -172,10 +174,12 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     c.nms_radius_m = 0.6;
     c.pair_support = 0.1;
     c.top_k = 40;
+    c.max_offset_m = 1.0;
     const PostProcessOptions o = edge_post_process_options(c);
     EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5) << mode;
     EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.6) << mode;
     EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.1) << mode;
+    EXPECT_DOUBLE_EQ(o.selection.max_offset_m, 1.0) << mode;
     const JunctionSelectionOptions training = edge_training_selection(c);
     EXPECT_DOUBLE_EQ(training.nms_radius_m, 0.6) << mode;
     EXPECT_EQ(training.top_k, 40) << mode;
