@@ -1,5 +1,6 @@
 #include "train/edge_step.h"
 
+#include <limits>
 #include <vector>
 
 #include "infer/inference.h"
@@ -25,7 +26,8 @@ PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
   o.selection.min_confidence = c.min_confidence;
   o.pair_support.min_support = c.pair_support;
   o.selection.nms_radius_m = c.nms_radius_m;
-  if (c.max_offset_m > 0) o.selection.max_offset_m = c.max_offset_m;
+  // The config decides either way, so a later default of the options never leaks into a run.
+  o.selection.max_offset_m = c.max_offset_m > 0 ? c.max_offset_m : std::numeric_limits<double>::infinity();
   return o;
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -183,6 +184,8 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     const JunctionSelectionOptions training = edge_training_selection(c);
     EXPECT_DOUBLE_EQ(training.nms_radius_m, 0.6) << mode;
     EXPECT_EQ(training.top_k, 40) << mode;
+    c.max_offset_m = -1;  // <= 0: every candidate, whatever the options' default
+    EXPECT_TRUE(std::isinf(edge_post_process_options(c).selection.max_offset_m)) << mode;
   }
 }
 
