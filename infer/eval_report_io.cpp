@@ -178,12 +178,14 @@ std::string eval_per_building_csv(const EvalReport& r) {
 std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
-  char line[400];
+  const std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
+  char line[600];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
-                "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building%s.\n",
+                "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building%s; junctions with "
+                "confidence > %g after NMS %g m%s.\n",
                 s.buildings, s.threads, s.precision.c_str(), s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
-                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str());
+                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str(), s.min_confidence, s.nms_radius_m, offsets.c_str());
   return line;
 }
 
@@ -199,6 +201,9 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"max_seconds", s.max_seconds},
           {"pairs_per_building", static_cast<double>(s.pairs) / n},
           {"pair_support", s.pair_support},
+          {"min_confidence", s.min_confidence},
+          {"nms_radius_m", s.nms_radius_m},
+          {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
           {"empty_wireframes", s.empty}};
 }
 

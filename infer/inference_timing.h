@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 namespace lc2wf {
@@ -17,6 +18,9 @@ struct InferenceTiming {
   int threads = 1;          // compute threads the networks ran on
   std::string precision = "fp32";  // the networks' matrix-product operands (fp32 or bf16)
   double pair_support = 0;  // PairSupportOptions::min_support: 0 = every pair of junctions was classified
+  // The junction selection the scores depend on (JunctionSelectionOptions), so a metrics file says how it was made.
+  double min_confidence = 0.85, nms_radius_m = 0.25;
+  double max_offset_m = std::numeric_limits<double>::infinity();  // infinity: every candidate
 };
 
 }  // namespace lc2wf

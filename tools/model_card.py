@@ -125,6 +125,12 @@ def main():
                   f"({timing['threads']} threads; junction model {timing['junction_seconds_per_building']:.3f} s, edge model "
                   f"{timing['edge_seconds_per_building']:.3f} s for {timing['pairs_per_building']:.0f} pairs, "
                   f"post-processing {timing['post_seconds_per_building']:.3f} s) on {cpu_model()}."]
+        if "min_confidence" in timing:  # metrics written before the selection was recorded lack it
+            offsets = timing.get("max_offset_m")
+            lines += ["", f"Junction selection of these scores: confidence > {timing['min_confidence']:g} after point NMS "
+                      f"{timing['nms_radius_m']:g} m, "
+                      + (f"candidates regressed at most {offsets:g} m from their sample point"
+                         if offsets is not None else "every candidate") + "."]
 
     lines += ["", "## Training", ""]
     for stage in ("junction", "edge"):

@@ -93,6 +93,10 @@ int run(int argc, char** argv) {
     pipeline.Check();
     Evaluator evaluator{EvalOptions{}};
     InferenceTiming timing;
+    timing.pair_support = pipeline.pair_support.min_support;
+    timing.min_confidence = pipeline.selection.min_confidence;
+    timing.nms_radius_m = pipeline.selection.nms_radius_m;
+    timing.max_offset_m = pipeline.selection.max_offset_m;
     for (const std::string& name : read_name_list(split)) {
       const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
       const InferenceResult r = predict_wireframe(predictor.edge_net(), cloud, junctions(predictor, cloud, mode, pipeline.selection),

@@ -147,13 +147,18 @@ TEST(Sampling, NearGtPositivesComeFirstAndAreSeeded) {
 }
 
 // Hand-made patch: three segments, query at segment 0's first endpoint.
+// Three segments around the origin (the third far away), their endpoint labels and GT junctions.
+struct ThreeSegmentScene {
+  std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}, {Vec3(0, 1.5, 0), Vec3(0, 0.5, 0)}, {Vec3(5, 5, 5), Vec3(6, 5, 5)}};
+  std::vector<int> labels = {0, 1, -1, 2, -1, -1};
+  std::vector<Vec3> gt = {Vec3(0.1, 0.1, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
+};
+
 TEST(JunctionPatch, FeaturesPaddingAndLabel) {
-  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)},
-                                      {Vec3(0, 1.5, 0), Vec3(0, 0.5, 0)},
-                                      {Vec3(5, 5, 5), Vec3(6, 5, 5)}};
-  const std::vector<int> labels = {0, 1, -1, 2, -1, -1};
-  const std::vector<Vec3> gt = {Vec3(0.1, 0.1, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
-  const SegmentSet set(segs);
+  const ThreeSegmentScene scene;
+  const std::vector<int>& labels = scene.labels;
+  const std::vector<Vec3>& gt = scene.gt;
+  const SegmentSet set(scene.segs);
   const auto P = build_junction_patches(set, labels, gt, {0}, unit_frame(3, 2));
   ASSERT_EQ(P.features.size(), 3u * 7);
   const float* f = P.features.data();
@@ -202,12 +207,10 @@ TEST(JunctionPatch, TiesBreakToTheSmallestJunctionAndZeroLengthIsFar) {
 
 // positive_radius_m: the majority junction only counts when it lies within the radius of the sample point.
 TEST(JunctionPatch, PositiveRadiusMakesFarJunctionsNegative) {
-  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)},
-                                      {Vec3(0, 1.5, 0), Vec3(0, 0.5, 0)},
-                                      {Vec3(5, 5, 5), Vec3(6, 5, 5)}};
-  const std::vector<int> labels = {0, 1, -1, 2, -1, -1};
-  const std::vector<Vec3> gt = {Vec3(0.1, 0.1, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0)};
-  const SegmentSet set(segs);
+  const ThreeSegmentScene scene;
+  const std::vector<int>& labels = scene.labels;
+  const std::vector<Vec3>& gt = scene.gt;
+  const SegmentSet set(scene.segs);
   PatchOptions o = unit_frame(3, 2);
   o.positive_radius_m = 0.2;  // junction 0 is 0.141 away from the sample point (0, 0, 0)
   const auto kept = build_junction_patches(set, labels, gt, {0}, o);

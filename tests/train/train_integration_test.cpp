@@ -22,6 +22,7 @@
 #include "dataset/line_cloud_io.h"
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
+#include "infer/post_process_options.h"
 #include "infer/prediction_io.h"
 #include "core/util/version.h"
 #include "tests/common/run_cli.h"
@@ -253,6 +254,10 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
                   timing["post_seconds_per_building"].get<double>(), 1e-9);
   EXPECT_GT(timing["pairs_per_building"].get<double>(), 0.0);
   EXPECT_THAT(read_text(eval / "metrics.md"), HasSubstr("classified pairs per building"));
+  // and the selection the scores depend on is recorded with them (the defaults here: every candidate).
+  EXPECT_EQ(timing["min_confidence"].get<double>(), PostProcessOptions{}.selection.min_confidence);
+  EXPECT_EQ(timing["nms_radius_m"].get<double>(), PostProcessOptions{}.selection.nms_radius_m);
+  EXPECT_TRUE(timing["max_offset_m"].is_null());
 
   // One rule for junctions: the edge stage's validation of the weights it kept scores exactly what
   // lc2wf-eval --weights scores for the same weights and buildings.
