@@ -3,6 +3,8 @@
 #   tools/paper_experiment.sh dataset   Blender line clouds of all 3,583 buildings -> runs/dataset (train + val
 #                                       first: `train` can run while the test clouds are made)
 #   tools/paper_experiment.sh train     lc2wf-train configs/base.json -> runs/base (continues with --resume)
+#   tools/paper_experiment.sh select    junction selections scored on the validation split with the trained
+#                                       models, best first -> runs/base/selection/table.md (before eval)
 #   tools/paper_experiment.sh eval      Table 2 on the 757 test buildings (sound and --release-quirks),
 #                                       plots and the HTML report -> runs/base/test*
 #   tools/paper_experiment.sh raster    the same model on raster-rendered test clouds (how much the renderer matters)
@@ -106,6 +108,31 @@ evaluate() {  # evaluate CLOUDS OUT METHOD [extra lc2wf-eval flags]
     --method "$method" "$@"
 }
 
+# The junction selection is chosen on the validation split: each cell of the grid once (a finished cell is
+# kept, so the step resumes), then the table, best first.
+step_select() {
+  local dir=runs/base/selection
+  mkdir -p "$dir"
+  local cells=("release:--min-confidence 0.85 --nms-radius 0.25")
+  for offset in any 1.25 1 0.75 0.5; do
+    for c in 0.85 0.5 0.3 0.1 0.05; do
+      local extra=""
+      [[ $offset == any ]] || extra=" --max-offset $offset"
+      cells+=("c${c}_offset${offset}:--min-confidence $c --nms-radius 0.5$extra")
+    done
+  done
+  for cell in "${cells[@]}"; do
+    local tag=${cell%%:*} flags=${cell#*:}
+    [[ -f $dir/$tag/metrics.json ]] && continue
+    # shellcheck disable=SC2086  # flags are words
+    "$build_dir/infer/lc2wf-eval" --weights runs/base --data runs/dataset/clouds --split configs/splits/val.txt \
+      --out "$dir/$tag.tmp" --method "$tag" --quiet $flags
+    rm -rf "${dir:?}/$tag" && mv "$dir/$tag.tmp" "$dir/$tag"
+  done
+  /usr/bin/python3 tools/selection_table.py "$dir" > "$dir/table.md"
+  cat "$dir/table.md"
+}
+
 step_eval() {
   evaluate runs/dataset/clouds runs/base/test-release "lc2wf, release post-processing" --release-quirks --quiet
   evaluate runs/dataset/clouds runs/base/test "lc2wf"
@@ -147,11 +174,12 @@ step_ship() {
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
+  select) step_select ;;
   eval) step_eval ;;
   raster) step_raster ;;
   snapshot) step_snapshot ;;
   restore) step_restore ;;
   ship) step_ship ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
-  *) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
