@@ -18,9 +18,10 @@ namespace lc2wf {
 
 namespace fs = std::filesystem;
 
-// Version 3: the manifest names the clouds it was predicted from (their fingerprint). Version 2: raw
-// candidates; the edge stage selects and refines them as inference does (version 1 stored refined candidates).
-constexpr int kHandoffVersion = 3;
+// Version 4: each candidate's regressed offset is kept (edge.max_offset_m needs it). Version 3: the
+// manifest names the clouds it was predicted from (their fingerprint). Version 2: raw candidates; the edge
+// stage selects and refines them as inference does (version 1 stored refined candidates).
+constexpr int kHandoffVersion = 4;
 
 namespace {
 
@@ -36,17 +37,23 @@ std::string clouds_fingerprint(const std::vector<const LineCloud*>& clouds) {
 
 // True when `file` (the manifest or the progress file) names this junction checkpoint step, these
 // clouds and this version.
-bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint) {
+bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint, bool need_offsets) {
   if (!fs::exists(file)) return false;
   std::ifstream in(file);
   const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
   return !m.is_discarded() && m.is_object() && m.value("junction_step", int64_t{-1}) == step &&
-         m.value("clouds_fingerprint", std::string()) == fingerprint && m.value("version", 0) == kHandoffVersion;
+         m.value("clouds_fingerprint", std::string()) == fingerprint &&
+         handoff_version_usable(m.value("version", 0), need_offsets);
 }
 
 }  // namespace
 
-fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run) {
+bool handoff_version_usable(int version, bool need_offsets) {
+  return version == kHandoffVersion || (version == 3 && !need_offsets);
+}
+
+fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run,
+                                bool need_offsets) {
   const fs::path dir = run.out / "predicted_junctions", manifest = dir / "manifest.json";
   // Written before the first prediction, removed with the manifest's arrival: an interrupted hand-off resumes.
   const fs::path progress = dir / "in_progress.json";
@@ -64,11 +71,11 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   const bool writer = comm.rank() == 0;
   std::string decision = "redo";
   if (writer && run.resume) {
-    bool complete = made_by(manifest, step, fingerprint);
+    bool complete = made_by(manifest, step, fingerprint, need_offsets);
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
     if (complete) decision = "keep";
     // An interrupted hand-off of the same weights: its files are whole (atomic writes), keep them.
-    else if (made_by(progress, step, fingerprint)) decision = "continue";
+    else if (made_by(progress, step, fingerprint, true)) decision = "continue";
   }
   comm.broadcast(decision, "hand-off decision");
   if (decision == "keep") {

@@ -11,6 +11,7 @@
 #include "dataset/errors.h"
 #include "train/junction_handoff.h"
 #include "train/run_log.h"
+#include "train/stages.h"
 
 using ::testing::HasSubstr;
 
@@ -97,6 +98,17 @@ TEST(JunctionHandoff, RoundTrips) {
   p.offset_m = {0.75, 2.5};
   write_predicted_junctions(s.dir, "b2", p);
   EXPECT_EQ(read_predicted_junctions(predicted_junctions_path(s.dir, "b2")).offset_m, p.offset_m);
+}
+
+// A hand-off written before the offsets were kept still serves a run without the max_offset_m screen (so a
+// run in progress resumes without predicting everything again), never one with it.
+TEST(JunctionHandoff, OlderVersionServesOnlyWithoutTheOffsetScreen) {
+  EXPECT_TRUE(handoff_version_usable(4, true));
+  EXPECT_TRUE(handoff_version_usable(4, false));
+  EXPECT_TRUE(handoff_version_usable(3, false));
+  EXPECT_FALSE(handoff_version_usable(3, true));
+  EXPECT_FALSE(handoff_version_usable(2, false));
+  EXPECT_FALSE(handoff_version_usable(5, false));
 }
 
 TEST(JunctionHandoff, RejectsBadFilesNamingThem) {
