@@ -1,6 +1,7 @@
 #include "dataset/junction_selection.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace lc2wf {
@@ -17,6 +18,9 @@ void JunctionSelectionOptions::Check() const {
 JunctionSelectionOptions JunctionSelectionOptions::release() {
   JunctionSelectionOptions o;
   o.nms = PointNmsRule::kSuppressor;
+  o.nms_radius_m = 0.25;  // 5 raw
+  o.min_confidence = 0.85;
+  o.max_offset_m = std::numeric_limits<double>::infinity();
   o.refine.radius = 0.0;
   return o;
 }

@@ -23,16 +23,20 @@ struct PredictedJunctions {
   std::vector<double> offset_m;
 };
 
+// The defaults are the sound selection, chosen on the validation split with the paper run's final models
+// (bench/README.md, "Choosing the junction selection"); release() is the paper's.
 struct JunctionSelectionOptions {
   PointNmsRule nms = PointNmsRule::kGreedy;  // release: kSuppressor
-  double nms_radius_m = 0.25;                // release: 5 raw
-  double min_confidence = 0.85;              // inference and validation keep c > this
+  double nms_radius_m = 0.5;                 // release: 0.25 (5 raw)
+  double min_confidence = 0.05;              // inference and validation keep c > this; release: 0.85
   int top_k = 100;                           // training keeps the top_k after NMS, whatever their confidence
-  // Not in the release: candidates regressed farther than this from their sample point take no part.
-  // Trained on fragment clouds, a patch on an edge votes for a junction metres away and its regression
-  // lands between the edge's two junctions: most false junctions are such votes (bench/README.md).
-  // Infinity = every candidate, as the release.
-  double max_offset_m = std::numeric_limits<double>::infinity();
+  // Not in the release (infinity = every candidate): candidates regressed farther than this from their
+  // sample point take no part. Trained on fragment clouds, a patch on an edge votes for a junction metres
+  // away and its regression lands between the edge's two junctions: most false junctions are such votes.
+  double max_offset_m = 0.75;
+  // The max_offset_m a user's value asks for: <= 0 (flags and configs) means every candidate; NaN stays
+  // NaN, for Check() to refuse.
+  static double offset_limit(double metres) { return metres <= 0 ? std::numeric_limits<double>::infinity() : metres; }
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h.
   JunctionRefineOptions refine{.radius = 0.5};
 

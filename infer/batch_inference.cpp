@@ -27,10 +27,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
   BatchInferenceSummary s;
   s.threads = num_threads();
   s.precision = to_string(o.precision);
-  s.pair_support = o.post.pair_support.min_support;
-  s.min_confidence = o.post.selection.min_confidence;
-  s.nms_radius_m = o.post.selection.nms_radius_m;
-  s.max_offset_m = o.post.selection.max_offset_m;
+  s.record_selection(o.post.selection, o.post.pair_support.min_support);
   std::unique_ptr<Progress> bar;
   if (!o.quiet) bar = std::make_unique<Progress>("inferring", static_cast<int64_t>(clouds.size()));
   for (const auto& path : clouds) {

@@ -44,10 +44,11 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
                   line clouds of --data; predictions go to OUT/predictions
   --release-quirks  with --weights: the release's post-processing instead of the sound rules
   --no-junction-refine  with --weights: keep the regressed junction positions (see lc2wf-infer --help)
-  --min-confidence C  with --weights: junctions paired by the edge model have confidence > C (default 0.85)
+  --min-confidence C  with --weights: junctions paired by the edge model have confidence > C (default 0.05)
   --pair-support S  with --weights: classify only pairs with line support >= S (see lc2wf-infer --help)
-  --nms-radius M  with --weights: point-NMS radius of the candidate junctions (default 0.25 m)
+  --nms-radius M  with --weights: point-NMS radius of the candidate junctions (default 0.5 m)
   --max-offset M  with --weights: ignore candidates regressed more than M metres from their sample point
+                  (default 0.75; 0 = every candidate; see lc2wf-infer --help)
   --previews      with --weights: also write OUT/previews/<name>.png
   --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
                   line3dpp (Line3D++ .txt), limap (finaltracks/ folder) or obj (line OBJ); clouds

@@ -34,20 +34,22 @@ wireframe and a note, never a failure.
                       refinement); default: sound rules
   --no-junction-refine  keep the regressed junction positions (default: each selected junction moves
                       to the meeting point of the cloud's segments ending within 0.5 m of it)
-  --min-confidence C  junctions paired by the edge model: confidence > C (default 0.85, the release's;
-                      lower finds more junctions and more false ones: bench/README.md, "where a model
-                      loses its score")
+  --min-confidence C  junctions paired by the edge model: confidence > C (default 0.05; the release's
+                      0.85 finds fewer true junctions, not fewer false ones, once --max-offset screens
+                      the far votes: bench/README.md, "choosing the junction selection")
   --pair-support S    classify only pairs of junctions whose straight line is covered by the cloud's
                       segments for at least S of its length (0-1; segments within 0.35 m and 20 degrees
                       of it; pairs shorter than 1 m always): 3x faster edge model, about 3 sAP points less
                       on our validation buildings (infer/README.md); default 0 = every pair, as the
                       release
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
-                      before the cut (default 0.25, the release's 5 raw units); 0.5 gives the same
-                      scores with 2.5x fewer pairs on our validation buildings (bench/README.md)
+                      before the cut (default 0.5; the release's 0.25 gives the same scores with 2.5x
+                      more pairs on our validation buildings)
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample
-                      point (default: none, as the release); 1 removes most false junctions of a model
-                      trained on fragment clouds (bench/README.md, "where a model loses its score")
+                      point (default 0.75; 0 = every candidate, as the release): most false junctions
+                      of a model trained on fragment clouds are such far votes (bench/README.md)
+                      The three defaults were chosen on the validation split with models/base;
+                      --release-quirks selects as the release (0.85, 0.25, every candidate)
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in

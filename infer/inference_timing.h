@@ -3,8 +3,9 @@
 #pragma once
 
 #include <cstdint>
-#include <limits>
 #include <string>
+
+#include "dataset/junction_selection.h"
 
 namespace lc2wf {
 
@@ -18,9 +19,16 @@ struct InferenceTiming {
   int threads = 1;          // compute threads the networks ran on
   std::string precision = "fp32";  // the networks' matrix-product operands (fp32 or bf16)
   double pair_support = 0;  // PairSupportOptions::min_support: 0 = every pair of junctions was classified
-  // The junction selection the scores depend on (JunctionSelectionOptions), so a metrics file says how it was made.
-  double min_confidence = 0.85, nms_radius_m = 0.25;
-  double max_offset_m = std::numeric_limits<double>::infinity();  // infinity: every candidate
+  // The junction selection the scores depend on, so a metrics file says how it was made.
+  double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius_m = JunctionSelectionOptions{}.nms_radius_m;
+  double max_offset_m = JunctionSelectionOptions{}.max_offset_m;  // infinity: every candidate
+
+  void record_selection(const JunctionSelectionOptions& s, double min_pair_support) {
+    pair_support = min_pair_support;
+    min_confidence = s.min_confidence;
+    nms_radius_m = s.nms_radius_m;
+    max_offset_m = s.max_offset_m;
+  }
 };
 
 }  // namespace lc2wf

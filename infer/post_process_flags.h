@@ -42,7 +42,8 @@ struct PostProcessFlags {
     if (min_confidence) o.selection.min_confidence = *min_confidence;
     if (pair_support) o.pair_support.min_support = *pair_support;
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
-    if (max_offset) o.selection.max_offset_m = *max_offset;
+    // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
+    if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},

@@ -1,6 +1,5 @@
 #include "train/edge_step.h"
 
-#include <limits>
 #include <vector>
 
 #include "infer/inference.h"
@@ -27,7 +26,7 @@ PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
   o.pair_support.min_support = c.pair_support;
   o.selection.nms_radius_m = c.nms_radius_m;
   // The config decides either way, so a later default of the options never leaks into a run.
-  o.selection.max_offset_m = c.max_offset_m > 0 ? c.max_offset_m : std::numeric_limits<double>::infinity();
+  o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(c.max_offset_m);
   return o;
 }
 

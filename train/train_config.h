@@ -11,6 +11,7 @@
 
 #include "dataset/cloud_augmentation.h"
 #include "dataset/geometry.h"
+#include "dataset/junction_selection.h"
 #include "nn/config.h"
 
 namespace lc2wf {
@@ -125,18 +126,18 @@ struct EdgeStageConfig {
   // Junction selection and post-processing of the training pairs and the validation wireframes, as
   // lc2wf-infer: "sound" (its defaults) or "release" (--release-quirks).
   std::string post_process = "sound";
-  // Validation pairs the junctions above this confidence, as lc2wf-infer --min-confidence (the
-  // release's 0.85; training pairs take the top_k instead).
-  double min_confidence = 0.85;
+  // Validation pairs the junctions above this confidence, as lc2wf-infer --min-confidence (training
+  // pairs take the top_k instead). The selection keys default to lc2wf-infer's (JunctionSelectionOptions).
+  double min_confidence = JunctionSelectionOptions{}.min_confidence;
   // Validation classifies only pairs with at least this line support, as lc2wf-infer --pair-support
   // (dataset/pair_support.h); 0 = every pair, as the release.
   double pair_support = 0.0;
   // Candidate junctions within this of a more confident one are dropped before the cut, in the training
-  // pairs, validation and lc2wf-infer --nms-radius alike (the release's 5 raw units).
-  double nms_radius_m = 0.25;
+  // pairs, validation and lc2wf-infer --nms-radius alike (the release: 0.25, its 5 raw units).
+  double nms_radius_m = JunctionSelectionOptions{}.nms_radius_m;
   // > 0: candidates regressed farther than this from their sample point take no part, as lc2wf-infer
   // --max-offset; <= 0: every candidate (the release).
-  double max_offset_m = -1;
+  double max_offset_m = JunctionSelectionOptions{}.max_offset_m;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>

@@ -45,6 +45,7 @@ PredictedJunctions predictions() {
     p.positions.push_back(J[k % J.size()] + Vec3(0.03 * (k / J.size()), 0.01 * k, 0));
     p.confidence.push_back(1.0 - 0.01 * k);
   }
+  p.offset_m.assign(p.positions.size(), 0.0);  // every candidate passes the offset screen
   return p;
 }
 

@@ -8,10 +8,9 @@
 // --junctions: gt = the GT junctions (confidence 1); predicted = the junction model's selection (the
 // pipeline of lc2wf-eval --weights); true-only = that selection without its false positives (farther
 // than 0.35 m from every GT junction); snapped = the selection with each true junction moved onto its GT
-// junction; true-snapped = both. --min-confidence replaces the selection's cut (default 0.85);
-// --junction-weights another junction model than DIR's (e.g. a checkpoint of another epoch); --nms-radius
-// the selection's point-NMS radius (default 0.25 m, the release's 5 raw); --max-offset the selection's
-// max_offset_m (candidates regressed farther from their sample point take no part; default: none).
+// junction; true-snapped = both. --junction-weights another junction model than DIR's (e.g. a checkpoint
+// of another epoch). --min-confidence, --nms-radius and --max-offset set the selection as for lc2wf-eval
+// (infer/post_process_flags.h; defaults: lc2wf-eval's).
 // Writes OUT/metrics.md, metrics.json and per_building.csv (as lc2wf-eval).
 #include <cstdio>
 #include <exception>
@@ -28,6 +27,7 @@
 #include "infer/eval_report_io.h"
 #include "infer/evaluator.h"
 #include "infer/inference.h"
+#include "infer/post_process_flags.h"
 
 namespace fs = std::filesystem;
 using namespace lc2wf;
@@ -54,20 +54,19 @@ PredictedJunctions junctions(const WireframePredictor& predictor, const LineClou
 int run(int argc, char** argv) {
   fs::path weights, data, split, out, junction_weights;
   std::string precision = "fp32", mode = "gt";
-  double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius = JunctionSelectionOptions{}.nms_radius_m,
-         max_offset = 0;
+  PostProcessFlags selection_flags;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string f = argv[i], v = argv[i + 1];
-    if (f == "--weights") weights = v;
+    if (f == "--min-confidence" || f == "--nms-radius" || f == "--max-offset") {
+      selection_flags.parse(f, argc, argv, i);
+      --i;  // parse() stepped onto the value; the loop steps over both
+    } else if (f == "--weights") weights = v;
     else if (f == "--data") data = v;
     else if (f == "--split") split = v;
     else if (f == "-o" || f == "--out") out = v;
     else if (f == "--precision") precision = v;
     else if (f == "--junctions") mode = v;
     else if (f == "--junction-weights") junction_weights = v;
-    else if (f == "--min-confidence") min_confidence = number_flag(f, v);
-    else if (f == "--nms-radius") nms_radius = number_flag(f, v);
-    else if (f == "--max-offset") max_offset = number_flag(f, v);
     else {
       std::fprintf(stderr, "lc2wf_oracle_junctions: unknown argument '%s'\n", f.c_str());
       return 2;
@@ -83,20 +82,13 @@ int run(int argc, char** argv) {
     const WireframePredictor predictor(junction_weights.empty() ? weights / "junction.safetensors" : junction_weights,
                                        weights / "edge.safetensors");
     const MatmulPrecisionGuard guard(precision_flag(precision));
-    PostProcessOptions pipeline;  // lc2wf-eval's, with the asked confidence cut
-    pipeline.selection.min_confidence = min_confidence;
-    pipeline.selection.nms_radius_m = nms_radius;
-    if (max_offset > 0) pipeline.selection.max_offset_m = max_offset;
+    const PostProcessOptions pipeline = selection_flags.options();  // lc2wf-eval's, with the asked selection
     PostProcessOptions options = pipeline;  // junctions already selected (or GT): refine nothing again
     options.selection.refine.radius = 0.0;
     options.selection.max_offset_m = std::numeric_limits<double>::infinity();  // no offsets to screen
-    pipeline.Check();
     Evaluator evaluator{EvalOptions{}};
     InferenceTiming timing;
-    timing.pair_support = pipeline.pair_support.min_support;
-    timing.min_confidence = pipeline.selection.min_confidence;
-    timing.nms_radius_m = pipeline.selection.nms_radius_m;
-    timing.max_offset_m = pipeline.selection.max_offset_m;
+    timing.record_selection(pipeline.selection, pipeline.pair_support.min_support);
     for (const std::string& name : read_name_list(split)) {
       const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
       const InferenceResult r = predict_wireframe(predictor.edge_net(), cloud, junctions(predictor, cloud, mode, pipeline.selection),

@@ -51,6 +51,7 @@ PredictedJunctions fake_predictions(const LineCloud& cloud, uint64_t seed) {
     p.positions.push_back(s.a);
     p.confidence.push_back(0.5 * rng.next_uniform());
   }
+  p.offset_m.assign(p.positions.size(), 0.0);  // every candidate passes the offset screen, as before it existed
   return p;
 }
 

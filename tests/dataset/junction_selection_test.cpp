@@ -12,11 +12,17 @@
 namespace lc2wf {
 namespace {
 
-PredictedJunctions candidates(std::vector<Vec3> p, std::vector<double> c) { return {std::move(p), std::move(c)}; }
+// Candidates regressed onto their own sample points (offset 0), so no offset limit screens them.
+PredictedJunctions candidates(std::vector<Vec3> p, std::vector<double> c) {
+  std::vector<double> offsets(p.size(), 0.0);
+  return {std::move(p), std::move(c), std::move(offsets)};
+}
 
+// The release's radius, cut and candidates (the distances below are chosen around them), the sound NMS
+// rule, no refinement.
 JunctionSelectionOptions no_refine() {
-  JunctionSelectionOptions o;
-  o.refine.radius = 0.0;
+  JunctionSelectionOptions o = JunctionSelectionOptions::release();
+  o.nms = PointNmsRule::kGreedy;
   return o;
 }
 
@@ -53,7 +59,7 @@ TEST(PointNms, GreedyEqualScoresInsideTheRadius) {
 
 TEST(SelectJunctions, NmsThenStrictConfidenceThreshold) {
   const auto c = candidates({{0, 0, 0}, {0.1, 0, 0}, {3, 0, 0}, {6, 0, 0}}, {.86, .99, .85, .9});
-  const JunctionSelection s = select_junctions(c, {}, JunctionSelectionOptions{});
+  const JunctionSelection s = select_junctions(c, {}, no_refine());
   EXPECT_EQ(s.kept, (std::vector<int>{1, 3}));  // 0 suppressed by 1; 2 is not > 0.85
   EXPECT_EQ(s.confidences, (std::vector<double>{.99, .9}));
   EXPECT_TRUE(s.notes.empty());
@@ -84,6 +90,12 @@ TEST(SelectJunctions, MaxOffsetDropsFarVotesBeforeTheNms) {
   EXPECT_THROW(select_junctions(c, {}, o), std::invalid_argument);
   o.max_offset_m = 0;
   EXPECT_THROW(o.Check(), std::invalid_argument);
+  // Users write <= 0 for "every candidate" (flags, configs); NaN stays an error.
+  EXPECT_TRUE(std::isinf(JunctionSelectionOptions::offset_limit(0)));
+  EXPECT_TRUE(std::isinf(JunctionSelectionOptions::offset_limit(-1)));
+  EXPECT_DOUBLE_EQ(JunctionSelectionOptions::offset_limit(0.75), 0.75);
+  o.max_offset_m = JunctionSelectionOptions::offset_limit(std::nan(""));
+  EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
 TEST(SelectJunctions, NmsRunsOnRegressedPositionsBeforeRefinement) {
@@ -93,7 +105,9 @@ TEST(SelectJunctions, NmsRunsOnRegressedPositionsBeforeRefinement) {
   std::vector<Segment3> corner;
   for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)}) corner.push_back({C, C + 2.0 * d});
   const auto c = candidates({C + Vec3(0.15, 0, 0), C + Vec3(-0.15, 0, 0)}, {.95, .9});
-  const JunctionSelection s = select_junctions(c, corner, JunctionSelectionOptions{});
+  JunctionSelectionOptions sound;  // with refinement
+  sound.nms_radius_m = 0.25;
+  const JunctionSelection s = select_junctions(c, corner, sound);
   ASSERT_EQ(s.kept, (std::vector<int>{0, 1}));
   EXPECT_LT((s.positions[0] - C).norm(), 0.02);
   EXPECT_LT((s.positions[1] - C).norm(), 0.02);
@@ -105,7 +119,7 @@ TEST(SelectJunctions, EmptyAndSingleJunctionGiveNotesNotCrashes) {
   const JunctionSelection none = select_junctions({}, {}, JunctionSelectionOptions{});
   EXPECT_TRUE(none.kept.empty());
   EXPECT_FALSE(none.notes.empty());
-  const JunctionSelection one = select_junctions(candidates({{0, 0, 0}, {1, 0, 0}}, {.95, .2}), {}, JunctionSelectionOptions{});
+  const JunctionSelection one = select_junctions(candidates({{0, 0, 0}, {1, 0, 0}}, {.95, .01}), {}, JunctionSelectionOptions{});
   EXPECT_EQ(one.kept.size(), 1u);
   EXPECT_FALSE(one.notes.empty());
   EXPECT_TRUE(selection_pairs(one, nullptr, 0.35).empty());

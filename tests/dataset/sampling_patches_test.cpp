@@ -40,9 +40,10 @@ TEST(Constants, ReleaseValuesInMetres) {
   EXPECT_EQ(s.num_samples, 256);
   const PairSamplingOptions p;
   EXPECT_DOUBLE_EQ(p.fp_distance_m * 20, 7.0);
-  const JunctionSelectionOptions j;
+  const JunctionSelectionOptions j = JunctionSelectionOptions::release();
   EXPECT_DOUBLE_EQ(j.nms_radius_m * 20, 5.0);
   EXPECT_DOUBLE_EQ(j.min_confidence, 0.85);
+  EXPECT_TRUE(std::isinf(j.max_offset_m));
   EXPECT_EQ(j.top_k, 100);
   // Metres -> network units reproduces the release's (raw - MEAN) / STD.
   const Vec3 raw(100, -40, 75);
@@ -282,8 +283,8 @@ TEST(Pairs, TrainingOrderAndCyclicFill) {
   PredictedJunctions pred;
   pred.positions = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(50, 0, 0), Vec3(0.1, 0, 0)};
   pred.confidence = {0.9, 0.8, 0.7, 0.6};
-  JunctionSelectionOptions so;
-  so.refine.radius = 0.0;
+  JunctionSelectionOptions so = JunctionSelectionOptions::release();  // its NMS radius and cut
+  so.nms = PointNmsRule::kGreedy;
   const JunctionSelection sel = select_junctions(pred, {}, so, SelectionCut::kTopK);
   PairSamplingOptions o;
   o.pairs_per_building = 10;
@@ -313,8 +314,8 @@ TEST(Pairs, TestPairsKeepConfidentJunctions) {
   PredictedJunctions pred;
   pred.positions = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(50, 0, 0), Vec3(0.1, 0, 0)};
   pred.confidence = {0.9, 0.8, 0.7, 0.6};
-  JunctionSelectionOptions so;
-  so.refine.radius = 0.0;
+  JunctionSelectionOptions so = JunctionSelectionOptions::release();  // its NMS radius and cut
+  so.nms = PointNmsRule::kGreedy;
   const JunctionSelection one = select_junctions(pred, {}, so);
   EXPECT_TRUE(selection_pairs(one, nullptr, 0.35).empty());  // only one junction > 0.85
   EXPECT_EQ(one.kept, (std::vector<int>{0}));
@@ -465,6 +466,7 @@ TEST(Samples, PairSamplesOnASyntheticBuilding) {
   }
   pred.positions.push_back(Vec3(30, 30, 0));
   pred.confidence.push_back(0.95);
+  pred.offset_m.assign(pred.positions.size(), 0.0);  // regressed onto their sample points
   PairSampleOptions o;
   o.augment_enabled = true;
   const auto T = make_pair_training_sample(c, select_junctions(pred, c.segments, {}, SelectionCut::kTopK), o, 5);

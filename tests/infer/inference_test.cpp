@@ -6,6 +6,7 @@
 
 #include "tests/common/tiny_weights.h"
 #include <algorithm>
+#include <limits>
 #include <unistd.h>
 
 #include <filesystem>
@@ -44,6 +45,7 @@ class Inference : public ::testing::Test {
 PostProcessOptions keep_every_junction() {
   PostProcessOptions o;
   o.selection.min_confidence = 0.0;  // random weights are never confident: let every candidate through
+  o.selection.max_offset_m = std::numeric_limits<double>::infinity();  // nor regressed near their sample points
   return o;
 }
 
@@ -108,7 +110,7 @@ TEST_F(Inference, DegenerateCloudsGiveEmptyWireframesWithNotes) {
     r = predictor.predict(one, o);
     EXPECT_NO_THROW(r.wireframe.check("one"));
   }
-  // Nothing above the default 0.85 confidence: fewer than 2 junctions, a note, no edge.
+  // Nothing above a 0.999999 confidence: fewer than 2 junctions, a note, no edge.
   PostProcessOptions strict;
   strict.selection.min_confidence = 0.999999;
   r = predictor.predict(cloud_, strict);

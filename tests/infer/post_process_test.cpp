@@ -262,12 +262,18 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
     EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.5);
     EXPECT_FALSE(o.transfer_edges_on_merge);  // the release's rule
   }
+  // Without flags: the selection chosen on the validation split (bench/README.md), not the release's.
   const PostProcessOptions none = PostProcessFlags{}.options();
-  EXPECT_DOUBLE_EQ(none.selection.min_confidence, 0.85);
+  EXPECT_DOUBLE_EQ(none.selection.min_confidence, 0.05);
   EXPECT_DOUBLE_EQ(none.pair_support.min_support, 0.0);
-  EXPECT_DOUBLE_EQ(none.selection.nms_radius_m, 0.25);  // the release's 5 raw units
-  EXPECT_TRUE(std::isinf(none.selection.max_offset_m));  // every candidate, as the release
+  EXPECT_DOUBLE_EQ(none.selection.nms_radius_m, 0.5);
+  EXPECT_DOUBLE_EQ(none.selection.max_offset_m, 0.75);
   EXPECT_DOUBLE_EQ(parse_flags({"--max-offset", "1"}).options().selection.max_offset_m, 1.0);
+  EXPECT_TRUE(std::isinf(parse_flags({"--max-offset", "0"}).options().selection.max_offset_m));  // every candidate
+  const PostProcessOptions release = parse_flags({"--release-quirks"}).options();
+  EXPECT_DOUBLE_EQ(release.selection.min_confidence, 0.85);
+  EXPECT_DOUBLE_EQ(release.selection.nms_radius_m, 0.25);  // the release's 5 raw units
+  EXPECT_TRUE(std::isinf(release.selection.max_offset_m));  // every candidate, as the release
   EXPECT_GT(none.selection.refine.radius, 0.0);
   EXPECT_EQ(parse_flags({"--no-junction-refine"}).options().selection.refine.radius, 0.0);
   EXPECT_FALSE(PostProcessFlags{}.any());
@@ -288,7 +294,8 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--min-confidence", "high"}), HasSubstr("--min-confidence expects a number"));
   EXPECT_THAT(message({"--pair-support"}), HasSubstr("--pair-support"));
   EXPECT_THAT(message({"--nms-radius", "0"}), HasSubstr("--nms-radius must be a positive distance"));
-  EXPECT_THAT(message({"--max-offset", "-1"}), HasSubstr("--max-offset must be a positive distance"));
+  EXPECT_THAT(message({"--max-offset", "inf"}), HasSubstr("--max-offset expects a finite number"));
+  EXPECT_EQ(message({"--max-offset", "-1"}), "");  // <= 0: every candidate
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};

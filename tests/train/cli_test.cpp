@@ -5,8 +5,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tests/common/run_cli.h"
 
@@ -89,10 +91,15 @@ TEST_F(CliContract, InferUsageAndDataErrors) {
   r = run_cli(kInfer + " --weights w -o out --precision fp16 c.lcloud");
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("--precision must be \"fp32\", \"bf16\" or \"auto\", got \"fp16\"")) << r.err;
-  for (const std::string flag : {"--pair-support", "--min-confidence", "--nms-radius", "--max-offset"})
-    for (const char* bad : {flag == "--nms-radius" || flag == "--max-offset" ? "0" : "1.5", "-0.1", "nan", "some"}) {
-      r = run_cli(kInfer + " --weights w -o out " + flag + " " + bad + " c.lcloud");
-      EXPECT_EQ(r.code, 2) << flag << " " << bad;
+  const std::map<std::string, std::vector<std::string>> bad_values = {
+      {"--pair-support", {"1.5", "-0.1", "nan", "some"}},
+      {"--min-confidence", {"1.5", "-0.1", "nan", "some"}},
+      {"--nms-radius", {"0", "-0.1", "nan", "some"}},
+      {"--max-offset", {"nan", "inf", "some"}}};  // --max-offset <= 0 is valid: every candidate
+  for (const auto& [flag, values] : bad_values)
+    for (const std::string& value : values) {
+      r = run_cli(kInfer + " --weights w -o out " + flag + " " + value + " c.lcloud");
+      EXPECT_EQ(r.code, 2) << flag << " " << value;
       EXPECT_THAT(r.err, HasSubstr(flag)) << r.err;
     }
   const fs::path weights = dir_ / "no_weights";

@@ -254,10 +254,10 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
                   timing["post_seconds_per_building"].get<double>(), 1e-9);
   EXPECT_GT(timing["pairs_per_building"].get<double>(), 0.0);
   EXPECT_THAT(read_text(eval / "metrics.md"), HasSubstr("classified pairs per building"));
-  // and the selection the scores depend on is recorded with them (the defaults here: every candidate).
+  // and the selection the scores depend on is recorded with them (the defaults here).
   EXPECT_EQ(timing["min_confidence"].get<double>(), PostProcessOptions{}.selection.min_confidence);
   EXPECT_EQ(timing["nms_radius_m"].get<double>(), PostProcessOptions{}.selection.nms_radius_m);
-  EXPECT_TRUE(timing["max_offset_m"].is_null());
+  EXPECT_EQ(timing["max_offset_m"].get<double>(), PostProcessOptions{}.selection.max_offset_m);
 
   // One rule for junctions: the edge stage's validation of the weights it kept scores exactly what
   // lc2wf-eval --weights scores for the same weights and buildings.
