@@ -133,6 +133,12 @@ def main():
                          if offsets is not None else "every candidate") + "."]
 
     lines += ["", "## Training", ""]
+    # A card may be written while the run continues (an interim model): say so rather than imply the schedule ran.
+    for stage in ("junction", "edge"):
+        done = max((r["epoch"] for r in records if r.get("stage") == stage and r.get("type") == "epoch"), default=0)
+        if done < config[stage]["epochs"]:
+            lines.append(f"- **unfinished**: the {stage} stage had run {done} of its {config[stage]['epochs']} epochs "
+                         "when this card was written; the weights are the best so far.")
     for stage in ("junction", "edge"):
         t = times.get(stage)
         k = kept.get(stage)
@@ -158,6 +164,7 @@ def main():
     lines += ["", "## Reproduce", "", "```sh",
               "tools/paper_experiment.sh dataset   # Blender line clouds of all 3,583 buildings",
               "tools/paper_experiment.sh train     # lc2wf-train configs/base.json (resumable)",
+              "tools/paper_experiment.sh select    # junction selections scored on the validation split",
               "tools/paper_experiment.sh eval      # Table 2 on the 757 test buildings",
               "tools/paper_experiment.sh ship      # this folder", "```", ""]
 

@@ -36,9 +36,19 @@ for want in "CC BY-NC 4.0" "non-commercial use only" "Roof-Image" "| LC2WF paper
             "confidence > 0.1 after point NMS 0.5 m, candidates regressed at most 0.75 m from their sample point" \
             "junction: 1 steps of 16 buildings, 1.0 h wall (1.0 CPU-h in steps), kept epoch 1 of 41 (vAP mean 50.0 %" \
             "edge: 1 steps of 32 buildings, 2.0 h wall" "hand-off: 0.10 h" \
-            "1 epoch(s): not recorded." "1 epoch(s): bf16 products by openblas (SkylakeX)."; do
+            "1 epoch(s): not recorded." "1 epoch(s): bf16 products by openblas (SkylakeX)." \
+            "**unfinished**: the junction stage had run 1 of its 41 epochs" "the edge stage had run 1 of its 31 epochs"; do
   grep -qF -- "$want" "$card" || { echo "model card lacks: $want"; cat "$card"; exit 1; }
 done
+# A run whose stages ran all their epochs is not called unfinished.
+/usr/bin/python3 - "$out/run/config.json" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))
+c["junction"]["epochs"] = c["edge"]["epochs"] = 1
+json.dump(c, open(sys.argv[1], "w"))
+PY
+/usr/bin/python3 "$root/tools/model_card.py" --run "$out/run" --eval "$out/test" -o "$out/done/README.md"
+if grep -q "unfinished" "$out/done/README.md"; then echo "a finished run was called unfinished"; exit 1; fi
 # A missing evaluation is named, and nothing is written.
 if /usr/bin/python3 "$root/tools/model_card.py" --run "$out/run" --eval "$out/nowhere" -o "$out/bad/README.md" 2>"$out/err"; then
   echo "a missing metrics.json was accepted"; exit 1
