@@ -43,8 +43,8 @@ wireframe and a note, never a failure.
                       on our validation buildings (infer/README.md); default 0 = every pair, as the
                       release
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
-                      before the cut (default 0.5; the release's 0.25 gives the same scores with 2.5x
-                      more pairs on our validation buildings)
+                      before the cut (default 0.5; the release's 0.25; how the radius trades pairs
+                      for scores: bench/README.md, "choosing the junction selection")
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample
                       point (default 0.75; 0 = every candidate, as the release): most false junctions
                       of a model trained on fragment clouds are such far votes (bench/README.md)
