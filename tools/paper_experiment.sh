@@ -11,6 +11,8 @@
 #   tools/paper_experiment.sh ship      the trained model -> models/base/ (weights, config, model card with
 #                                       the test metrics; each file <= 20 MB), after eval (and raster)
 #   tools/paper_experiment.sh all       dataset, train, eval, ship
+#   tools/paper_experiment.sh local     next experiment: junction stage with local labels, scored on the
+#                                       validation split with models/base's edge model
 #   tools/paper_experiment.sh snapshot  copy the training state (newest checkpoint of each stage, best
 #                                       weights, log) to models/base-training/ for committing
 #   tools/paper_experiment.sh restore   put that state back into runs/base (train does it by itself when
@@ -177,6 +179,18 @@ step_ship() {
   echo "Model published in $out ($(du -sh "$out" | cut -f1)); commit it."
 }
 
+# The next experiment: the junction stage again with local patch labels (configs/local-labels.json:
+# base.json with junction.positive_radius_m 1.0), scored on the validation split with the shipped edge model.
+step_local() {
+  local resume=()
+  [[ -d runs/local-labels/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" configs/local-labels.json --stage junction --out runs/local-labels "${resume[@]}"
+  "$build_dir/bench/infer/lc2wf_oracle_junctions" --weights models/base --junctions predicted \
+    --junction-weights runs/local-labels/junction.safetensors --data runs/dataset/clouds \
+    --split configs/splits/val.txt -o runs/local-labels/val-with-base-edge --precision auto
+  cat runs/local-labels/val-with-base-edge/metrics.md
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -186,6 +200,7 @@ case "${1:-}" in
   snapshot) step_snapshot ;;
   restore) step_restore ;;
   ship) step_ship ;;
+  local) step_local ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
-  *) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

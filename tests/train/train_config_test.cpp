@@ -74,12 +74,26 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
 TEST(TrainConfig, EveryConfigHasTheSameKeys) {
   std::set<std::string> base_keys;
   collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
-  for (const char* name : {"small.json", "demo.json", "reconstruct-quick.json", "robust.json"}) {
+  int others = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kConfigs)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".json" || name == "base.json") continue;
+    ++others;
     std::set<std::string> keys;
-    collect_keys(read_json(kConfigs / name), "", keys);
+    collect_keys(read_json(entry.path()), "", keys);
     EXPECT_EQ(keys, base_keys) << name;
-    EXPECT_NO_THROW(TrainConfig::from_file(kConfigs / name)) << name;
+    EXPECT_NO_THROW(TrainConfig::from_file(entry.path())) << name;
   }
+  EXPECT_GE(others, 5);  // small, demo, reconstruct-quick, robust, local-labels
+}
+
+// The next experiment is base.json with local junction labels and nothing else changed.
+TEST(TrainConfig, LocalLabelsIsBaseWithLocalPatchLabels) {
+  nlohmann::json local = read_json(kConfigs / "local-labels.json");
+  EXPECT_EQ(local["junction"]["positive_radius_m"].get<double>(), 1.0);
+  local["junction"]["positive_radius_m"] = -1.0;
+  local["out"] = "runs/base";
+  EXPECT_EQ(local, read_json(kConfigs / "base.json"));
 }
 
 TEST(TrainConfig, RoundTripsThroughJson) {
