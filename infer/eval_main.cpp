@@ -30,6 +30,22 @@ namespace {
 namespace fs = std::filesystem;
 using namespace lc2wf;
 
+// The inference record of OUT/metrics.json when `pred` is OUT/predictions and the record covers as many
+// buildings as are scored now; nothing otherwise (or when the file is unreadable: it is rewritten anyway).
+std::optional<InferenceTiming> recorded_inference(const fs::path& out, const fs::path& pred, size_t buildings) {
+  std::error_code ec;
+  const fs::path metrics = out / "metrics.json";
+  if (!fs::equivalent(pred, out / "predictions", ec) || !fs::is_regular_file(metrics, ec)) return std::nullopt;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(read_input_file(metrics));
+    if (!j.contains("inference")) return std::nullopt;
+    const InferenceTiming s = inference_from_json(j["inference"]);
+    if (s.buildings == static_cast<int>(buildings)) return s;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
 const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) -o OUT [options]
        lc2wf-eval --weights DIR --data DIR --split FILE -o OUT [options]
 
@@ -198,7 +214,9 @@ int run(const Args& a) {
     throw std::runtime_error("nothing to evaluate: none of the " + std::to_string(names.size()) + " buildings" + listed + " (" +
                              quoted_names(names) + ") has a prediction in " + a.pred.string());
 
-  std::optional<InferenceTiming> inference_summary;
+  // Scoring again the predictions an earlier --weights run left in OUT (e.g. to add --html) keeps its record
+  // of how they were made and what they cost; a --weights run replaces it.
+  std::optional<InferenceTiming> inference_summary = recorded_inference(a.out, a.pred, names.size());
 #if LC2WF_EVAL_WITH_WEIGHTS
   if (!a.weights.empty()) {
     // Inference on every listed building, then the usual scoring of what it wrote.

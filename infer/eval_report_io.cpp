@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 
 #include "core/util/atomic_file.h"
@@ -205,6 +206,28 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"nms_radius_m", s.nms_radius_m},
           {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
           {"empty_wireframes", s.empty}};
+}
+
+InferenceTiming inference_from_json(const nlohmann::json& j) {
+  InferenceTiming s;
+  s.buildings = j.at("buildings").get<int>();
+  const double n = std::max(1, s.buildings);
+  s.threads = j.at("threads").get<int>();
+  s.precision = j.value("precision", s.precision);
+  s.total_seconds = j.at("seconds_per_building").get<double>() * n;
+  s.junction_seconds = j.at("junction_seconds_per_building").get<double>() * n;
+  s.edge_seconds = j.at("edge_seconds_per_building").get<double>() * n;
+  s.post_seconds = j.at("post_seconds_per_building").get<double>() * n;
+  s.max_seconds = j.at("max_seconds").get<double>();
+  s.pairs = static_cast<int64_t>(std::llround(j.at("pairs_per_building").get<double>() * n));
+  s.pair_support = j.value("pair_support", s.pair_support);
+  // Metrics written before the selection was recorded (2026-12-03) were made with the release's, then the default.
+  const JunctionSelectionOptions then = JunctionSelectionOptions::release();
+  s.min_confidence = j.value("min_confidence", then.min_confidence);
+  s.nms_radius_m = j.value("nms_radius_m", then.nms_radius_m);
+  s.max_offset_m = j.contains("max_offset_m") && !j["max_offset_m"].is_null() ? j["max_offset_m"].get<double>() : then.max_offset_m;
+  s.empty = j.value("empty_wireframes", s.empty);
+  return s;
 }
 
 void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method,

@@ -20,6 +20,9 @@ std::string eval_per_building_csv(const EvalReport& report);
 // Seconds per building of each inference stage and pairs per building (lc2wf-eval --weights).
 std::string inference_markdown(const InferenceTiming& s);
 nlohmann::json inference_json(const InferenceTiming& s);
+// The inverse of inference_json (per-building means back to totals); a field that metrics written before
+// it existed lack keeps its default. Throws nlohmann::json::exception on a malformed block.
+InferenceTiming inference_from_json(const nlohmann::json& j);
 
 // Writes `<dir>/metrics.md`, `<dir>/metrics.json` and `<dir>/per_building.csv`, each atomically; with
 // `building3d`, its section is appended to metrics.md and stored under "building3d" in metrics.json, and

@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "core/util/version.h"
 #include "test_files.h"
 
@@ -71,6 +74,30 @@ TEST(EvalReportIo, WritesThreeFiles) {
   EXPECT_EQ(j["lc2wf_version"], lc2wf_version());
   EXPECT_EQ(j["commit"], lc2wf_git_commit());
   EXPECT_THAT(testing::read_text(dir.path() / "out" / "metrics.md"), HasSubstr(version_line()));
+}
+
+// A metrics file's inference record reads back as it was written (scoring saved predictions again keeps it).
+TEST(EvalReportIo, InferenceRecordRoundTrips) {
+  InferenceTiming s;
+  s.buildings = 4;
+  s.empty = 1;
+  s.total_seconds = 2.0, s.max_seconds = 0.9, s.junction_seconds = 0.4, s.edge_seconds = 1.5, s.post_seconds = 0.1;
+  s.pairs = 1200;
+  s.threads = 2;
+  s.precision = "bf16";
+  s.pair_support = 0.1;
+  s.min_confidence = 0.3, s.nms_radius_m = 0.6, s.max_offset_m = 1.25;
+  EXPECT_EQ(inference_json(inference_from_json(inference_json(s))), inference_json(s));
+  s.max_offset_m = std::numeric_limits<double>::infinity();  // every candidate: null in JSON
+  EXPECT_TRUE(std::isinf(inference_from_json(inference_json(s)).max_offset_m));
+  // Records written before the selection was kept were made with the release's.
+  nlohmann::json old = inference_json(s);
+  for (const char* key : {"min_confidence", "nms_radius_m", "max_offset_m"}) old.erase(key);
+  const InferenceTiming then = inference_from_json(old);
+  EXPECT_EQ(then.min_confidence, 0.85);
+  EXPECT_EQ(then.nms_radius_m, 0.25);
+  EXPECT_TRUE(std::isinf(then.max_offset_m));
+  EXPECT_THROW(inference_from_json(nlohmann::json::object()), nlohmann::json::exception);
 }
 
 }  // namespace

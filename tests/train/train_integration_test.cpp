@@ -258,6 +258,11 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_EQ(timing["min_confidence"].get<double>(), PostProcessOptions{}.selection.min_confidence);
   EXPECT_EQ(timing["nms_radius_m"].get<double>(), PostProcessOptions{}.selection.nms_radius_m);
   EXPECT_EQ(timing["max_offset_m"].get<double>(), PostProcessOptions{}.selection.max_offset_m);
+  // Scoring those saved predictions again in the same folder (as for --html) keeps the record.
+  ASSERT_EQ(run(std::string(LC2WF_EVAL_BIN) + " --quiet --pred " + quote(eval / "predictions") + " --data " +
+                quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " + quote(eval)),
+            0);
+  EXPECT_EQ(nlohmann::json::parse(read_text(eval / "metrics.json")).at("inference"), timing);
 
   // One rule for junctions: the edge stage's validation of the weights it kept scores exactly what
   // lc2wf-eval --weights scores for the same weights and buildings.
