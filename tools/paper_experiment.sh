@@ -13,10 +13,10 @@
 #   tools/paper_experiment.sh all       dataset, train, eval, ship
 #   tools/paper_experiment.sh local     next experiment: junction stage with local labels, scored on the
 #                                       validation split with models/base's edge model
-#   tools/paper_experiment.sh snapshot  copy the training state (newest checkpoint of each stage, best
-#                                       weights, log) to models/base-training/ for committing
-#   tools/paper_experiment.sh restore   put that state back into runs/base (train does it by itself when
-#                                       runs/base is missing), so a lost machine costs one session
+#   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
+#                                       checkpoint of each stage, best weights, log) to models/RUN-training/
+#   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
+#                                       themselves when their run is missing), so a lost machine costs one session
 # Every step can be killed and started again: the dataset skips finished buildings, training resumes from
 # its last checkpoint, evaluation is redone. LC2WF_DATA_DIR (default ../shared/data) holds roof-image/;
 # LC2WF_BUILD_DIR (default build/) the binaries.
@@ -54,49 +54,53 @@ step_dataset() {
   cp runs/dataset-summary-test.json runs/dataset/summary-test.json
 }
 
-snapshot_dir=models/base-training
-
+# A run's resumable state is committed as models/<run>-training (runs/base -> models/base-training).
 step_snapshot() {
-  [[ -f runs/base/config.json ]] || { echo "paper_experiment.sh: no training run in runs/base" >&2; exit 3; }
-  local tmp=$snapshot_dir.tmp
+  local run=${1:-base}
+  local src=runs/$run snap=models/$run-training
+  [[ -f $src/config.json ]] || { echo "paper_experiment.sh: no training run in $src" >&2; exit 3; }
+  local tmp=$snap.tmp
   rm -rf "$tmp" && mkdir -p "$tmp/checkpoints"
-  cp runs/base/config.json runs/base/log.jsonl "$tmp/"
+  cp "$src/config.json" "$src/log.jsonl" "$tmp/"
   for stage in junction edge; do
-    [[ -f runs/base/$stage.safetensors ]] && cp "runs/base/$stage.safetensors" "$tmp/"
+    [[ -f $src/$stage.safetensors ]] && cp "$src/$stage.safetensors" "$tmp/"
     # The newest complete slot: its weights and optimiser state are written together.
     local newest
-    newest=$(ls -t runs/base/checkpoints/${stage}_last_?.safetensors 2>/dev/null | head -1 || true)
+    newest=$(ls -t "$src"/checkpoints/${stage}_last_?.safetensors 2>/dev/null | head -1 || true)
     [[ -n "$newest" && -f "${newest%.safetensors}.optim.safetensors" ]] || continue
     cp "$newest" "$tmp/checkpoints/${stage}_last_0.safetensors"
     cp "${newest%.safetensors}.optim.safetensors" "$tmp/checkpoints/${stage}_last_0.optim.safetensors"
   done
   # The hand-off is the edge stage's input: kept, or a restored run would predict it again and drop the edge
   # stage's log lines. In parts of 19 MB: a committed file may have 20 MB at most.
-  [[ -f runs/base/predicted_junctions/manifest.json ]] &&
-    tar -C runs/base -czf - predicted_junctions | split -b 19m -d - "$tmp/predicted_junctions.tar.gz.part"
-  cp tools/paper_experiment-snapshot.md "$tmp/README.md"
+  [[ -f $src/predicted_junctions/manifest.json ]] &&
+    tar -C "$src" -czf - predicted_junctions | split -b 19m -d - "$tmp/predicted_junctions.tar.gz.part"
+  sed "s|configs/base.json|configs/$run.json|g; s|runs/base|runs/$run|g; s|models/base-training|$snap|g" \
+    tools/paper_experiment-snapshot.md > "$tmp/README.md"
   # The learning curves so far, shown in the top README (skipped without matplotlib).
-  /usr/bin/python3 tools/plots/plot_training.py runs/base --out "$tmp/learning_curves.png" >/dev/null ||
+  /usr/bin/python3 tools/plots/plot_training.py "$src" --out "$tmp/learning_curves.png" >/dev/null ||
     echo "paper_experiment.sh: no learning curves (tools/setup-deps.sh installs python3-matplotlib)" >&2
-  rm -rf "$snapshot_dir" && mv "$tmp" "$snapshot_dir"
-  echo "Training state of runs/base copied to $snapshot_dir ($(du -sh "$snapshot_dir" | cut -f1))"
+  rm -rf "$snap" && mv "$tmp" "$snap"
+  echo "Training state of $src copied to $snap ($(du -sh "$snap" | cut -f1))"
 }
 
 step_restore() {
-  [[ -f $snapshot_dir/config.json ]] || { echo "paper_experiment.sh: no $snapshot_dir to restore" >&2; exit 3; }
-  [[ ! -e runs/base ]] || { echo "paper_experiment.sh: runs/base exists; move it away to restore" >&2; exit 3; }
-  mkdir -p runs/base.tmp
-  cp -r "$snapshot_dir"/. runs/base.tmp/
-  rm -f runs/base.tmp/README.md runs/base.tmp/predicted_junctions.tar.gz.part* runs/base.tmp/learning_curves.png
-  if compgen -G "$snapshot_dir/predicted_junctions.tar.gz.part*" >/dev/null; then
-    cat "$snapshot_dir"/predicted_junctions.tar.gz.part* | tar -C runs/base.tmp -xzf -
+  local run=${1:-base}
+  local dst=runs/$run snap=models/$run-training
+  [[ -f $snap/config.json ]] || { echo "paper_experiment.sh: no $snap to restore" >&2; exit 3; }
+  [[ ! -e $dst ]] || { echo "paper_experiment.sh: $dst exists; move it away to restore" >&2; exit 3; }
+  mkdir -p "$dst.tmp"
+  cp -r "$snap"/. "$dst.tmp/"
+  rm -f "$dst.tmp/README.md" "$dst.tmp"/predicted_junctions.tar.gz.part* "$dst.tmp/learning_curves.png"
+  if compgen -G "$snap/predicted_junctions.tar.gz.part*" >/dev/null; then
+    cat "$snap"/predicted_junctions.tar.gz.part* | tar -C "$dst.tmp" -xzf -
   fi
-  mv runs/base.tmp runs/base
-  echo "runs/base restored from $snapshot_dir"
+  mv "$dst.tmp" "$dst"
+  echo "$dst restored from $snap"
 }
 
 step_train() {
-  [[ ! -e runs/base && -f $snapshot_dir/config.json ]] && step_restore
+  [[ ! -e runs/base && -f models/base-training/config.json ]] && step_restore base
   local resume=()
   [[ -d runs/base/checkpoints ]] && resume=(--resume)
   "$build_dir/train/lc2wf-train" configs/base.json --out runs/base "${resume[@]}"
@@ -182,6 +186,7 @@ step_ship() {
 # The next experiment: the junction stage again with local patch labels (configs/local-labels.json:
 # base.json with junction.positive_radius_m 1.0), scored on the validation split with the shipped edge model.
 step_local() {
+  [[ ! -e runs/local-labels && -f models/local-labels-training/config.json ]] && step_restore local-labels
   local resume=()
   [[ -d runs/local-labels/checkpoints ]] && resume=(--resume)
   "$build_dir/train/lc2wf-train" configs/local-labels.json --stage junction --out runs/local-labels "${resume[@]}"
@@ -197,8 +202,8 @@ case "${1:-}" in
   select) step_select ;;
   eval) step_eval ;;
   raster) step_raster ;;
-  snapshot) step_snapshot ;;
-  restore) step_restore ;;
+  snapshot) step_snapshot "${2:-base}" ;;
+  restore) step_restore "${2:-base}" ;;
   ship) step_ship ;;
   local) step_local ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
