@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # How one model serves clouds of other statistics (issue: robust to the cloud's statistics). For the
-# buildings of SPLIT, makes three kinds of cloud with lc2wf-cloud-styles (our own; the same segments
-# through the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter), scores
+# buildings of SPLIT, makes five kinds of cloud with lc2wf-cloud-styles (our own; the same segments
+# through the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter; only our lines
+# on GT edges; ours plus photo-like texture lines on faces and ground), scores
 # WEIGHTS on each with lc2wf-eval and prints a Markdown table (vAP/sAP avg, WED, mean junctions/edges).
 #
 #   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS]     CLOUDS: labelled clouds (default runs/dataset/clouds)
@@ -23,13 +24,17 @@ eval_style() {  # eval_style STYLE [extra lc2wf-eval flags]
 eval_style own
 eval_style line3dpp --format line3dpp --gt "$out/clouds/gt"
 eval_style long
+eval_style edges
+eval_style photo
 
 /usr/bin/python3 - "$out" <<'PY'
 import csv, json, statistics, sys
 from pathlib import Path
 out = Path(sys.argv[1])
 labels = {"own": "our clouds (lc2wf-dataset)", "line3dpp": "same segments via Line3D++ .txt",
-          "long": "long fragments from the GT + clutter"}
+          "long": "long fragments from the GT + clutter",
+          "edges": "our clouds, only the lines on a GT edge",
+          "photo": "our clouds + texture lines on faces and ground (photo-like)"}
 print("| clouds | vAP avg | sAP avg | WED total (Dist) | junctions / building | edges / building |")
 print("|---|---|---|---|---|---|")
 for style, label in labels.items():

@@ -1,6 +1,7 @@
 #include "dataset/cloud_augmentation.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -20,6 +21,8 @@ struct Piece {
   bool keeps_a = true;  // s.a is still the source's endpoint a (one-sided labels stay only there)
   bool keeps_b = true;
 };
+
+constexpr uint64_t kClutterStream = 0xC1u;
 
 bool probability_ok(double p) { return p >= 0.0 && p <= 1.0; }
 
@@ -91,6 +94,19 @@ void split_piece(const Piece& p, double min_length, DataRng& rng, std::vector<Pi
   if (!made) out.push_back(p);
 }
 
+// Own generator: without clutter every other draw stays what it was before clutter existed.
+void append_clutter(const LineCloud& cloud, const CloudAugmentOptions& o, uint64_t seed, std::vector<Piece>& pieces) {
+  if (o.face_clutter_max <= 0.0 && o.ground_clutter_max <= 0.0) return;
+  DataRng rng(mix_seed(seed, kClutterStream));
+  const double n = static_cast<double>(cloud.segments.size());
+  SurfaceClutterOptions c;
+  c.face_lines = static_cast<int>(std::lround(n * rng.uniform(0.0, o.face_clutter_max)));
+  c.ground_lines = static_cast<int>(std::lround(n * rng.uniform(0.0, o.ground_clutter_max)));
+  c.min_length_m = o.min_length_m;
+  c.max_length_m = o.clutter_length_max_m;
+  for (const Segment3& s : make_surface_clutter(cloud.wireframe, c, rng)) pieces.push_back({s, SegmentLabel{}, false, false});
+}
+
 SegmentLabel relabel(const Piece& p, const Wireframe& wf) {
   if (p.label.f) return make_edge_label(p.s, wf, p.label.i1, p.label.i2);
   SegmentLabel l;
@@ -116,6 +132,12 @@ void CloudAugmentOptions::Check() const {
     throw std::invalid_argument("cloud_augment.endpoint_noise_max_m must be in [0, 1] (metres)");
   if (!(min_length_m > 0.0 && min_length_m <= 10.0))
     throw std::invalid_argument("cloud_augment.min_length_m must be in (0, 10] (metres)");
+  if (!(face_clutter_max >= 0.0 && face_clutter_max <= 20.0))
+    throw std::invalid_argument("cloud_augment.face_clutter_max must be in [0, 20] (lines per segment of the cloud)");
+  if (!(ground_clutter_max >= 0.0 && ground_clutter_max <= 20.0))
+    throw std::invalid_argument("cloud_augment.ground_clutter_max must be in [0, 20] (lines per segment of the cloud)");
+  if (!(clutter_length_max_m >= min_length_m && clutter_length_max_m <= 100.0))
+    throw std::invalid_argument("cloud_augment.clutter_length_max_m must be in [min_length_m, 100] (metres)");
 }
 
 LineCloud augment_cloud_statistics(const LineCloud& cloud, const CloudAugmentOptions& o, uint64_t seed) {
@@ -141,6 +163,7 @@ LineCloud augment_cloud_statistics(const LineCloud& cloud, const CloudAugmentOpt
     else reshaped.push_back(p);
     if (rng.uniform() < densify_p) reshaped.push_back(reshaped.back());
   }
+  append_clutter(cloud, o, seed, reshaped);
 
   LineCloud out;
   out.name = cloud.name;

@@ -2,12 +2,14 @@
 // fragments of a GT edge into one long line, split lines into pieces, add noisy duplicates, drop lines
 // and jitter endpoints. A model trained only on one extractor's clouds (ours: many short fragments)
 // fails on clouds of long clustered lines (Line3D++, LIMAP, photo reconstructions); these draws cover
-// both. Labels (f, i1, d1, i2, d2) are carried to every new segment, so the usual patches follow.
+// both, and texture lines on the faces and the ground (surface_clutter.h) make them look like photo
+// reconstructions. Labels (f, i1, d1, i2, d2) are carried to every new segment, so the usual patches follow.
 #pragma once
 
 #include <cstdint>
 
 #include "dataset/line_cloud.h"
+#include "dataset/surface_clutter.h"
 
 namespace lc2wf {
 
@@ -19,6 +21,11 @@ struct CloudAugmentOptions {
   double drop_max = 0.3;            // fraction of segments removed
   double endpoint_noise_max_m = 0.03;  // isotropic Gaussian sigma per endpoint coordinate
   double min_length_m = 0.05;       // pieces shorter than this are not made
+  // Texture lines, as a multiple of the cloud's segment count (photo clouds: ≈ 2.5 on faces, ≈ 3.5 on
+  // the ground). 0 = none, which keeps the draws of the other steps as they were without these keys.
+  double face_clutter_max = 0.0;
+  double ground_clutter_max = 0.0;
+  double clutter_length_max_m = 1.0;  // clutter lengths are uniform in [min_length_m, this]
   void Check() const;
 };
 

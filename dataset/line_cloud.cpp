@@ -1,6 +1,7 @@
 #include "dataset/line_cloud.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <Eigen/LU>  // determinant()
 
@@ -23,6 +24,23 @@ std::vector<int> endpoint_labels(const LineCloud& cloud, double max_distance_m) 
     const auto& l = cloud.labels[i];
     if (l.d1 <= max_distance_m) out[2 * i] = l.i1;
     if (l.d2 <= max_distance_m) out[2 * i + 1] = l.i2;
+  }
+  return out;
+}
+
+LineCloud keep_segments(const LineCloud& cloud, const std::vector<bool>& keep) {
+  if (keep.size() != cloud.segments.size())
+    throw std::invalid_argument("keep_segments: " + std::to_string(keep.size()) + " flags for " +
+                                std::to_string(cloud.segments.size()) + " segments");
+  LineCloud out = cloud;
+  out.segments.clear();
+  out.labels.clear();
+  out.support.clear();
+  for (size_t i = 0; i < keep.size(); ++i) {
+    if (!keep[i]) continue;
+    out.segments.push_back(cloud.segments[i]);
+    if (!cloud.labels.empty()) out.labels.push_back(cloud.labels[i]);
+    if (!cloud.support.empty()) out.support.push_back(cloud.support[i]);
   }
   return out;
 }

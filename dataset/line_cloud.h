@@ -48,6 +48,9 @@ std::vector<int> endpoint_labels(const LineCloud& cloud, double max_distance_m =
 // endpoints (the pairing with the smaller summed endpoint distance) and fills the distances.
 SegmentLabel make_edge_label(const Segment3& segment, const Wireframe& wireframe, int j, int k);
 
+// The segments with keep[i] true, with their labels and supports; everything else of the cloud as it is.
+LineCloud keep_segments(const LineCloud& cloud, const std::vector<bool>& keep);
+
 // FNV-1a over the name and the segments' coordinates (as stored): tells whether predictions made from a
 // cloud still belong to it, e.g. after the dataset was regenerated on another machine.
 uint64_t segments_fingerprint(const LineCloud& cloud);

@@ -52,6 +52,9 @@ struct CloudAugmentConfig {
     v("drop_max", s.options.drop_max);
     v("endpoint_noise_max_m", s.options.endpoint_noise_max_m);
     v("min_length_m", s.options.min_length_m);
+    v("face_clutter_max", s.options.face_clutter_max);
+    v("ground_clutter_max", s.options.ground_clutter_max);
+    v("clutter_length_max_m", s.options.clutter_length_max_m);
   }
   nlohmann::json to_json() const;
   static CloudAugmentConfig from_json(const nlohmann::json& j, const std::string& where, CloudAugmentConfig base);

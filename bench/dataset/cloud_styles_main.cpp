@@ -1,9 +1,10 @@
-// lc2wf-cloud-styles: the same held-out buildings as clouds of three kinds, to measure how a model
+// lc2wf-cloud-styles: the same held-out buildings as clouds of several kinds, to measure how a model
 // trained on one extractor's clouds serves others (bench/robustness.sh scores a model on each).
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/util/cli.h"
 #include "dataset/line3dpp_io.h"
@@ -12,6 +13,7 @@
 #include "dataset/mesh_io.h"
 #include "dataset/rng.h"
 #include "dataset/splits.h"
+#include "dataset/surface_clutter.h"
 
 namespace {
 
@@ -25,13 +27,17 @@ For every building of FILE, reads DIR/<name>.lcloud (a labelled cloud of lc2wf-d
   OUT/line3dpp/<name>.txt     the same segments through the Line3D++ .txt writer and reader path
   OUT/long/<name>.lcloud      every GT edge as 2-5 long fragments with 2 cm noise, plus half of the
                               cloud's non-edge lines (dataset/long_fragment_cloud.h)
+  OUT/edges/<name>.lcloud     only the cloud's lines on a GT edge (f = 1): what the other lines cost
+  OUT/photo/<name>.lcloud     the cloud plus texture lines as a textured-photo reconstruction has them:
+                              2.5 per segment on the faces, 3.5 on the ground around the building
+                              (dataset/surface_clutter.h)
   OUT/gt/<name>.obj           the ground truth in metres, for lc2wf-eval --gt
 Deterministic for a seed and the split's order.
 
   --data DIR     labelled line clouds
   --split FILE   building names, one per line
   -o, --out DIR  output folder
-  --seed S       seed of the long fragments (default 1555)
+  --seed S       seed of the long fragments and the texture lines (default 1555)
   -q, --quiet    no summary line
 )";
 
@@ -56,16 +62,35 @@ Args parse_args(int argc, char** argv) {
   return a;
 }
 
+constexpr uint64_t kPhotoStream = 0x9407u;
+
+LineCloud edge_lines_only(const LineCloud& cloud) {
+  std::vector<bool> keep(cloud.segments.size(), false);
+  for (size_t i = 0; i < cloud.labels.size(); ++i) keep[i] = cloud.labels[i].f;
+  return keep_segments(cloud, keep);
+}
+
+// The proportions of the SfM-texture renders of 11 test buildings (reconstruct/README.md): ≈ 5,000 lines,
+// of them ≈ 1,700 on the building's surfaces off its edges and ≈ 2,500 on the ground around it.
+SurfaceClutterOptions photo_clutter(const LineCloud& cloud) {
+  SurfaceClutterOptions o;
+  o.face_lines = static_cast<int>(2.5 * static_cast<double>(cloud.segments.size()));
+  o.ground_lines = static_cast<int>(3.5 * static_cast<double>(cloud.segments.size()));
+  return o;
+}
+
 int run(const Args& a) {
   const auto names = read_name_list(a.split);  // before OUT is made: a bad split writes nothing
   if (names.empty()) throw std::runtime_error(a.split.string() + ": names no building (nothing to do)");
-  for (const char* kind : {"own", "line3dpp", "long", "gt"}) fs::create_directories(a.out / kind);
+  for (const char* kind : {"own", "line3dpp", "long", "edges", "photo", "gt"}) fs::create_directories(a.out / kind);
   for (size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     const LineCloud cloud = read_line_cloud(a.data / (name + ".lcloud"));
     write_line_cloud(a.out / "own" / (name + ".lcloud"), cloud);
     write_line3dpp_txt(a.out / "line3dpp" / (name + ".txt"), cloud);
     write_line_cloud(a.out / "long" / (name + ".lcloud"), make_long_fragment_cloud(cloud, LongFragmentOptions{}, mix_seed(a.seed, i)));
+    write_line_cloud(a.out / "edges" / (name + ".lcloud"), edge_lines_only(cloud));
+    write_line_cloud(a.out / "photo" / (name + ".lcloud"), with_surface_clutter(cloud, photo_clutter(cloud), mix_seed(a.seed ^ kPhotoStream, i)));
     write_obj_wireframe(a.out / "gt" / (name + ".obj"), cloud.wireframe);
   }
   if (!a.quiet) std::fprintf(stderr, "lc2wf-cloud-styles: %zu buildings -> %s\n", names.size(), a.out.string().c_str());

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 #include "dataset/errors.h"
@@ -137,6 +138,38 @@ TEST(CloudAugmentation, EveryDrawGivesAValidLabelledCloud) {
   }
 }
 
+TEST(CloudAugmentation, ClutterAddsUnlabelledSurfaceLinesAndLeavesTheRestAsItWas) {
+  const LineCloud c = make_synthetic_line_cloud(make_random_building(4, "b"), 4);
+  CloudAugmentOptions o = nothing();
+  o.face_clutter_max = 2.0;
+  o.ground_clutter_max = 3.0;
+  size_t most = 0;
+  for (uint64_t seed = 0; seed < 10; ++seed) {
+    const LineCloud a = augment_cloud_statistics(c, o, seed);
+    EXPECT_NO_THROW(validate_line_cloud(a, "cluttered"));
+    ASSERT_GE(a.segments.size(), c.segments.size());
+    EXPECT_LE(a.segments.size(), c.segments.size() * 6);
+    for (size_t i = 0; i < c.segments.size(); ++i) {
+      EXPECT_EQ(a.segments[i].a, c.segments[i].a);
+      EXPECT_EQ(a.labels[i].f, c.labels[i].f);
+    }
+    for (size_t i = c.segments.size(); i < a.segments.size(); ++i) {
+      EXPECT_FALSE(a.labels[i].f);
+      EXPECT_EQ(a.labels[i].i1, -1);
+      EXPECT_EQ(a.labels[i].i2, -1);
+    }
+    most = std::max(most, a.segments.size() - c.segments.size());
+  }
+  EXPECT_GT(most, c.segments.size());  // strengths reach well above one clutter line per segment
+  // The other steps draw as they did before clutter: same pieces first, clutter only appended.
+  CloudAugmentOptions plain;
+  CloudAugmentOptions cluttered = plain;
+  cluttered.face_clutter_max = 1.0;
+  const LineCloud p = augment_cloud_statistics(c, plain, 11), q = augment_cloud_statistics(c, cluttered, 11);
+  ASSERT_GE(q.segments.size(), p.segments.size());
+  for (size_t i = 0; i < p.segments.size(); ++i) EXPECT_EQ(p.segments[i].a, q.segments[i].a);
+}
+
 TEST(CloudAugmentation, UnlabelledCloudsStayUnlabelled) {
   LineCloud c = fragmented_square();
   c.labels.clear();
@@ -151,6 +184,12 @@ TEST(CloudAugmentation, RejectsBadOptionsAndEmptyClouds) {
   EXPECT_THROW(augment_cloud_statistics(fragmented_square(), o, 1), std::invalid_argument);
   o = {};
   o.endpoint_noise_max_m = std::nan("");
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  o = {};
+  o.ground_clutter_max = -1.0;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  o = {};
+  o.clutter_length_max_m = 0.01;  // below min_length_m
   EXPECT_THROW(o.Check(), std::invalid_argument);
   LineCloud empty;
   empty.name = "empty-cloud";

@@ -140,6 +140,25 @@ LineCloud one_labelled_segment() {
   return c;
 }
 
+TEST(LineCloudIo, KeepSegmentsKeepsLabelsAndSupportsInStep) {
+  const LineCloud c = small_cloud();
+  ASSERT_GT(c.segments.size(), 3u);
+  ASSERT_EQ(c.support.size(), c.segments.size());
+  std::vector<bool> keep(c.segments.size(), false);
+  keep[1] = keep[c.segments.size() - 1] = true;
+  const LineCloud k = keep_segments(c, keep);
+  ASSERT_EQ(k.segments.size(), 2u);
+  ASSERT_EQ(k.labels.size(), 2u);
+  ASSERT_EQ(k.support.size(), 2u);
+  EXPECT_EQ(k.segments[1].b, c.segments.back().b);
+  EXPECT_EQ(k.labels[0].i1, c.labels[1].i1);
+  EXPECT_EQ(k.support[0].size(), c.support[1].size());
+  EXPECT_EQ(k.wireframe.edges, c.wireframe.edges);
+  EXPECT_EQ(k.cameras.size(), c.cameras.size());
+  EXPECT_NO_THROW(validate_line_cloud(k, "kept"));
+  EXPECT_THROW(keep_segments(c, std::vector<bool>(2, true)), std::invalid_argument);
+}
+
 TEST(LineCloudIo, BadInputsGiveNamedErrors) {
   const LineCloud c = one_labelled_segment();
   LineCloudWriteOptions json;
