@@ -29,7 +29,8 @@ LineCloud make_long_fragment_cloud(const LineCloud& in, const LongFragmentOption
   out.cameras = in.cameras;
   out.wireframe = in.wireframe;
   out.units = in.units;
-  auto jitter = [&](const Vec3& p) { return p + o.noise_m * Vec3(rng.normal(), rng.normal(), rng.normal()); };
+  // Explicit Vec3: an Eigen expression returned by value would refer to the destroyed temporary.
+  auto jitter = [&](const Vec3& p) -> Vec3 { return p + o.noise_m * Vec3(rng.normal(), rng.normal(), rng.normal()); };
   for (const auto& [j, k] : in.wireframe.edges) {
     const Vec3 a = in.wireframe.junctions[j], d = in.wireframe.junctions[k] - a;
     const int pieces = o.min_pieces + static_cast<int>(rng.below(static_cast<uint64_t>(o.max_pieces - o.min_pieces + 1)));
