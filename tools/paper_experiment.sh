@@ -13,6 +13,9 @@
 #   tools/paper_experiment.sh all       dataset, train, eval, ship
 #   tools/paper_experiment.sh local     next experiment: junction stage with local labels, scored on the
 #                                       validation split with models/base's edge model
+#   tools/paper_experiment.sh robust    configs/robust.json: models/base fine-tuned with the cloud augmentation
+#                                       (fused and split fragments, drops, jitter, photo-like texture clutter),
+#                                       then bench/robustness.sh on held-out buildings -> runs/robust
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -196,6 +199,20 @@ step_local() {
   cat runs/local-labels/val-with-base-edge/metrics.md
 }
 
+# The model for clouds made elsewhere: models/base fine-tuned on augmented clouds, scored on held-out
+# buildings in each cloud style (and on the SfM-texture renders of the photo benchmark when they exist).
+step_robust() {
+  [[ ! -e runs/robust && -f models/robust-training/config.json ]] && step_restore robust
+  local resume=()
+  [[ -d runs/robust/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" configs/robust.json --out runs/robust "${resume[@]}"
+  bench/robustness.sh runs/robust bench/reconstruct/robustness-buildings.txt runs/robust/robustness
+  if [[ -d runs/recon-bench/dataset/clouds ]]; then
+    bench/robustness.sh runs/robust bench/reconstruct/test-buildings.txt runs/robust/robustness-sfm \
+      runs/recon-bench/dataset/clouds
+  fi
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -206,6 +223,7 @@ case "${1:-}" in
   restore) step_restore "${2:-base}" ;;
   ship) step_ship ;;
   local) step_local ;;
+  robust) step_robust ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
