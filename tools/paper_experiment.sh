@@ -78,8 +78,9 @@ step_snapshot() {
   # stage's log lines. In parts of 19 MB: a committed file may have 20 MB at most.
   [[ -f $src/predicted_junctions/manifest.json ]] &&
     tar -C "$src" -czf - predicted_junctions | split -b 19m -d - "$tmp/predicted_junctions.tar.gz.part"
-  sed "s|configs/base.json|configs/$run.json|g; s|runs/base|runs/$run|g; s|models/base-training|$snap|g" \
-    tools/paper_experiment-snapshot.md > "$tmp/README.md"
+  local step=$run
+  case $run in base) step=train ;; local-labels) step=local ;; esac
+  sed "s|@RUN@|$run|g; s|@STEP@|$step|g" tools/paper_experiment-snapshot.md > "$tmp/README.md"
   # The learning curves so far, shown in the top README (skipped without matplotlib).
   /usr/bin/python3 tools/plots/plot_training.py "$src" --out "$tmp/learning_curves.png" >/dev/null ||
     echo "paper_experiment.sh: no learning curves (tools/setup-deps.sh installs python3-matplotlib)" >&2
