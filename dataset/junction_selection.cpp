@@ -12,6 +12,7 @@ void JunctionSelectionOptions::Check() const {
   if (!(max_offset_m > 0)) fail("max_offset_m must be a positive distance in metres (infinity: no limit)");
   if (!(min_confidence >= 0 && min_confidence <= 1)) fail("min_confidence must be in [0, 1]");
   if (top_k < 2) fail("top_k must be >= 2");
+  if (sampling_passes < 1 || sampling_passes > 8) fail("sampling_passes must be in [1, 8]");
   refine.Check();
 }
 
@@ -21,6 +22,7 @@ JunctionSelectionOptions JunctionSelectionOptions::release() {
   o.nms_radius_m = 0.25;  // 5 raw
   o.min_confidence = 0.85;
   o.max_offset_m = std::numeric_limits<double>::infinity();
+  o.sampling_passes = 1;
   o.refine.radius = 0.0;
   return o;
 }

@@ -180,13 +180,14 @@ std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
   const std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
-  char line[600];
+  const std::string passes = s.sampling_passes > 1 ? ", " + std::to_string(s.sampling_passes) + " sampling passes" : "";
+  char line[640];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
                 "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building%s; junctions with "
-                "confidence > %g after NMS %g m%s.\n",
+                "confidence > %g after NMS %g m%s%s.\n",
                 s.buildings, s.threads, s.precision.c_str(), s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
-                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str(), s.min_confidence, s.nms_radius_m, offsets.c_str());
+                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str(), s.min_confidence, s.nms_radius_m, offsets.c_str(), passes.c_str());
   return line;
 }
 
@@ -205,6 +206,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"min_confidence", s.min_confidence},
           {"nms_radius_m", s.nms_radius_m},
           {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
+          {"sampling_passes", s.sampling_passes},
           {"empty_wireframes", s.empty}};
 }
 
@@ -226,6 +228,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.min_confidence = j.value("min_confidence", then.min_confidence);
   s.nms_radius_m = j.value("nms_radius_m", then.nms_radius_m);
   s.max_offset_m = j.contains("max_offset_m") && !j["max_offset_m"].is_null() ? j["max_offset_m"].get<double>() : then.max_offset_m;
+  s.sampling_passes = j.value("sampling_passes", 1);  // one pass before the option existed
   s.empty = j.value("empty_wireframes", s.empty);
   return s;
 }

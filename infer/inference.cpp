@@ -60,13 +60,26 @@ PatchOptions pair_patch_options(const EdgeNetConfig& config) {
   return o;
 }
 
-PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud) {
+PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud, int passes) {
   if (cloud.segments.empty()) return {};
-  const JunctionSampleOptions options = junction_sample_options(net.config());
-  const JunctionPatches patches = make_junction_sample(cloud, options, 0);
+  if (passes < 1) throw std::invalid_argument("predict_junction_candidates: passes must be >= 1");
+  JunctionSampleOptions options = junction_sample_options(net.config());
+  options.sampling.num_samples *= passes;
+  JunctionPatches patches = make_junction_sample(cloud, options, 0);
+  // Patches are stored pass after pass, so each pass is one item of a batch the model reads G at a time.
+  patches.batch = passes;
+  patches.num_patches /= passes;
   const PatchInput in = junction_input(patches);
   EvalScope scope(net);
-  return junction_candidates(net.forward(in.x, in.mask), patches, options.patch.frame).at(0);
+  std::vector<PredictedJunctions> per_pass = junction_candidates(net.forward(in.x, in.mask), patches, options.patch.frame);
+  PredictedJunctions all = std::move(per_pass.at(0));
+  for (size_t p = 1; p < per_pass.size(); ++p) {
+    const PredictedJunctions& more = per_pass[p];
+    all.positions.insert(all.positions.end(), more.positions.begin(), more.positions.end());
+    all.confidence.insert(all.confidence.end(), more.confidence.begin(), more.confidence.end());
+    all.offset_m.insert(all.offset_m.end(), more.offset_m.begin(), more.offset_m.end());
+  }
+  return all;
 }
 
 Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
@@ -127,7 +140,7 @@ WireframePredictor::WireframePredictor(const std::filesystem::path& junction_wei
 
 InferenceResult WireframePredictor::predict(const LineCloud& cloud, const PostProcessOptions& options) const {
   const auto t0 = Clock::now();
-  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud);
+  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;

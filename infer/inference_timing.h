@@ -22,12 +22,14 @@ struct InferenceTiming {
   // The junction selection the scores depend on, so a metrics file says how it was made.
   double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius_m = JunctionSelectionOptions{}.nms_radius_m;
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;  // infinity: every candidate
+  int sampling_passes = JunctionSelectionOptions{}.sampling_passes;
 
   void record_selection(const JunctionSelectionOptions& s, double min_pair_support) {
     pair_support = min_pair_support;
     min_confidence = s.min_confidence;
     nms_radius_m = s.nms_radius_m;
     max_offset_m = s.max_offset_m;
+    sampling_passes = s.sampling_passes;
   }
 };
 

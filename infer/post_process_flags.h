@@ -3,6 +3,8 @@
 // read (so --release-quirks never undoes a flag written before it).
 #pragma once
 
+#include <algorithm>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -18,9 +20,10 @@ struct PostProcessFlags {
   std::optional<double> pair_support;       // --pair-support S
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
+  std::optional<int64_t> sampling_passes;   // --sampling-passes N
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset;
+    return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -31,6 +34,7 @@ struct PostProcessFlags {
     else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
     else return false;
     return true;
   }
@@ -44,10 +48,12 @@ struct PostProcessFlags {
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
+    if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
-                                       {"JunctionSelectionOptions.max_offset_m", "--max-offset"}});
+                                       {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
+                                       {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"}});
     return o;
   }
 };

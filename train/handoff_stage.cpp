@@ -37,12 +37,12 @@ std::string clouds_fingerprint(const std::vector<const LineCloud*>& clouds) {
 
 // True when `file` (the manifest or the progress file) names this junction checkpoint step, these
 // clouds and this version.
-bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint, bool need_offsets) {
+bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint, bool need_offsets, int passes) {
   if (!fs::exists(file)) return false;
   std::ifstream in(file);
   const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
   return !m.is_discarded() && m.is_object() && m.value("junction_step", int64_t{-1}) == step &&
-         m.value("clouds_fingerprint", std::string()) == fingerprint &&
+         m.value("clouds_fingerprint", std::string()) == fingerprint && m.value("sampling_passes", 1) == passes &&
          handoff_version_usable(m.value("version", 0), need_offsets);
 }
 
@@ -53,7 +53,7 @@ bool handoff_version_usable(int version, bool need_offsets) {
 }
 
 fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run,
-                                bool need_offsets) {
+                                bool need_offsets, int sampling_passes) {
   const fs::path dir = run.out / "predicted_junctions", manifest = dir / "manifest.json";
   // Written before the first prediction, removed with the manifest's arrival: an interrupted hand-off resumes.
   const fs::path progress = dir / "in_progress.json";
@@ -71,11 +71,11 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   const bool writer = comm.rank() == 0;
   std::string decision = "redo";
   if (writer && run.resume) {
-    bool complete = made_by(manifest, step, fingerprint, need_offsets);
+    bool complete = made_by(manifest, step, fingerprint, need_offsets, sampling_passes);
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
     if (complete) decision = "keep";
     // An interrupted hand-off of the same weights: its files are whole (atomic writes), keep them.
-    else if (made_by(progress, step, fingerprint, true)) decision = "continue";
+    else if (made_by(progress, step, fingerprint, true, sampling_passes)) decision = "continue";
   }
   comm.broadcast(decision, "hand-off decision");
   if (decision == "keep") {
@@ -87,7 +87,8 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
     log.rewind("handoff", 0, stage_order());
     if (decision == "redo")
       write_text_atomically(progress, json_text({{"format", "lc2wf-predicted-junctions-progress"}, {"junction_step", step},
-                                                 {"clouds_fingerprint", fingerprint}, {"version", kHandoffVersion}}, 2) + "\n");
+                                                 {"clouds_fingerprint", fingerprint}, {"version", kHandoffVersion},
+                                                 {"sampling_passes", sampling_passes}}, 2) + "\n");
   }
   comm.barrier("hand-off progress");  // the progress file exists before any rank writes a prediction
 
@@ -102,7 +103,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
     if (decision == "continue" && fs::exists(predicted_junctions_path(dir, c->name))) {
       ++kept;  // predicted before the interruption, by the same weights: inference is deterministic
     } else {
-      write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c));
+      write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c, sampling_passes));
     }
     if (bar) bar->step();
   }
@@ -117,6 +118,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
                               {"junction_step", step},
                               {"clouds_fingerprint", fingerprint},
                               {"version", kHandoffVersion},
+                              {"sampling_passes", sampling_passes},
                               {"buildings", names}};
     write_text_atomically(manifest, json_text(m, 2) + "\n");
     fs::remove(progress);
@@ -136,7 +138,10 @@ nlohmann::json handoff_identity(const fs::path& dir) {
   const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
   if (m.is_discarded() || !m.is_object() || !m.contains("junction_step") || !m.contains("clouds_fingerprint"))
     throw std::runtime_error(manifest.string() + ": not a complete hand-off manifest (run --stage edge without --resume)");
-  return {{"junction_step", m["junction_step"]}, {"clouds_fingerprint", m["clouds_fingerprint"]}};
+  nlohmann::json identity = {{"junction_step", m["junction_step"]}, {"clouds_fingerprint", m["clouds_fingerprint"]}};
+  // Only when not the release's one pass, so the identities of earlier runs stay what they were.
+  if (m.value("sampling_passes", 1) != 1) identity["sampling_passes"] = m["sampling_passes"];
+  return identity;
 }
 
 }  // namespace lc2wf

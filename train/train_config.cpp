@@ -114,6 +114,7 @@ void EdgeStageConfig::Check() const {
   require(pair_support >= 0 && pair_support <= 1, "edge.pair_support", "must be in [0, 1]");
   require(nms_radius_m > 0 && std::isfinite(nms_radius_m), "edge.nms_radius_m", "must be a positive distance in metres");
   require(std::isfinite(max_offset_m), "edge.max_offset_m", "must be a number of metres (<= 0: every candidate)");
+  require(sampling_passes >= 1 && sampling_passes <= 8, "edge.sampling_passes", "must be in [1, 8]");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

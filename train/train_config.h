@@ -141,6 +141,9 @@ struct EdgeStageConfig {
   // > 0: candidates regressed farther than this from their sample point take no part, as lc2wf-infer
   // --max-offset; <= 0: every candidate (the release).
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;
+  // The junction model's sample points in passes of G, in the hand-off and so in the training pairs and
+  // validation, as lc2wf-infer --sampling-passes (the release: 1).
+  int64_t sampling_passes = JunctionSelectionOptions{}.sampling_passes;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -156,6 +159,7 @@ struct EdgeStageConfig {
     v("pair_support", s.pair_support);
     v("nms_radius_m", s.nms_radius_m);
     v("max_offset_m", s.max_offset_m);
+    v("sampling_passes", s.sampling_passes);
   }
   void Check() const;
   nlohmann::json to_json() const;

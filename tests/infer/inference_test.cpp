@@ -49,6 +49,29 @@ PostProcessOptions keep_every_junction() {
   return o;
 }
 
+// More passes add candidates after the one-pass ones, which stay exactly as they were.
+TEST_F(Inference, SamplingPassesAppendCandidatesToTheFirstPass) {
+  const WireframePredictor predictor(dir_);
+  const PredictedJunctions one = predict_junction_candidates(predictor.junction_net(), cloud_, 1);
+  const PredictedJunctions two = predict_junction_candidates(predictor.junction_net(), cloud_, 2);
+  ASSERT_EQ(one.positions.size(), 32u);
+  ASSERT_EQ(two.positions.size(), 64u);
+  ASSERT_EQ(two.confidence.size(), 64u);
+  ASSERT_EQ(two.offset_m.size(), 64u);
+  for (size_t k = 0; k < one.positions.size(); ++k) {
+    EXPECT_NEAR((two.positions[k] - one.positions[k]).norm(), 0.0, 1e-9) << k;
+    EXPECT_NEAR(two.confidence[k], one.confidence[k], 1e-9) << k;
+  }
+  // The second pass samples other points: its candidates are not the first pass's again.
+  int moved = 0;
+  for (size_t k = 0; k < one.positions.size(); ++k) moved += (two.positions[32 + k] - one.positions[k]).norm() > 1e-6;
+  EXPECT_GT(moved, 16);
+  PostProcessOptions o = keep_every_junction();
+  o.selection.sampling_passes = 2;
+  EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 64u);
+  EXPECT_THROW(predict_junction_candidates(predictor.junction_net(), cloud_, 0), std::invalid_argument);
+}
+
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {
   const WireframePredictor predictor(dir_);
   const InferenceResult r = predictor.predict(cloud_, keep_every_junction());

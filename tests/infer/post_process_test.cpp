@@ -296,6 +296,11 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--nms-radius", "0"}), HasSubstr("--nms-radius must be a positive distance"));
   EXPECT_THAT(message({"--max-offset", "inf"}), HasSubstr("--max-offset expects a finite number"));
   EXPECT_EQ(message({"--max-offset", "-1"}), "");  // <= 0: every candidate
+  EXPECT_THAT(message({"--sampling-passes", "0"}), HasSubstr("--sampling-passes"));
+  EXPECT_THAT(message({"--sampling-passes", "9"}), HasSubstr("--sampling-passes must be in [1, 8]"));
+  EXPECT_EQ(parse_flags({"--sampling-passes", "2"}).options().selection.sampling_passes, 2);
+  EXPECT_EQ(PostProcessFlags{}.options().selection.sampling_passes, 1);  // the release's one pass
+  EXPECT_EQ(parse_flags({"--release-quirks"}).options().selection.sampling_passes, 1);
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};

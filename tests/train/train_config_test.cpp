@@ -132,6 +132,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "min_confidence"}, -0.5, "edge.min_confidence"},
       {{"edge", "nms_radius_m"}, 0.0, "edge.nms_radius_m"},
       {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
+      {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
       {{"junction", "positive_radius_m"}, "near", "junction.positive_radius_m"},
   };
   for (const Case& c : cases) {
@@ -190,7 +191,9 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     c.pair_support = 0.1;
     c.top_k = 40;
     c.max_offset_m = 1.0;
+    c.sampling_passes = 2;
     const PostProcessOptions o = edge_post_process_options(c);
+    EXPECT_EQ(o.selection.sampling_passes, 2) << mode;
     EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5) << mode;
     EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.6) << mode;
     EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.1) << mode;

@@ -189,6 +189,23 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_EQ(edge_steps, 2u) << "the edge stage did not start again on the new hand-off";
   EXPECT_EQ(log_lines(regenerated / "log.jsonl", "handoff").size(), 1u);
 
+  // Another number of sampling passes: the hand-off is predicted again with twice the candidates, and the
+  // edge stage starts again on them.
+  const fs::path two_passes = dir_ / "two-passes";
+  fs::copy(straight, two_passes, fs::copy_options::recursive);
+  nlohmann::json two_passes_config = config_;
+  two_passes_config["edge"]["sampling_passes"] = 2;
+  two_passes_config["edge"]["epochs"] = 2;
+  std::ofstream(dir_ / "two-passes.json") << two_passes_config.dump(2);
+  ASSERT_EQ(run(train_cmd(two_passes, "two-passes.json") + " --stage edge --resume"), 0) << command_output();
+  EXPECT_THAT(command_output(), HasSubstr("trained on other inputs"));
+  const nlohmann::json passes_manifest = nlohmann::json::parse(read_text(two_passes / "predicted_junctions" / "manifest.json"));
+  EXPECT_EQ(passes_manifest["sampling_passes"], 2);
+  auto candidates = [](const fs::path& run_dir) {
+    return nlohmann::json::parse(read_text(run_dir / "predicted_junctions" / "rect.json"))["positions"].size();
+  };
+  EXPECT_EQ(candidates(two_passes), 2 * candidates(straight));
+
   // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
   // compare every step loss with the uninterrupted run.
   const fs::path resumed = dir_ / "resumed";
