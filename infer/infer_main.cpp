@@ -53,7 +53,7 @@ wireframe and a note, never a failure.
   --sampling-passes N run the junction model on N x 256 sample points, 256 at a time (default 1, the
                       release): more GT junctions get a patch near them (sampling covers 87 % of them
                       within 0.35 m at 1 pass, 97 % at 2), at the cost of more candidates to pair
-                      (2 passes on models/base: sAP +2.0, vAP -0.7, WED same; bench/README.md)
+                      (2 passes, models/base, test split: sAP +0.9, vAP -1.5; bench/README.md)
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in
