@@ -21,6 +21,7 @@ void SamplingOptions::Check() const {
   if (!(density_nms_m >= 0)) throw std::invalid_argument("SamplingOptions.density_nms_m must be >= 0");
   if (near_gt_samples < 0) throw std::invalid_argument("SamplingOptions.near_gt_samples must be >= 0");
   if (!(near_gt_radius_m > 0)) throw std::invalid_argument("SamplingOptions.near_gt_radius_m must be > 0");
+  if (passes < 1 || passes > 8) throw std::invalid_argument("SamplingOptions.passes must be in [1, 8]");
 }
 
 std::vector<Vec3> segment_endpoints(const std::vector<Segment3>& segments) {
@@ -99,6 +100,26 @@ std::vector<int> farthest_point_sampling(const std::vector<Vec3>& p, int count, 
   return out;
 }
 
+namespace {
+
+// `first` followed by more points up to `count`: farthest-point sampling goes on from them when there are
+// enough endpoints; otherwise the endpoints not yet taken come next, then the list repeats.
+std::vector<int> continue_sampling(const std::vector<Vec3>& endpoints, std::vector<int> first, int count) {
+  const int n = static_cast<int>(endpoints.size());
+  if (first.empty()) return first;
+  if (n > count) return farthest_point_sampling(endpoints, count, first);  // seeds keep their order
+  std::vector<char> taken(static_cast<size_t>(n), 0);
+  for (int s : first) taken[static_cast<size_t>(s)] = 1;
+  for (int i = 0; i < n; ++i)
+    if (!taken[static_cast<size_t>(i)]) first.push_back(i);
+  const size_t distinct = first.size();
+  while (static_cast<int>(first.size()) < count) first.push_back(first[first.size() % distinct]);
+  first.resize(static_cast<size_t>(count));
+  return first;
+}
+
+}  // namespace
+
 std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const SamplingOptions& o,
                                   const std::vector<Vec3>* gt, DataRng* rng) {
   o.Check();
@@ -121,7 +142,8 @@ std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const Samp
   }
   const auto dens = density_seeds(endpoints, o);
   seeds.insert(seeds.end(), dens.begin(), dens.end());
-  return farthest_point_sampling(endpoints, o.num_samples, seeds);
+  std::vector<int> first = farthest_point_sampling(endpoints, o.num_samples, seeds);
+  return o.passes == 1 ? first : continue_sampling(endpoints, std::move(first), o.passes * o.num_samples);
 }
 
 }  // namespace lc2wf

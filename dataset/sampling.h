@@ -21,6 +21,10 @@ struct SamplingOptions {
   double density_nms_m = 0.075;          // suppressor NMS radius on C
   int near_gt_samples = 0;               // training option: endpoints near GT junctions drawn first
   double near_gt_radius_m = 0.35;        // "near" = within this of a GT junction
+  // Inference option (the release: 1): passes x num_samples points, the first num_samples exactly the
+  // one-pass sample, the rest farthest-point sampling continued from them (sampling_passes in
+  // junction_selection.h).
+  int passes = 1;
   void Check() const;
 };
 
@@ -32,8 +36,8 @@ std::vector<int> density_seeds(const std::vector<Vec3>& endpoints, const Samplin
 // is [0, 1, ..., count-1] mod n, as the release. Returns {} for no points.
 std::vector<int> farthest_point_sampling(const std::vector<Vec3>& points, int count, const std::vector<int>& seeds);
 
-// The full rule: [near-GT picks] + density seeds, then FPS to num_samples. `gt_junctions` and `rng` are
-// only used when near_gt_samples > 0.
+// The full rule: [near-GT picks] + density seeds, then FPS to num_samples; with passes > 1, more points
+// after those. `gt_junctions` and `rng` are only used when near_gt_samples > 0.
 std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const SamplingOptions& options,
                                   const std::vector<Vec3>* gt_junctions = nullptr, DataRng* rng = nullptr);
 

@@ -64,7 +64,7 @@ PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud
   if (cloud.segments.empty()) return {};
   if (passes < 1) throw std::invalid_argument("predict_junction_candidates: passes must be >= 1");
   JunctionSampleOptions options = junction_sample_options(net.config());
-  options.sampling.num_samples *= passes;
+  options.sampling.passes = passes;
   JunctionPatches patches = make_junction_sample(cloud, options, 0);
   // Patches are stored pass after pass, so each pass is one item of a batch the model reads G at a time.
   patches.batch = passes;

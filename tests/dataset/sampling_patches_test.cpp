@@ -131,6 +131,29 @@ TEST(Sampling, FarthestPointSampling) {
   EXPECT_TRUE(farthest_point_sampling({}, 5, {}).empty());
 }
 
+// More passes keep the one-pass sample first, also when the endpoints are too few for every pass.
+TEST(Sampling, PassesContinueAfterTheOnePassSample) {
+  for (int n : {40, 12, 7, 3}) {  // more endpoints than passes x samples, between, and fewer than one pass
+    std::vector<Vec3> p;
+    for (int i = 0; i < n; ++i) p.push_back(Vec3(0.37 * i, std::sin(i), 0));
+    SamplingOptions o;
+    o.num_samples = 5;
+    o.density_min_count = 1000;  // no density seeds: plain farthest-point sampling
+    const std::vector<int> one = sample_endpoints(p, o);
+    o.passes = 3;
+    const std::vector<int> three = sample_endpoints(p, o);
+    ASSERT_EQ(three.size(), 15u) << n;
+    EXPECT_EQ(std::vector<int>(three.begin(), three.begin() + 5), one) << n;
+    std::vector<int> distinct = three;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    EXPECT_EQ(distinct.size(), static_cast<size_t>(std::min(n, 15))) << n;  // every endpoint before any repeat
+  }
+  SamplingOptions bad;
+  bad.passes = 0;
+  EXPECT_THROW(bad.Check(), std::invalid_argument);
+}
+
 TEST(Sampling, NearGtPositivesComeFirstAndAreSeeded) {
   std::vector<Vec3> p;
   for (int i = 0; i < 300; ++i) p.push_back(Vec3(0.1 * i, 0, 0));
