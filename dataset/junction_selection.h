@@ -42,6 +42,10 @@ struct JunctionSelectionOptions {
   // first G points leave uncovered get a patch too: with G = 256, 87 % of the GT junctions have a sample
   // point within 0.35 m, 97 % with 512 (bench/README.md, "Sampling passes").
   int sampling_passes = 1;
+  // Not in the release (one view): each candidate is the junction model's mean answer over this many views
+  // of its patch, rotated by 90° steps or mirrored about the vertical axis (1, 2, 4 or 8; see
+  // infer/test_time_symmetry.h). Costs views x the junction model's time.
+  int test_time_views = 1;
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h.
   JunctionRefineOptions refine{.radius = 0.5};
 

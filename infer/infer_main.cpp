@@ -54,6 +54,9 @@ wireframe and a note, never a failure.
                       release): more GT junctions get a patch near them (sampling covers 87 % of them
                       within 0.35 m at 1 pass, 97 % at 2), at the cost of more candidates to pair
                       (2 passes, models/base, test split: sAP +0.9, vAP -1.5; bench/README.md)
+  --test-time-views N each junction candidate is the model's mean answer over N views of its patch (1, 2,
+                      4 or 8: turned by quarter turns or mirrored about the vertical; default 1, the
+                      release), at N x the junction model's time
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in

@@ -8,6 +8,7 @@
 #include "core/tensor.h"
 #include "dataset/pair_support.h"
 #include "infer/patch_tensors.h"
+#include "infer/test_time_symmetry.h"
 
 #include "core/util/number_format.h"
 #include "core/util/seconds_since.h"
@@ -60,18 +61,42 @@ PatchOptions pair_patch_options(const EdgeNetConfig& config) {
   return o;
 }
 
-PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud, int passes) {
+PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud, int passes, int views_count) {
   if (cloud.segments.empty()) return {};
   if (passes < 1) throw std::invalid_argument("predict_junction_candidates: passes must be >= 1");
+  const std::vector<PlaneSymmetry> views = test_time_symmetries(views_count);
   JunctionSampleOptions options = junction_sample_options(net.config());
   options.sampling.passes = passes;
   JunctionPatches patches = make_junction_sample(cloud, options, 0);
   // Patches are stored pass after pass, so each pass is one item of a batch the model reads G at a time.
   patches.batch = passes;
   patches.num_patches /= passes;
-  const PatchInput in = junction_input(patches);
+  // Each view is `passes` more items of the same batch: the same patches, their vectors transformed.
+  JunctionPatches viewed = patches;
+  viewed.batch = passes * static_cast<int>(views.size());
+  for (size_t v = 1; v < views.size(); ++v) {
+    std::vector<float> features = patches.features;
+    transform_patch_features(features, JunctionPatches::kFeatures, views[v]);
+    viewed.features.insert(viewed.features.end(), features.begin(), features.end());
+    viewed.padded.insert(viewed.padded.end(), patches.padded.begin(), patches.padded.end());
+  }
+  const PatchInput in = junction_input(viewed);
   EvalScope scope(net);
-  std::vector<PredictedJunctions> per_pass = junction_candidates(net.forward(in.x, in.mask), patches, options.patch.frame);
+  const JunctionOutput y = net.forward(in.x, in.mask);
+  std::vector<double> confidence = junction_confidences(y), offsets = y.offsets.to_vector();
+  // The mean over views of the probabilities and of the offsets rotated back into the cloud's frame.
+  const size_t n = static_cast<size_t>(patches.batch) * static_cast<size_t>(patches.num_patches);
+  for (size_t v = 1; v < views.size(); ++v)
+    for (size_t k = 0; k < n; ++k) {
+      double* o = &offsets[3 * (v * n + k)];
+      views[v].apply_inverse(o);
+      confidence[k] += confidence[v * n + k];
+      for (size_t c = 0; c < 3; ++c) offsets[3 * k + c] += o[c];
+    }
+  confidence.resize(n), offsets.resize(3 * n);
+  for (double& c : confidence) c /= static_cast<double>(views.size());
+  for (double& o : offsets) o /= static_cast<double>(views.size());
+  std::vector<PredictedJunctions> per_pass = junction_candidates(confidence, offsets, patches, options.patch.frame);
   PredictedJunctions all = std::move(per_pass.at(0));
   for (size_t p = 1; p < per_pass.size(); ++p) {
     const PredictedJunctions& more = per_pass[p];
@@ -140,7 +165,8 @@ WireframePredictor::WireframePredictor(const std::filesystem::path& junction_wei
 
 InferenceResult WireframePredictor::predict(const LineCloud& cloud, const PostProcessOptions& options) const {
   const auto t0 = Clock::now();
-  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes);
+  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes,
+                                                                            options.selection.test_time_views);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;

@@ -23,6 +23,7 @@ struct InferenceTiming {
   double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius_m = JunctionSelectionOptions{}.nms_radius_m;
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;  // infinity: every candidate
   int sampling_passes = JunctionSelectionOptions{}.sampling_passes;
+  int test_time_views = JunctionSelectionOptions{}.test_time_views;
 
   void record_selection(const JunctionSelectionOptions& s, double min_pair_support) {
     pair_support = min_pair_support;
@@ -30,6 +31,7 @@ struct InferenceTiming {
     nms_radius_m = s.nms_radius_m;
     max_offset_m = s.max_offset_m;
     sampling_passes = s.sampling_passes;
+    test_time_views = s.test_time_views;
   }
 };
 

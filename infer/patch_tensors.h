@@ -29,5 +29,11 @@ Tensor pair_labels(const PairPatches& patches);
 // position = sample point + predicted offset (metres, through `frame`), confidence = softmax(logits)[1].
 std::vector<PredictedJunctions> junction_candidates(const JunctionOutput& y, const JunctionPatches& patches,
                                                     const NetworkFrame& frame);
+// The same from per-patch confidences (B G) and offsets (B G 3, network units), e.g. averaged over views.
+std::vector<PredictedJunctions> junction_candidates(const std::vector<double>& confidence,
+                                                    const std::vector<double>& offsets, const JunctionPatches& patches,
+                                                    const NetworkFrame& frame);
+// softmax(logits)[1] of every patch, in patch order.
+std::vector<double> junction_confidences(const JunctionOutput& y);
 
 }  // namespace lc2wf

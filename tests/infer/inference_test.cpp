@@ -19,6 +19,8 @@
 #include "infer/batch_inference.h"
 #include "infer/inference.h"
 #include "infer/preview.h"
+#include "infer/test_time_symmetry.h"
+#include "dataset/network_frame.h"
 #include "nn/checkpoint.h"
 
 using ::testing::HasSubstr;
@@ -70,6 +72,56 @@ TEST_F(Inference, SamplingPassesAppendCandidatesToTheFirstPass) {
   o.selection.sampling_passes = 2;
   EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 64u);
   EXPECT_THROW(predict_junction_candidates(predictor.junction_net(), cloud_, 0), std::invalid_argument);
+}
+
+// The cloud turned about the vertical through the network frame's centre by `view`.
+LineCloud turned(const LineCloud& cloud, const PlaneSymmetry& view) {
+  const Vec3 c = NetworkFrame{}.centre_m;
+  LineCloud out = cloud;
+  for (Segment3& s : out.segments)
+    for (Vec3* p : {&s.a, &s.b}) {
+      Vec3 d = *p - c;
+      view.apply(d.data());
+      *p = c + d;
+    }
+  return out;
+}
+
+// Averaged over a group of views, the candidates turn with the cloud (the network alone does not): the
+// views of the turned cloud are those of the cloud, and each offset is turned back before the mean.
+TEST_F(Inference, TestTimeViewsMakeTheCandidatesTurnWithTheCloud) {
+  const WireframePredictor predictor(dir_);
+  JunctionNet& net = predictor.junction_net();
+  const PredictedJunctions plain = predict_junction_candidates(net, cloud_, 1, 1);
+  EXPECT_EQ(predict_junction_candidates(net, cloud_).confidence, plain.confidence);  // one view: as before
+  for (const auto& [count, which] : {std::pair{2, 1}, std::pair{8, 4}}) {
+    const PlaneSymmetry view = test_time_symmetries(8)[static_cast<size_t>(which)];
+    const LineCloud other = turned(cloud_, view);
+    const PredictedJunctions a = predict_junction_candidates(net, cloud_, 1, count);
+    const PredictedJunctions b = predict_junction_candidates(net, other, 1, count);
+    const PredictedJunctions b_plain = predict_junction_candidates(net, other, 1, 1);
+    ASSERT_EQ(a.positions.size(), 32u);
+    ASSERT_EQ(b.positions.size(), 32u);
+    double worst = 0.0, worst_plain = 0.0;
+    for (size_t k = 0; k < a.positions.size(); ++k) {
+      const Vec3 c = NetworkFrame{}.centre_m;
+      Vec3 expect = a.positions[k] - c;
+      view.apply(expect.data());
+      expect += c;
+      worst = std::max(worst, (b.positions[k] - expect).norm());
+      EXPECT_NEAR(b.confidence[k], a.confidence[k], 1e-5) << count << " views, candidate " << k;
+      EXPECT_NEAR(b.offset_m[k], a.offset_m[k], 1e-4) << count << " views, candidate " << k;
+      Vec3 expect_plain = plain.positions[k] - c;
+      view.apply(expect_plain.data());
+      worst_plain = std::max(worst_plain, (b_plain.positions[k] - (expect_plain + c)).norm());
+    }
+    EXPECT_LT(worst, 1e-4) << count << " views";
+    EXPECT_GT(worst_plain, 1e-3) << "one view already turns with the cloud: the test would not see a wrong mean";
+  }
+  PostProcessOptions o = keep_every_junction();
+  o.selection.test_time_views = 4;
+  EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 32u);
+  EXPECT_THROW(predict_junction_candidates(net, cloud_, 1, 3), std::invalid_argument);
 }
 
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {

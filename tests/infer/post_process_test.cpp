@@ -301,6 +301,10 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_EQ(parse_flags({"--sampling-passes", "2"}).options().selection.sampling_passes, 2);
   EXPECT_EQ(PostProcessFlags{}.options().selection.sampling_passes, 1);  // the release's one pass
   EXPECT_EQ(parse_flags({"--release-quirks"}).options().selection.sampling_passes, 1);
+  EXPECT_THAT(message({"--test-time-views", "3"}), HasSubstr("--test-time-views must be 1, 2, 4 or 8"));
+  EXPECT_THAT(message({"--test-time-views", "0"}), HasSubstr("--test-time-views"));
+  EXPECT_EQ(parse_flags({"--test-time-views", "8"}).options().selection.test_time_views, 8);
+  EXPECT_EQ(PostProcessFlags{}.options().selection.test_time_views, 1);  // the release's one view
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};
