@@ -84,19 +84,28 @@ PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud
   EvalScope scope(net);
   const JunctionOutput y = net.forward(in.x, in.mask);
   std::vector<double> confidence = junction_confidences(y), offsets = y.offsets.to_vector();
-  // The mean over views of the probabilities and of the offsets rotated back into the cloud's frame.
+  // The mean over views of the probabilities and of the offsets rotated back into the cloud's frame; the
+  // offset length that max_offset_m screens is the mean of the views' lengths, since views that disagree
+  // on a far vote's direction would shorten their mean vector.
   const size_t n = static_cast<size_t>(patches.batch) * static_cast<size_t>(patches.num_patches);
-  for (size_t v = 1; v < views.size(); ++v)
+  std::vector<double> reach(n, 0.0);
+  for (size_t v = 0; v < views.size(); ++v)
     for (size_t k = 0; k < n; ++k) {
       double* o = &offsets[3 * (v * n + k)];
+      reach[k] += std::sqrt(o[0] * o[0] + o[1] * o[1] + o[2] * o[2]);
+      if (v == 0) continue;
       views[v].apply_inverse(o);
       confidence[k] += confidence[v * n + k];
       for (size_t c = 0; c < 3; ++c) offsets[3 * k + c] += o[c];
     }
   confidence.resize(n), offsets.resize(3 * n);
-  for (double& c : confidence) c /= static_cast<double>(views.size());
-  for (double& o : offsets) o /= static_cast<double>(views.size());
+  const double count = static_cast<double>(views.size());
+  for (double& c : confidence) c /= count;
+  for (double& o : offsets) o /= count;
   std::vector<PredictedJunctions> per_pass = junction_candidates(confidence, offsets, patches, options.patch.frame);
+  if (views.size() > 1)
+    for (size_t k = 0; k < n; ++k)
+      per_pass[k / patches.num_patches].offset_m[k % patches.num_patches] = reach[k] / count * options.patch.frame.scale_m;
   PredictedJunctions all = std::move(per_pass.at(0));
   for (size_t p = 1; p < per_pass.size(); ++p) {
     const PredictedJunctions& more = per_pass[p];
@@ -114,9 +123,26 @@ Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vect
   return net.forward(in.x, in.mask);
 }
 
-std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs) {
+std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs,
+                                              int views_count) {
   if (pairs.empty()) return {};
-  return softmax_rows(predict_pair_logits(net, cloud, pairs).to_vector(), static_cast<size_t>(net.config().num_classes));
+  const std::vector<PlaneSymmetry> views = test_time_symmetries(views_count);
+  const size_t C = static_cast<size_t>(net.config().num_classes);
+  const PairPatches patches = build_pair_patches(SegmentSet(cloud.segments), pairs, pair_patch_options(net.config()));
+  EvalScope scope(net);
+  std::vector<double> mean;
+  // One view at a time: a building's pairs attend to each other, so each view is one forward pass.
+  for (const PlaneSymmetry& view : views) {
+    PairPatches viewed = patches;
+    transform_patch_features(viewed.features, PairPatches::kFeatures, view);
+    const PatchInput in = pair_input(viewed);
+    const std::vector<float> probs = softmax_rows(net.forward(in.x, in.mask).to_vector(), C);
+    mean.resize(probs.size(), 0.0);
+    for (size_t k = 0; k < probs.size(); ++k) mean[k] += probs[k];
+  }
+  std::vector<float> out(mean.size());
+  for (size_t k = 0; k < mean.size(); ++k) out[k] = static_cast<float>(mean[k] / static_cast<double>(views.size()));
+  return out;
 }
 
 InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, const PredictedJunctions& junctions,
@@ -135,10 +161,15 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   if (r.pairs.empty()) return r;  // otherwise select_junctions' note says why
 
   t0 = Clock::now();
-  const Tensor z = predict_pair_logits(edge_net, cloud, r.pairs);
   const size_t C = static_cast<size_t>(edge_net.config().num_classes);
-  const std::vector<float> probs = softmax_rows(z.to_vector(), C);
-  if (logits) *logits = z;
+  std::vector<float> probs;
+  if (logits || options.edge_test_time_views == 1) {
+    const Tensor z = predict_pair_logits(edge_net, cloud, r.pairs);
+    probs = softmax_rows(z.to_vector(), C);
+    if (logits) *logits = z;
+  } else {
+    probs = predict_pair_probabilities(edge_net, cloud, r.pairs, options.edge_test_time_views);
+  }
   r.edge_seconds = seconds_since(t0);
 
   t0 = Clock::now();

@@ -36,7 +36,9 @@ PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud
 // Class logits (1, P, 5) of the given pairs of one building, in eval mode without a graph.
 Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs);
 // Class probabilities (P x 5, row-major) of the given pairs of one building, in eval mode without a graph.
-std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs);
+// With `views` > 1 the mean over as many views of the pairs (test_time_symmetry.h).
+std::vector<float> predict_pair_probabilities(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs,
+                                              int views = 1);
 
 struct InferenceResult {
   ScoredWireframe wireframe;       // final, metres

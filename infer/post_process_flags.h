@@ -22,10 +22,11 @@ struct PostProcessFlags {
   std::optional<double> max_offset;         // --max-offset M
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
   std::optional<int64_t> test_time_views;   // --test-time-views N
+  std::optional<int64_t> edge_test_time_views;   // --edge-test-time-views N
 
   bool any() const {
     return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes ||
-           test_time_views;
+           test_time_views || edge_test_time_views;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -38,6 +39,7 @@ struct PostProcessFlags {
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--test-time-views") test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else return false;
     return true;
   }
@@ -53,12 +55,14 @@ struct PostProcessFlags {
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
     if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
     if (test_time_views) o.selection.test_time_views = static_cast<int>(std::min<int64_t>(*test_time_views, 1000));
+    if (edge_test_time_views) o.edge_test_time_views = static_cast<int>(std::min<int64_t>(*edge_test_time_views, 1000));
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
                                        {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},
-                                       {"JunctionSelectionOptions.test_time_views", "--test-time-views"}});
+                                       {"JunctionSelectionOptions.test_time_views", "--test-time-views"},
+                                       {"PostProcessOptions.edge_test_time_views", "--edge-test-time-views"}});
     return o;
   }
 };

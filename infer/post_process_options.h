@@ -14,6 +14,9 @@ struct PostProcessOptions {
   // Which pairs of the selection the edge model classifies: all of them unless min_support > 0
   // (dataset/pair_support.h); a skipped pair is no edge and no identical pair.
   PairSupportOptions pair_support;
+  // Not in the release (one view): each pair's class probabilities are the edge model's mean over this many
+  // views of the building's pairs (1, 2, 4 or 8; infer/test_time_symmetry.h), at views x its time.
+  int edge_test_time_views = 1;
 
   // Identical-pair pruning (post-processing step 2): P(identical) > merge_threshold marks the less confident junction.
   double merge_threshold = 0.2;

@@ -124,6 +124,49 @@ TEST_F(Inference, TestTimeViewsMakeTheCandidatesTurnWithTheCloud) {
   EXPECT_THROW(predict_junction_candidates(net, cloud_, 1, 3), std::invalid_argument);
 }
 
+// The edge model's views: averaged over a group, a pair's class probabilities do not change when the
+// cloud and its junctions turn (one view does).
+TEST_F(Inference, EdgeTestTimeViewsMakePairClassesIndependentOfTheTurn) {
+  const WireframePredictor predictor(dir_);
+  const Vec3 c = NetworkFrame{}.centre_m;
+  const std::vector<Vec3>& corners = cloud_.wireframe.junctions;
+  ASSERT_GE(corners.size(), 4u);
+  for (const auto& [count, which] : {std::pair{2, 1}, std::pair{8, 4}}) {
+    const PlaneSymmetry view = test_time_symmetries(8)[static_cast<size_t>(which)];
+    auto turn = [&](Vec3 p) {
+      Vec3 d = p - c;
+      view.apply(d.data());
+      return Vec3(c + d);
+    };
+    std::vector<JunctionPair> pairs, turned_pairs;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i + 1; j < 4; ++j) {
+        pairs.push_back({corners[i], corners[j], i, j});
+        turned_pairs.push_back({turn(corners[i]), turn(corners[j]), i, j});
+      }
+    const LineCloud other = turned(cloud_, view);
+    EdgeNet& net = predictor.edge_net();
+    const std::vector<float> a = predict_pair_probabilities(net, cloud_, pairs, count);
+    const std::vector<float> b = predict_pair_probabilities(net, other, turned_pairs, count);
+    const std::vector<float> a1 = predict_pair_probabilities(net, cloud_, pairs, 1);
+    const std::vector<float> b1 = predict_pair_probabilities(net, other, turned_pairs, 1);
+    ASSERT_EQ(a.size(), pairs.size() * 5);
+    ASSERT_EQ(b.size(), a.size());
+    double worst = 0.0, worst_plain = 0.0, total = 0.0;
+    for (size_t k = 0; k < a.size(); ++k) {
+      worst = std::max(worst, static_cast<double>(std::abs(a[k] - b[k])));
+      worst_plain = std::max(worst_plain, static_cast<double>(std::abs(a1[k] - b1[k])));
+      total += a[k];
+    }
+    EXPECT_LT(worst, 1e-5) << count << " views";
+    EXPECT_GT(worst_plain, 1e-4) << "one view is already independent of the turn: the test would not see a wrong mean";
+    EXPECT_NEAR(total, static_cast<double>(pairs.size()), 1e-4);  // each pair's mean is still a distribution
+  }
+  PostProcessOptions o = keep_every_junction();
+  o.edge_test_time_views = 3;
+  EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
+}
+
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {
   const WireframePredictor predictor(dir_);
   const InferenceResult r = predictor.predict(cloud_, keep_every_junction());
