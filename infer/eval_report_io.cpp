@@ -181,7 +181,8 @@ std::string inference_markdown(const InferenceTiming& s) {
   const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
   const std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
   const std::string passes = (s.sampling_passes > 1 ? ", " + std::to_string(s.sampling_passes) + " sampling passes" : "") +
-                             (s.test_time_views > 1 ? ", " + std::to_string(s.test_time_views) + " test-time views" : "");
+                             (s.test_time_views > 1 ? ", " + std::to_string(s.test_time_views) + " test-time views" : "") +
+                             (s.edge_test_time_views > 1 ? ", " + std::to_string(s.edge_test_time_views) + " edge views" : "");
   char line[640];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
@@ -209,6 +210,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
           {"sampling_passes", s.sampling_passes},
           {"test_time_views", s.test_time_views},
+          {"edge_test_time_views", s.edge_test_time_views},
           {"empty_wireframes", s.empty}};
 }
 
@@ -232,6 +234,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.max_offset_m = j.contains("max_offset_m") && !j["max_offset_m"].is_null() ? j["max_offset_m"].get<double>() : then.max_offset_m;
   s.sampling_passes = j.value("sampling_passes", 1);  // one pass before the option existed
   s.test_time_views = j.value("test_time_views", 1);  // one view before the option existed
+  s.edge_test_time_views = j.value("edge_test_time_views", 1);
   s.empty = j.value("empty_wireframes", s.empty);
   return s;
 }

@@ -56,7 +56,10 @@ wireframe and a note, never a failure.
                       (2 passes, models/base, test split: sAP +0.9, vAP -1.5; bench/README.md)
   --test-time-views N each junction candidate is the model's mean answer over N views of its patch (1, 2,
                       4 or 8: turned by quarter turns or mirrored about the vertical; default 1, the
-                      release), at N x the junction model's time
+                      release), at N x the junction model's time (models/base, validation split, 8 views:
+                      vAP +4.1, sAP unchanged; infer/README.md)
+  --edge-test-time-views N  the same for the edge model: each pair's class probabilities are the mean over
+                      N views (default 1; 4 views with 8 junction views: sAP +1.4), at N x its time
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in

@@ -24,14 +24,16 @@ struct InferenceTiming {
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;  // infinity: every candidate
   int sampling_passes = JunctionSelectionOptions{}.sampling_passes;
   int test_time_views = JunctionSelectionOptions{}.test_time_views;
+  int edge_test_time_views = 1;  // PostProcessOptions::edge_test_time_views
 
-  void record_selection(const JunctionSelectionOptions& s, double min_pair_support) {
+  void record_selection(const JunctionSelectionOptions& s, double min_pair_support, int edge_views = 1) {
     pair_support = min_pair_support;
     min_confidence = s.min_confidence;
     nms_radius_m = s.nms_radius_m;
     max_offset_m = s.max_offset_m;
     sampling_passes = s.sampling_passes;
     test_time_views = s.test_time_views;
+    edge_test_time_views = edge_views;
   }
 };
 

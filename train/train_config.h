@@ -144,6 +144,9 @@ struct EdgeStageConfig {
   // The junction model's sample points in passes of G, in the hand-off and so in the training pairs and
   // validation, as lc2wf-infer --sampling-passes (the release: 1).
   int64_t sampling_passes = JunctionSelectionOptions{}.sampling_passes;
+  // The junction model's mean over this many views of each patch (1, 2, 4 or 8), in the hand-off and so in
+  // the training pairs and validation, as lc2wf-infer --test-time-views (the release: 1).
+  int64_t test_time_views = JunctionSelectionOptions{}.test_time_views;
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -160,6 +163,7 @@ struct EdgeStageConfig {
     v("nms_radius_m", s.nms_radius_m);
     v("max_offset_m", s.max_offset_m);
     v("sampling_passes", s.sampling_passes);
+    v("test_time_views", s.test_time_views);
   }
   void Check() const;
   nlohmann::json to_json() const;

@@ -119,7 +119,8 @@ int train(const Args& a, Communicator& comm) {
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
   if (a.stage == "edge" || a.stage == "all") {
     const fs::path handoff = write_junction_handoff(train, val, log, run, config.edge.max_offset_m > 0,
-                                                   static_cast<int>(config.edge.sampling_passes));
+                                                   static_cast<int>(config.edge.sampling_passes),
+                                                   static_cast<int>(config.edge.test_time_views));
     train_edge_stage(config, train, val, handoff, log, run);
   }
   if (writer) write_model_card(run.out, a.config, config, train, val);

@@ -37,7 +37,8 @@ PredictedJunctions junctions(const WireframePredictor& predictor, const LineClou
                              const JunctionSelectionOptions& selection) {
   const std::vector<Vec3>& gt = cloud.wireframe.junctions;
   if (mode == "gt") return {gt, std::vector<double>(gt.size(), 1.0)};
-  const PredictedJunctions candidates = predict_junction_candidates(predictor.junction_net(), cloud, selection.sampling_passes);
+  const PredictedJunctions candidates = predict_junction_candidates(predictor.junction_net(), cloud, selection.sampling_passes,
+                                                                    selection.test_time_views);
   if (mode == "predicted") return candidates;
   const JunctionSelection selected = select_junctions(candidates, cloud.segments, selection);
   const std::vector<int> label = assign_junction_labels(selected.positions, gt, PairSamplingOptions{}.fp_distance_m);
@@ -88,7 +89,7 @@ int run(int argc, char** argv) {
     options.selection.max_offset_m = std::numeric_limits<double>::infinity();  // no offsets to screen
     Evaluator evaluator{EvalOptions{}};
     InferenceTiming timing;
-    timing.record_selection(pipeline.selection, pipeline.pair_support.min_support);
+    timing.record_selection(pipeline.selection, pipeline.pair_support.min_support, pipeline.edge_test_time_views);
     for (const std::string& name : read_name_list(split)) {
       const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
       const InferenceResult r = predict_wireframe(predictor.edge_net(), cloud, junctions(predictor, cloud, mode, pipeline.selection),

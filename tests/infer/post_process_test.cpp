@@ -305,6 +305,8 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--test-time-views", "0"}), HasSubstr("--test-time-views"));
   EXPECT_EQ(parse_flags({"--test-time-views", "8"}).options().selection.test_time_views, 8);
   EXPECT_EQ(PostProcessFlags{}.options().selection.test_time_views, 1);  // the release's one view
+  EXPECT_THAT(message({"--edge-test-time-views", "5"}), HasSubstr("--edge-test-time-views must be 1, 2, 4 or 8"));
+  EXPECT_EQ(parse_flags({"--edge-test-time-views", "4"}).options().edge_test_time_views, 4);
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};

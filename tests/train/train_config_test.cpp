@@ -133,6 +133,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "nms_radius_m"}, 0.0, "edge.nms_radius_m"},
       {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
       {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
+      {{"edge", "test_time_views"}, 3, "edge.test_time_views"},
       {{"junction", "positive_radius_m"}, "near", "junction.positive_radius_m"},
   };
   for (const Case& c : cases) {
@@ -192,8 +193,10 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     c.top_k = 40;
     c.max_offset_m = 1.0;
     c.sampling_passes = 2;
+    c.test_time_views = 4;
     const PostProcessOptions o = edge_post_process_options(c);
     EXPECT_EQ(o.selection.sampling_passes, 2) << mode;
+    EXPECT_EQ(o.selection.test_time_views, 4) << mode;
     EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5) << mode;
     EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.6) << mode;
     EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.1) << mode;

@@ -206,6 +206,24 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   };
   EXPECT_EQ(candidates(two_passes), 2 * candidates(straight));
 
+  // Another number of test-time views: the hand-off is predicted again (as many candidates, other
+  // confidences) and the edge stage starts again on it.
+  const fs::path two_views = dir_ / "two-views";
+  fs::copy(straight, two_views, fs::copy_options::recursive);
+  nlohmann::json two_views_config = config_;
+  two_views_config["edge"]["test_time_views"] = 2;
+  two_views_config["edge"]["epochs"] = 2;
+  std::ofstream(dir_ / "two-views.json") << two_views_config.dump(2);
+  ASSERT_EQ(run(train_cmd(two_views, "two-views.json") + " --stage edge --resume"), 0) << command_output();
+  EXPECT_THAT(command_output(), HasSubstr("trained on other inputs"));
+  const nlohmann::json views_manifest = nlohmann::json::parse(read_text(two_views / "predicted_junctions" / "manifest.json"));
+  EXPECT_EQ(views_manifest["test_time_views"], 2);
+  EXPECT_EQ(candidates(two_views), candidates(straight));
+  auto confidences = [](const fs::path& run_dir) {
+    return nlohmann::json::parse(read_text(run_dir / "predicted_junctions" / "rect.json"))["confidences"];
+  };
+  EXPECT_NE(confidences(two_views), confidences(straight));
+
   // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
   // compare every step loss with the uninterrupted run.
   const fs::path resumed = dir_ / "resumed";
