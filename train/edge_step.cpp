@@ -15,6 +15,7 @@ PairSampleOptions edge_training_sample_options(const EdgeStageConfig& c) {
   o.pairs.max_static_pairs = static_cast<int>(c.max_static_pairs);
   o.patch = pair_patch_options(c.net);
   o.augment_enabled = c.schedule.augment;
+  o.augment.rotate_z = c.schedule.augment_rotate_z;
   o.cloud_augment_enabled = c.schedule.cloud_augment.enabled;
   o.cloud_augment = c.schedule.cloud_augment.options;
   return o;

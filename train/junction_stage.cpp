@@ -25,6 +25,7 @@ const std::vector<double> kVertexThresholds{0.15, 0.25, 0.35};
 JunctionSampleOptions stage_sample_options(const JunctionStageConfig& c, bool training) {
   JunctionSampleOptions o = junction_sample_options(c.net);
   o.augment_enabled = training && c.schedule.augment;
+  o.augment.rotate_z = c.schedule.augment_rotate_z;
   o.cloud_augment_enabled = training && c.schedule.cloud_augment.enabled;
   o.cloud_augment = c.schedule.cloud_augment.options;
   o.sampling.near_gt_samples = o.augment_enabled ? static_cast<int>(c.near_gt_samples) : 0;

@@ -68,6 +68,9 @@ struct StageSchedule {
   int64_t val_every = 1;            // validate after every k-th epoch (and after the last)
   int64_t checkpoint_every_steps = 0;  // also save "last" mid-epoch every k steps (0 = per epoch only)
   bool augment = true;              // the release's per-building scale + shift
+  // Not in the release: with augment, also a uniform turn about the vertical (the networks' answers depend
+  // on the building's orientation; bench/README.md, "Test-time views").
+  bool augment_rotate_z = false;
   bool drop_last = true;
   // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the
   // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
@@ -87,6 +90,7 @@ struct StageSchedule {
     v("val_every", s.val_every);
     v("checkpoint_every_steps", s.checkpoint_every_steps);
     v("augment", s.augment);
+    v("augment_rotate_z", s.augment_rotate_z);
     v("drop_last", s.drop_last);
     v("micro_batch", s.micro_batch);
     v("cloud_augment", s.cloud_augment);

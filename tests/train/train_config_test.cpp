@@ -134,6 +134,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
       {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
       {{"edge", "test_time_views"}, 3, "edge.test_time_views"},
+      {{"junction", "augment_rotate_z"}, "yes", "junction.augment_rotate_z"},
       {{"junction", "positive_radius_m"}, "near", "junction.positive_radius_m"},
   };
   for (const Case& c : cases) {
@@ -183,6 +184,14 @@ TEST(TrainConfig, ANumberBeyondADoubleNamesTheFile) {
 
 // The edge stage's selection keys reach the one selection rule the hand-off pairs, validation and
 // inference share; the release's post-processing keeps them too.
+// augment_rotate_z turns the training samples about the vertical (off, as the release, by default).
+TEST(TrainConfig, RotationAugmentReachesTheEdgeSamples) {
+  EdgeStageConfig c;
+  EXPECT_FALSE(edge_training_sample_options(c).augment.rotate_z);
+  c.schedule.augment_rotate_z = true;
+  EXPECT_TRUE(edge_training_sample_options(c).augment.rotate_z);
+}
+
 TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
   for (const char* mode : {"sound", "release"}) {
     EdgeStageConfig c;
