@@ -13,8 +13,7 @@ void JunctionSelectionOptions::Check() const {
   if (!(min_confidence >= 0 && min_confidence <= 1)) fail("min_confidence must be in [0, 1]");
   if (top_k < 2) fail("top_k must be >= 2");
   if (sampling_passes < 1 || sampling_passes > 8) fail("sampling_passes must be in [1, 8]");
-  if (test_time_views != 1 && test_time_views != 2 && test_time_views != 4 && test_time_views != 8)
-    fail("test_time_views must be 1, 2, 4 or 8");
+  if (!valid_view_count(test_time_views)) fail("test_time_views must be 1, 2, 4 or 8");
   refine.Check();
 }
 

@@ -4,6 +4,7 @@
 // then refinement of the survivors against the cloud's segments.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -46,6 +47,8 @@ struct JunctionSelectionOptions {
   // of its patch, rotated by 90° steps or mirrored about the vertical axis (1, 2, 4 or 8; see
   // infer/test_time_symmetry.h). Costs views x the junction model's time.
   int test_time_views = 1;
+  // The view counts there are (every one a group of turns and mirrors): 1, 2, 4 or 8.
+  static bool valid_view_count(int64_t views) { return views == 1 || views == 2 || views == 4 || views == 8; }
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h.
   JunctionRefineOptions refine{.radius = 0.5};
 

@@ -196,8 +196,8 @@ WireframePredictor::WireframePredictor(const std::filesystem::path& junction_wei
 
 InferenceResult WireframePredictor::predict(const LineCloud& cloud, const PostProcessOptions& options) const {
   const auto t0 = Clock::now();
-  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes,
-                                                                            options.selection.test_time_views);
+  const PredictedJunctions junctions =
+      predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes, options.selection.test_time_views);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;

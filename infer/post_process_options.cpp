@@ -20,8 +20,8 @@ bool probability(double p) { return std::isfinite(p) && p >= 0.0 && p <= 1.0; }
 void PostProcessOptions::Check() const {
   selection.Check();
   pair_support.Check();
-  require(edge_test_time_views == 1 || edge_test_time_views == 2 || edge_test_time_views == 4 || edge_test_time_views == 8,
-          "edge_test_time_views", "1, 2, 4 or 8", edge_test_time_views);
+  require(JunctionSelectionOptions::valid_view_count(edge_test_time_views), "edge_test_time_views", "1, 2, 4 or 8",
+          edge_test_time_views);
   require(probability(merge_threshold), "merge_threshold", "in [0, 1]", merge_threshold);
   require(probability(connect_threshold), "connect_threshold", "in [0, 1]", connect_threshold);
   require(hamming_threshold >= 0, "hamming_threshold", ">= 0", hamming_threshold);

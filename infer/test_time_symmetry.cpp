@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "dataset/junction_selection.h"
+
 namespace lc2wf {
 
 std::vector<PlaneSymmetry> test_time_symmetries(int count) {
@@ -15,7 +17,7 @@ std::vector<PlaneSymmetry> test_time_symmetries(int count) {
                                                  {{0, 1, -1, 0}},
                                                  {{0, 1, 1, 0}},
                                                  {{0, -1, -1, 0}}}};
-  if (count != 1 && count != 2 && count != 4 && count != 8)
+  if (!JunctionSelectionOptions::valid_view_count(count))
     throw std::invalid_argument("test-time symmetries: " + std::to_string(count) + " is not 1, 2, 4 or 8");
   return {all.begin(), all.begin() + count};
 }

@@ -115,8 +115,7 @@ void EdgeStageConfig::Check() const {
   require(nms_radius_m > 0 && std::isfinite(nms_radius_m), "edge.nms_radius_m", "must be a positive distance in metres");
   require(std::isfinite(max_offset_m), "edge.max_offset_m", "must be a number of metres (<= 0: every candidate)");
   require(sampling_passes >= 1 && sampling_passes <= 8, "edge.sampling_passes", "must be in [1, 8]");
-  require(test_time_views == 1 || test_time_views == 2 || test_time_views == 4 || test_time_views == 8,
-          "edge.test_time_views", "must be 1, 2, 4 or 8");
+  require(JunctionSelectionOptions::valid_view_count(test_time_views), "edge.test_time_views", "must be 1, 2, 4 or 8");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

@@ -189,40 +189,28 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_EQ(edge_steps, 2u) << "the edge stage did not start again on the new hand-off";
   EXPECT_EQ(log_lines(regenerated / "log.jsonl", "handoff").size(), 1u);
 
-  // Another number of sampling passes: the hand-off is predicted again with twice the candidates, and the
-  // edge stage starts again on them.
-  const fs::path two_passes = dir_ / "two-passes";
-  fs::copy(straight, two_passes, fs::copy_options::recursive);
-  nlohmann::json two_passes_config = config_;
-  two_passes_config["edge"]["sampling_passes"] = 2;
-  two_passes_config["edge"]["epochs"] = 2;
-  std::ofstream(dir_ / "two-passes.json") << two_passes_config.dump(2);
-  ASSERT_EQ(run(train_cmd(two_passes, "two-passes.json") + " --stage edge --resume"), 0) << command_output();
-  EXPECT_THAT(command_output(), HasSubstr("trained on other inputs"));
-  const nlohmann::json passes_manifest = nlohmann::json::parse(read_text(two_passes / "predicted_junctions" / "manifest.json"));
-  EXPECT_EQ(passes_manifest["sampling_passes"], 2);
-  auto candidates = [](const fs::path& run_dir) {
-    return nlohmann::json::parse(read_text(run_dir / "predicted_junctions" / "rect.json"))["positions"].size();
+  // Another value of a hand-off key: the hand-off is predicted again (the manifest records the value) and
+  // the edge stage starts again on it.
+  auto edge_again_with = [&](const std::string& name, const std::string& key, int value) {
+    const fs::path out = dir_ / name;
+    fs::copy(straight, out, fs::copy_options::recursive);
+    nlohmann::json changed = config_;
+    changed["edge"][key] = value;
+    changed["edge"]["epochs"] = 2;
+    std::ofstream(dir_ / (name + ".json")) << changed.dump(2);
+    EXPECT_EQ(run(train_cmd(out, name + ".json") + " --stage edge --resume"), 0) << command_output();
+    EXPECT_THAT(command_output(), HasSubstr("trained on other inputs")) << key;
+    EXPECT_EQ(nlohmann::json::parse(read_text(out / "predicted_junctions" / "manifest.json"))[key], value);
+    return nlohmann::json::parse(read_text(out / "predicted_junctions" / "rect.json"));
   };
-  EXPECT_EQ(candidates(two_passes), 2 * candidates(straight));
-
-  // Another number of test-time views: the hand-off is predicted again (as many candidates, other
-  // confidences) and the edge stage starts again on it.
-  const fs::path two_views = dir_ / "two-views";
-  fs::copy(straight, two_views, fs::copy_options::recursive);
-  nlohmann::json two_views_config = config_;
-  two_views_config["edge"]["test_time_views"] = 2;
-  two_views_config["edge"]["epochs"] = 2;
-  std::ofstream(dir_ / "two-views.json") << two_views_config.dump(2);
-  ASSERT_EQ(run(train_cmd(two_views, "two-views.json") + " --stage edge --resume"), 0) << command_output();
-  EXPECT_THAT(command_output(), HasSubstr("trained on other inputs"));
-  const nlohmann::json views_manifest = nlohmann::json::parse(read_text(two_views / "predicted_junctions" / "manifest.json"));
-  EXPECT_EQ(views_manifest["test_time_views"], 2);
-  EXPECT_EQ(candidates(two_views), candidates(straight));
-  auto confidences = [](const fs::path& run_dir) {
-    return nlohmann::json::parse(read_text(run_dir / "predicted_junctions" / "rect.json"))["confidences"];
-  };
-  EXPECT_NE(confidences(two_views), confidences(straight));
+  const nlohmann::json straight_candidates = nlohmann::json::parse(read_text(straight / "predicted_junctions" / "rect.json"));
+  // Two sampling passes: twice the candidates.
+  EXPECT_EQ(edge_again_with("two-passes", "sampling_passes", 2)["positions"].size(),
+            2 * straight_candidates["positions"].size());
+  // Two test-time views: as many candidates, other confidences.
+  const nlohmann::json two_views = edge_again_with("two-views", "test_time_views", 2);
+  EXPECT_EQ(two_views["positions"].size(), straight_candidates["positions"].size());
+  EXPECT_NE(two_views["confidences"], straight_candidates["confidences"]);
 
   // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
   // compare every step loss with the uninterrupted run.
