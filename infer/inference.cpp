@@ -163,10 +163,9 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   t0 = Clock::now();
   const size_t C = static_cast<size_t>(edge_net.config().num_classes);
   std::vector<float> probs;
-  if (logits || options.edge_test_time_views == 1) {
-    const Tensor z = predict_pair_logits(edge_net, cloud, r.pairs);
-    probs = softmax_rows(z.to_vector(), C);
-    if (logits) *logits = z;
+  if (logits) {  // validation's loss needs the logits of the one view it trains on
+    *logits = predict_pair_logits(edge_net, cloud, r.pairs);
+    probs = softmax_rows(logits->to_vector(), C);
   } else {
     probs = predict_pair_probabilities(edge_net, cloud, r.pairs, options.edge_test_time_views);
   }
