@@ -16,6 +16,9 @@
 #   tools/paper_experiment.sh robust    configs/robust.json: models/base fine-tuned with the cloud augmentation
 #                                       (fused and split fragments, drops, jitter, photo-like texture clutter),
 #                                       then bench/robustness.sh on held-out buildings -> runs/robust
+#   tools/paper_experiment.sh rotate    configs/rotate.json: models/base's junction stage fine-tuned with turns
+#                                       about the vertical, scored on the validation split with models/base's
+#                                       edge model (1 and 8 test-time views) -> runs/rotate
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -214,6 +217,25 @@ step_robust() {
   fi
 }
 
+# The junction model's answers depend on the building's orientation (8 test-time views: +4 vAP on val): the
+# junction stage once more with turns about the vertical, scored with the shipped edge model.
+step_rotate() {
+  [[ ! -e runs/rotate && -f models/rotate-training/config.json ]] && step_restore rotate
+  local resume=()
+  [[ -d runs/rotate/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" configs/rotate.json --stage junction --out runs/rotate "${resume[@]}"
+  # The fine-tuned junction model beside the shipped edge model, as one weights folder.
+  mkdir -p runs/rotate/with-base-edge
+  ln -sfn ../junction.safetensors runs/rotate/with-base-edge/junction.safetensors
+  ln -sfn "$root/models/base/edge.safetensors" runs/rotate/with-base-edge/edge.safetensors
+  local views
+  for views in 1 8; do
+    "$build_dir/infer/lc2wf-eval" --weights runs/rotate/with-base-edge --data runs/dataset/clouds \
+      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/rotate/val-views$views"
+    cat "runs/rotate/val-views$views/metrics.md"
+  done
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -225,6 +247,7 @@ case "${1:-}" in
   ship) step_ship ;;
   local) step_local ;;
   robust) step_robust ;;
+  rotate) step_rotate ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
