@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # How one model serves clouds of other statistics (issue: robust to the cloud's statistics). For the
-# buildings of SPLIT, makes five kinds of cloud with lc2wf-cloud-styles (our own; the same segments
-# through the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter; only our lines
-# on GT edges; ours plus photo-like texture lines on faces and ground), scores
-# WEIGHTS on each with lc2wf-eval and prints a Markdown table (vAP/sAP avg, WED, mean junctions/edges).
+# buildings of SPLIT, makes five kinds of cloud with lc2wf-cloud-styles (our own; the same segments through
+# the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter, also cut back into pieces
+# with --max-segment-length 1.5; only our lines on GT edges; ours plus photo-like texture lines on faces and
+# ground), scores WEIGHTS on each with lc2wf-eval and prints a Markdown table (vAP/sAP avg, WED, mean
+# junctions/edges).
 #
 #   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS]     CLOUDS: labelled clouds (default runs/dataset/clouds)
 #
@@ -11,21 +12,22 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${LC2WF_BUILD_DIR:-$root/build}
-[[ $# -ge 3 ]] || { sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+[[ $# -ge 3 ]] || { sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 weights=$1 split=$2 out=$3 clouds=${4:-$root/runs/dataset/clouds}
 
 "$build/bench/dataset/lc2wf-cloud-styles" --data "$clouds" --split "$split" -o "$out/clouds"
-eval_style() {  # eval_style STYLE [extra lc2wf-eval flags]
-  local style=$1
-  shift
-  "$build/infer/lc2wf-eval" --weights "$weights" --data "$out/clouds/$style" --split "$split" --out "$out/$style" \
-    --method "$style" --quiet "$@" >/dev/null
+eval_as() {  # eval_as ROW STYLE [extra lc2wf-eval flags]
+  local row=$1 style=$2
+  shift 2
+  "$build/infer/lc2wf-eval" --weights "$weights" --data "$out/clouds/$style" --split "$split" --out "$out/$row" \
+    --method "$row" --quiet "$@" >/dev/null
 }
-eval_style own
-eval_style line3dpp --format line3dpp --gt "$out/clouds/gt"
-eval_style long
-eval_style edges
-eval_style photo
+eval_as own own
+eval_as line3dpp line3dpp --format line3dpp --gt "$out/clouds/gt"
+eval_as long long
+eval_as long-cut long --max-segment-length 1.5
+eval_as edges edges
+eval_as photo photo
 
 /usr/bin/python3 - "$out" <<'PY'
 import csv, json, statistics, sys
@@ -33,6 +35,7 @@ from pathlib import Path
 out = Path(sys.argv[1])
 labels = {"own": "our clouds (lc2wf-dataset)", "line3dpp": "same segments via Line3D++ .txt",
           "long": "long fragments from the GT + clutter",
+          "long-cut": "the same, cut at 1.5 m (--max-segment-length 1.5)",
           "edges": "our clouds, only the lines on a GT edge",
           "photo": "our clouds + texture lines on faces and ground (photo-like)"}
 print("| clouds | vAP avg | sAP avg | WED total (Dist) | junctions / building | edges / building |")

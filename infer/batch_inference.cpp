@@ -27,7 +27,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
   BatchInferenceSummary s;
   s.threads = num_threads();
   s.precision = to_string(o.precision);
-  s.record_selection(o.post.selection, o.post.pair_support.min_support, o.post.edge_test_time_views);
+  s.record_selection(o.post);
   std::unique_ptr<Progress> bar;
   if (!o.quiet) bar = std::make_unique<Progress>("inferring", static_cast<int64_t>(clouds.size()));
   for (const auto& path : clouds) {

@@ -70,6 +70,8 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
   --test-time-views N  with --weights: the junction model's mean over N views of each patch (default 1;
                   see lc2wf-infer --help)
   --edge-test-time-views N  with --weights: the edge model's mean over N views of the pairs (default 1)
+  --max-segment-length M  with --weights: cut segments longer than M metres into pieces first (default 0 =
+                  off; see lc2wf-infer --help)
   --previews      with --weights: also write OUT/previews/<name>.png
   --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
                   line3dpp (Line3D++ .txt), limap (finaltracks/ folder) or obj (line OBJ); clouds
@@ -160,7 +162,7 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
   if (a.weights.empty() && (a.post.any() || a.previews || a.format != "auto" || a.precision != "fp32"))
     throw UsageError(
-        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius, --max-offset, --sampling-passes, --test-time-views, --edge-test-time-views, --previews, --format and "
+        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius, --max-offset, --sampling-passes, --test-time-views, --edge-test-time-views, --max-segment-length, --previews, --format and "
         "--precision only apply with --weights");
   a.post.options();  // checks the values before anything is written
 #if LC2WF_EVAL_WITH_WEIGHTS

@@ -7,6 +7,7 @@
 
 #include "core/tensor.h"
 #include "dataset/pair_support.h"
+#include "dataset/segment_split.h"
 #include "infer/patch_tensors.h"
 #include "infer/test_time_symmetry.h"
 
@@ -193,8 +194,12 @@ WireframePredictor::WireframePredictor(const std::filesystem::path& junction_wei
                                        const std::filesystem::path& edge_weights)
     : junction_(load_junction_net(junction_weights)), edge_(load_edge_net(edge_weights)) {}
 
-InferenceResult WireframePredictor::predict(const LineCloud& cloud, const PostProcessOptions& options) const {
+InferenceResult WireframePredictor::predict(const LineCloud& input, const PostProcessOptions& options) const {
+  options.Check();  // before the cut, so a bad length is reported as the option it is
   const auto t0 = Clock::now();
+  LineCloud split;
+  if (options.max_segment_length_m > 0.0) split = split_long_segments(input, options.max_segment_length_m);
+  const LineCloud& cloud = options.max_segment_length_m > 0.0 ? split : input;
   const PredictedJunctions junctions =
       predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes, options.selection.test_time_views);
   const double junction_seconds = seconds_since(t0);

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "dataset/junction_selection.h"
+#include "infer/post_process_options.h"
 
 namespace lc2wf {
 
@@ -25,15 +25,18 @@ struct InferenceTiming {
   int sampling_passes = JunctionSelectionOptions{}.sampling_passes;
   int test_time_views = JunctionSelectionOptions{}.test_time_views;
   int edge_test_time_views = 1;  // PostProcessOptions::edge_test_time_views
+  double max_segment_length_m = 0;  // PostProcessOptions::max_segment_length_m: 0 = the clouds as they are
 
-  void record_selection(const JunctionSelectionOptions& s, double min_pair_support, int edge_views = 1) {
-    pair_support = min_pair_support;
+  void record_selection(const PostProcessOptions& o) {
+    const JunctionSelectionOptions& s = o.selection;
+    pair_support = o.pair_support.min_support;
     min_confidence = s.min_confidence;
     nms_radius_m = s.nms_radius_m;
     max_offset_m = s.max_offset_m;
     sampling_passes = s.sampling_passes;
     test_time_views = s.test_time_views;
-    edge_test_time_views = edge_views;
+    edge_test_time_views = o.edge_test_time_views;
+    max_segment_length_m = o.max_segment_length_m;
   }
 };
 

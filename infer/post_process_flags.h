@@ -23,10 +23,11 @@ struct PostProcessFlags {
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
   std::optional<int64_t> test_time_views;   // --test-time-views N
   std::optional<int64_t> edge_test_time_views;   // --edge-test-time-views N
+  std::optional<double> max_segment_length;      // --max-segment-length M
 
   bool any() const {
     return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes ||
-           test_time_views || edge_test_time_views;
+           test_time_views || edge_test_time_views || max_segment_length;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -40,6 +41,7 @@ struct PostProcessFlags {
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--test-time-views") test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--max-segment-length") max_segment_length = number_flag(flag, flag_value(argc, argv, i));
     else return false;
     return true;
   }
@@ -56,13 +58,15 @@ struct PostProcessFlags {
     if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
     if (test_time_views) o.selection.test_time_views = static_cast<int>(std::min<int64_t>(*test_time_views, 1000));
     if (edge_test_time_views) o.edge_test_time_views = static_cast<int>(std::min<int64_t>(*edge_test_time_views, 1000));
+    if (max_segment_length) o.max_segment_length_m = *max_segment_length;
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
                                        {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},
                                        {"JunctionSelectionOptions.test_time_views", "--test-time-views"},
-                                       {"PostProcessOptions.edge_test_time_views", "--edge-test-time-views"}});
+                                       {"PostProcessOptions.edge_test_time_views", "--edge-test-time-views"},
+                                       {"PostProcessOptions.max_segment_length_m", "--max-segment-length"}});
     return o;
   }
 };

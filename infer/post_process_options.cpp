@@ -20,6 +20,8 @@ bool probability(double p) { return std::isfinite(p) && p >= 0.0 && p <= 1.0; }
 void PostProcessOptions::Check() const {
   selection.Check();
   pair_support.Check();
+  require(max_segment_length_m == 0.0 || (max_segment_length_m >= 0.05 && max_segment_length_m <= 100.0),
+          "max_segment_length_m", "0 (off) or in [0.05, 100] metres", max_segment_length_m);
   require(JunctionSelectionOptions::valid_view_count(edge_test_time_views), "edge_test_time_views", "1, 2, 4 or 8",
           edge_test_time_views);
   require(probability(merge_threshold), "merge_threshold", "in [0, 1]", merge_threshold);

@@ -9,6 +9,9 @@
 namespace lc2wf {
 
 struct PostProcessOptions {
+  // Not in the release (0 = off): segments longer than this are cut into equal pieces before inference
+  // (dataset/segment_split.h), for clouds of long clustered lines (Line3D++, LIMAP, photo reconstructions).
+  double max_segment_length_m = 0.0;
   // Junction selection before pairing: the rule training uses too (dataset/junction_selection.h).
   JunctionSelectionOptions selection;
   // Which pairs of the selection the edge model classifies: all of them unless min_support > 0

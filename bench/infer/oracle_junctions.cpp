@@ -89,7 +89,7 @@ int run(int argc, char** argv) {
     options.selection.max_offset_m = std::numeric_limits<double>::infinity();  // no offsets to screen
     Evaluator evaluator{EvalOptions{}};
     InferenceTiming timing;
-    timing.record_selection(pipeline.selection, pipeline.pair_support.min_support, pipeline.edge_test_time_views);
+    timing.record_selection(pipeline);
     for (const std::string& name : read_name_list(split)) {
       const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
       const InferenceResult r = predict_wireframe(predictor.edge_net(), cloud, junctions(predictor, cloud, mode, pipeline.selection),

@@ -15,6 +15,7 @@
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "dataset/line_cloud_io.h"
+#include "dataset/segment_split.h"
 #include "core/util/cli.h"
 #include "infer/batch_inference.h"
 #include "infer/inference.h"
@@ -164,6 +165,26 @@ TEST_F(Inference, EdgeTestTimeViewsMakePairClassesIndependentOfTheTurn) {
   }
   PostProcessOptions o = keep_every_junction();
   o.edge_test_time_views = 3;
+  EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
+}
+
+// --max-segment-length runs the networks on the cut cloud: the same wireframe as cutting it first.
+TEST_F(Inference, MaxSegmentLengthPredictsOnTheCutCloud) {
+  const WireframePredictor predictor(dir_);
+  PostProcessOptions o = keep_every_junction();
+  o.max_segment_length_m = 0.7;
+  const InferenceResult cut = predictor.predict(cloud_, o);
+  const InferenceResult first = predictor.predict(split_long_segments(cloud_, 0.7), keep_every_junction());
+  const InferenceResult whole = predictor.predict(cloud_, keep_every_junction());
+  ASSERT_EQ(cut.junctions.positions.size(), first.junctions.positions.size());
+  double differs = 0.0;
+  for (size_t k = 0; k < cut.junctions.positions.size(); ++k) {
+    EXPECT_EQ(cut.junctions.positions[k], first.junctions.positions[k]);
+    differs += (cut.junctions.positions[k] - whole.junctions.positions[k]).norm();
+  }
+  EXPECT_GT(differs, 1e-3) << "the cut changed nothing: the test would not see the option ignored";
+  EXPECT_EQ(cut.wireframe.wireframe.edges, first.wireframe.wireframe.edges);
+  o.max_segment_length_m = 0.01;
   EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
 }
 

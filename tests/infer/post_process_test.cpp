@@ -307,6 +307,10 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_EQ(PostProcessFlags{}.options().selection.test_time_views, 1);  // the release's one view
   EXPECT_THAT(message({"--edge-test-time-views", "5"}), HasSubstr("--edge-test-time-views must be 1, 2, 4 or 8"));
   EXPECT_EQ(parse_flags({"--edge-test-time-views", "4"}).options().edge_test_time_views, 4);
+  EXPECT_THAT(message({"--max-segment-length", "0.01"}), HasSubstr("--max-segment-length must be 0 (off) or in [0.05, 100]"));
+  EXPECT_THAT(message({"--max-segment-length", "nan"}), HasSubstr("--max-segment-length"));
+  EXPECT_EQ(parse_flags({"--max-segment-length", "1.5"}).options().max_segment_length_m, 1.5);
+  EXPECT_EQ(PostProcessFlags{}.options().max_segment_length_m, 0.0);  // off: the release's cloud as it is
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};
