@@ -20,4 +20,18 @@ constexpr int64_t kMaxSplitSegments = 2'000'000;
 // cloud when there would be more than kMaxSplitSegments segments.
 LineCloud split_long_segments(const LineCloud& cloud, double max_length_m);
 
+// Fraction of the segments longer than min_length_m that another segment overlaps along the same line
+// (directions within 5 degrees, the midpoint within 10 cm of the other segment and inside its extent); 1
+// when none is that long. Per-view fragment clouds have several views' fragments on every edge (ours and
+// ours with photo texture lines: >= 0.9 on Roof-Image); merged line maps one line per edge stretch
+// (long-fragment clouds: 0.36-0.48). Linear in the cloud's length (a grid of points every 5 cm along the
+// segments, at most kMaxSplitSegments of them: longer clouds are sampled more sparsely).
+double overlapped_long_fraction(const LineCloud& cloud, double min_length_m);
+
+// The rule of --max-segment-length auto: a cloud is a merged line map when fewer than this fraction of its
+// long segments are overlapped.
+constexpr double kMergedMapOverlap = 0.7;
+// The pieces' length of --max-segment-length auto: the best of 0.5-3 m for models/base on long-fragment clouds.
+constexpr double kMergedMapPieceLength = 1.5;
+
 }  // namespace lc2wf

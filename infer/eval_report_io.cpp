@@ -183,7 +183,9 @@ std::string inference_markdown(const InferenceTiming& s) {
   const std::string passes = (s.sampling_passes > 1 ? ", " + std::to_string(s.sampling_passes) + " sampling passes" : "") +
                              (s.test_time_views > 1 ? ", " + std::to_string(s.test_time_views) + " test-time views" : "") +
                              (s.edge_test_time_views > 1 ? ", " + std::to_string(s.edge_test_time_views) + " edge views" : "") +
-                             (s.max_segment_length_m > 0 ? ", segments cut at " + format_number("%g", s.max_segment_length_m) + " m" : "");
+                             (s.max_segment_length_m > 0 ? ", segments cut at " + format_number("%g", s.max_segment_length_m) + " m" +
+                                                                (s.merged_maps_only ? " in merged line maps" : "")
+                                                          : "");
   char line[640];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
@@ -213,6 +215,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"test_time_views", s.test_time_views},
           {"edge_test_time_views", s.edge_test_time_views},
           {"max_segment_length_m", s.max_segment_length_m},
+          {"merged_maps_only", s.merged_maps_only},
           {"empty_wireframes", s.empty}};
 }
 
@@ -238,6 +241,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.test_time_views = j.value("test_time_views", 1);  // one view before the option existed
   s.edge_test_time_views = j.value("edge_test_time_views", 1);
   s.max_segment_length_m = j.value("max_segment_length_m", 0.0);  // uncut before the option existed
+  s.merged_maps_only = j.value("merged_maps_only", false);
   s.empty = j.value("empty_wireframes", s.empty);
   return s;
 }

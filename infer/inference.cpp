@@ -197,15 +197,25 @@ WireframePredictor::WireframePredictor(const std::filesystem::path& junction_wei
 InferenceResult WireframePredictor::predict(const LineCloud& input, const PostProcessOptions& options) const {
   options.Check();  // before the cut, so a bad length is reported as the option it is
   const auto t0 = Clock::now();
+  const double cut = options.max_segment_length_m;
+  const double overlapped = cut > 0.0 && options.merged_maps_only ? overlapped_long_fraction(input, cut) : 0.0;
+  const bool cut_it = cut > 0.0 && overlapped < kMergedMapOverlap;
   LineCloud split;
-  if (options.max_segment_length_m > 0.0) split = split_long_segments(input, options.max_segment_length_m);
-  const LineCloud& cloud = options.max_segment_length_m > 0.0 ? split : input;
+  if (cut_it) split = split_long_segments(input, cut);
+  const LineCloud& cloud = cut_it ? split : input;
   const PredictedJunctions junctions =
       predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes, options.selection.test_time_views);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;
   if (cloud.segments.empty()) r.notes.insert(r.notes.begin(), "line cloud has no segments: no junction candidates");
+  if (cut_it)
+    r.notes.insert(r.notes.begin(),
+                   (options.merged_maps_only ? "a merged line map (" + format_number("%.0f", 100 * overlapped) +
+                                                   " % of its long segments overlapped by another): "
+                                             : std::string()) +
+                       std::to_string(input.segments.size()) + " segments cut at " +
+                       format_number("%g", cut) + " m into " + std::to_string(cloud.segments.size()));
   return r;
 }
 

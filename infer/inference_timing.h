@@ -26,6 +26,7 @@ struct InferenceTiming {
   int test_time_views = JunctionSelectionOptions{}.test_time_views;
   int edge_test_time_views = 1;  // PostProcessOptions::edge_test_time_views
   double max_segment_length_m = 0;  // PostProcessOptions::max_segment_length_m: 0 = the clouds as they are
+  bool merged_maps_only = false;    // PostProcessOptions::merged_maps_only
 
   void record_selection(const PostProcessOptions& o) {
     const JunctionSelectionOptions& s = o.selection;
@@ -37,6 +38,7 @@ struct InferenceTiming {
     test_time_views = s.test_time_views;
     edge_test_time_views = o.edge_test_time_views;
     max_segment_length_m = o.max_segment_length_m;
+    merged_maps_only = o.merged_maps_only;
   }
 };
 

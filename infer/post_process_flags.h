@@ -23,11 +23,12 @@ struct PostProcessFlags {
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
   std::optional<int64_t> test_time_views;   // --test-time-views N
   std::optional<int64_t> edge_test_time_views;   // --edge-test-time-views N
-  std::optional<double> max_segment_length;      // --max-segment-length M
+  std::optional<double> max_segment_length;      // --max-segment-length M (a number: every cloud)
+  bool max_segment_length_auto = false;          // --max-segment-length auto
 
   bool any() const {
     return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes ||
-           test_time_views || edge_test_time_views || max_segment_length;
+           test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -41,7 +42,12 @@ struct PostProcessFlags {
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--test-time-views") test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
-    else if (flag == "--max-segment-length") max_segment_length = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--max-segment-length") {
+      const std::string value = flag_value(argc, argv, i);
+      max_segment_length_auto = value == "auto";
+      max_segment_length.reset();
+      if (!max_segment_length_auto) max_segment_length = number_flag(flag, value);
+    }
     else return false;
     return true;
   }
@@ -58,7 +64,11 @@ struct PostProcessFlags {
     if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
     if (test_time_views) o.selection.test_time_views = static_cast<int>(std::min<int64_t>(*test_time_views, 1000));
     if (edge_test_time_views) o.edge_test_time_views = static_cast<int>(std::min<int64_t>(*edge_test_time_views, 1000));
-    if (max_segment_length) o.max_segment_length_m = *max_segment_length;
+    if (max_segment_length_auto) {
+      o.max_segment_length_m = kMergedMapPieceLength;
+      o.merged_maps_only = true;
+    }
+    if (max_segment_length) o.max_segment_length_m = *max_segment_length, o.merged_maps_only = false;
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},

@@ -44,6 +44,7 @@ PostProcessOptions PostProcessOptions::release_quirks() {
   o.transfer_edges_on_merge = false;
   o.pruned_junctions_in_merge = true;
   o.line_nms_keep_higher = false;
+  o.max_segment_length_m = 0.0;  // the release runs on the cloud as it is
   return o;
 }
 

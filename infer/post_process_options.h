@@ -5,13 +5,17 @@
 
 #include "dataset/junction_selection.h"
 #include "dataset/pair_support.h"
+#include "dataset/segment_split.h"
 
 namespace lc2wf {
 
 struct PostProcessOptions {
-  // Not in the release (0 = off): segments longer than this are cut into equal pieces before inference
-  // (dataset/segment_split.h), for clouds of long clustered lines (Line3D++, LIMAP, photo reconstructions).
-  double max_segment_length_m = 0.0;
+  // Not in the release: segments longer than this are cut into two staggered chains of pieces before
+  // inference (dataset/segment_split.h), for line maps with one line per edge stretch (Line3D++, LIMAP);
+  // 0 = never. With merged_maps_only, only clouds that look merged (overlapped_long_fraction below
+  // kMergedMapOverlap) are cut: per-view fragment clouds like ours pass unchanged.
+  double max_segment_length_m = kMergedMapPieceLength;
+  bool merged_maps_only = true;
   // Junction selection before pairing: the rule training uses too (dataset/junction_selection.h).
   JunctionSelectionOptions selection;
   // Which pairs of the selection the edge model classifies: all of them unless min_support > 0

@@ -74,8 +74,8 @@ Options:
   --sampling-passes N    the junction model's sample points in N passes of 256 (default 1; see lc2wf-infer --help)
   --test-time-views N    the junction model's mean over N views of each patch (default 1; see lc2wf-infer --help)
   --edge-test-time-views N  the edge model's mean over N views of the pairs (default 1; see lc2wf-infer --help)
-  --max-segment-length M  cut segments longer than M metres into pieces first (default 0 = off; our
-                         triangulation already makes per-view fragments; see lc2wf-infer --help)
+  --max-segment-length M|auto  cut segments longer than M metres into pieces first (default auto: merged
+                         line maps only, which our triangulation does not make; see lc2wf-infer --help)
   --workspace DIR        intermediate files there (must be new or empty; never deleted)
   --keep                 keep the private temporary workspace (its path is printed)
   -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)

@@ -1,7 +1,9 @@
 // lc2wf-cloud-styles: the same held-out buildings as clouds of several kinds, to measure how a model
 // trained on one extractor's clouds serves others (bench/robustness.sh scores a model on each).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 #include "dataset/long_fragment_cloud.h"
 #include "dataset/mesh_io.h"
 #include "dataset/rng.h"
+#include "dataset/segment_split.h"
 #include "dataset/splits.h"
 #include "dataset/surface_clutter.h"
 
@@ -32,6 +35,8 @@ For every building of FILE, reads DIR/<name>.lcloud (a labelled cloud of lc2wf-d
                               2.5 per segment on the faces, 3.5 on the ground around the building
                               (dataset/surface_clutter.h)
   OUT/gt/<name>.obj           the ground truth in metres, for lc2wf-eval --gt
+Prints on stdout, per kind, the share of long segments another segment overlaps (the rule of
+--max-segment-length auto, dataset/segment_split.h) and how many clouds it takes for merged line maps.
 Deterministic for a seed and the split's order.
 
   --data DIR     labelled line clouds
@@ -79,20 +84,39 @@ SurfaceClutterOptions photo_clutter(const LineCloud& cloud) {
   return o;
 }
 
+// How far each style is from a merged line map (the --max-segment-length auto rule), over the split.
+struct OverlapRange {
+  double low = 1.0, high = 0.0, sum = 0.0;
+  int clouds = 0, merged = 0;
+  void add(const LineCloud& cloud) {
+    const double f = overlapped_long_fraction(cloud, kMergedMapPieceLength);
+    low = std::min(low, f), high = std::max(high, f), sum += f, ++clouds, merged += f < kMergedMapOverlap;
+  }
+};
+
 int run(const Args& a) {
   const auto names = read_name_list(a.split);  // before OUT is made: a bad split writes nothing
   if (names.empty()) throw std::runtime_error(a.split.string() + ": names no building (nothing to do)");
   for (const char* kind : {"own", "line3dpp", "long", "edges", "photo", "gt"}) fs::create_directories(a.out / kind);
+  std::map<std::string, OverlapRange> overlap;
   for (size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
     const LineCloud cloud = read_line_cloud(a.data / (name + ".lcloud"));
-    write_line_cloud(a.out / "own" / (name + ".lcloud"), cloud);
+    const LineCloud styles[] = {
+        cloud, make_long_fragment_cloud(cloud, LongFragmentOptions{}, mix_seed(a.seed, i)), edge_lines_only(cloud),
+        with_surface_clutter(cloud, photo_clutter(cloud), mix_seed(a.seed ^ kPhotoStream, i))};
+    const char* kinds[] = {"own", "long", "edges", "photo"};
+    for (int k = 0; k < 4; ++k) {
+      write_line_cloud(a.out / kinds[k] / (name + ".lcloud"), styles[k]);
+      overlap[kinds[k]].add(styles[k]);
+    }
     write_line3dpp_txt(a.out / "line3dpp" / (name + ".txt"), cloud);
-    write_line_cloud(a.out / "long" / (name + ".lcloud"), make_long_fragment_cloud(cloud, LongFragmentOptions{}, mix_seed(a.seed, i)));
-    write_line_cloud(a.out / "edges" / (name + ".lcloud"), edge_lines_only(cloud));
-    write_line_cloud(a.out / "photo" / (name + ".lcloud"), with_surface_clutter(cloud, photo_clutter(cloud), mix_seed(a.seed ^ kPhotoStream, i)));
     write_obj_wireframe(a.out / "gt" / (name + ".obj"), cloud.wireframe);
   }
+  std::printf("| clouds | long segments overlapped (min / mean / max) | taken for merged line maps |\n|---|---|---|\n");
+  for (const auto& [kind, r] : overlap)
+    std::printf("| %s | %.2f / %.2f / %.2f | %d of %d |\n", kind.c_str(), r.low, r.sum / std::max(1, r.clouds), r.high,
+                r.merged, r.clouds);
   if (!a.quiet) std::fprintf(stderr, "lc2wf-cloud-styles: %zu buildings -> %s\n", names.size(), a.out.string().c_str());
   return kExitDone;
 }

@@ -91,5 +91,18 @@ TEST(SegmentSplit, RefusesNonFiniteLimitsAndCloudsThatWouldNotFitInMemory) {
   }
 }
 
+// Merged line maps (one line per stretch of edge) against per-view fragments (several overlapping lines).
+TEST(SegmentSplit, OverlappedLongFractionTellsMergedMapsFromFragmentClouds) {
+  LineCloud c;
+  c.segments = {{Vec3(0, 0, 0), Vec3(4, 0, 0)}, {Vec3(4, 0, 0), Vec3(8, 0, 0)},    // consecutive, not overlapping
+                {Vec3(0, 2, 0), Vec3(4, 2, 0)}, {Vec3(1, 2.05, 0), Vec3(5, 2.05, 0)},  // overlapping, 5 cm apart
+                {Vec3(0, 4, 0), Vec3(4, 4, 0)}, {Vec3(0, 4, 0), Vec3(4, 4.5, 1)},     // crossing at 10 degrees
+                {Vec3(0, 6, 0), Vec3(4, 6, 0)}, {Vec3(0, 6.3, 0), Vec3(4, 6.3, 0)},   // parallel, 30 cm apart
+                {Vec3(0, 8, 0), Vec3(0, 8, 1)}};                                      // short: not counted
+  // Long: 8 of 9; overlapped: the two of the overlapping pair only.
+  EXPECT_NEAR(overlapped_long_fraction(c, 1.5), 2.0 / 8.0, 1e-12);
+  EXPECT_EQ(overlapped_long_fraction(c, 10.0), 1.0);  // no segment that long
+}
+
 }  // namespace
 }  // namespace lc2wf

@@ -173,9 +173,12 @@ TEST_F(Inference, MaxSegmentLengthPredictsOnTheCutCloud) {
   const WireframePredictor predictor(dir_);
   PostProcessOptions o = keep_every_junction();
   o.max_segment_length_m = 0.7;
+  o.merged_maps_only = false;
+  PostProcessOptions as_is = keep_every_junction();
+  as_is.max_segment_length_m = 0.0;
   const InferenceResult cut = predictor.predict(cloud_, o);
-  const InferenceResult first = predictor.predict(split_long_segments(cloud_, 0.7), keep_every_junction());
-  const InferenceResult whole = predictor.predict(cloud_, keep_every_junction());
+  const InferenceResult first = predictor.predict(split_long_segments(cloud_, 0.7), as_is);
+  const InferenceResult whole = predictor.predict(cloud_, as_is);
   ASSERT_EQ(cut.junctions.positions.size(), first.junctions.positions.size());
   double differs = 0.0;
   for (size_t k = 0; k < cut.junctions.positions.size(); ++k) {
@@ -184,8 +187,34 @@ TEST_F(Inference, MaxSegmentLengthPredictsOnTheCutCloud) {
   }
   EXPECT_GT(differs, 1e-3) << "the cut changed nothing: the test would not see the option ignored";
   EXPECT_EQ(cut.wireframe.wireframe.edges, first.wireframe.wireframe.edges);
+  ASSERT_FALSE(cut.notes.empty());
+  EXPECT_THAT(cut.notes.front(), HasSubstr("segments cut at 0.7 m"));
   o.max_segment_length_m = 0.01;
   EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
+}
+
+// The default (auto) cuts a merged line map and leaves a per-view fragment cloud as it is.
+TEST_F(Inference, MaxSegmentLengthAutoCutsOnlyMergedLineMaps) {
+  const WireframePredictor predictor(dir_);
+  LineCloud merged = cloud_;  // one line per GT edge: nothing overlaps it
+  merged.segments.clear();
+  merged.labels.clear();
+  merged.support.clear();
+  for (const auto& [j, k] : cloud_.wireframe.edges) merged.segments.push_back({cloud_.wireframe.junctions[j], cloud_.wireframe.junctions[k]});
+  LineCloud fragments = merged;  // each edge seen by three views: overlapping pieces
+  fragments.segments.clear();
+  for (const Segment3& s : merged.segments)
+    for (double t0 : {0.0, 0.1, 0.2}) fragments.segments.push_back({s.a + t0 * (s.b - s.a), s.a + (t0 + 0.8) * (s.b - s.a)});
+  ASSERT_LT(overlapped_long_fraction(merged, kMergedMapPieceLength), kMergedMapOverlap);
+  ASSERT_GE(overlapped_long_fraction(fragments, kMergedMapPieceLength), kMergedMapOverlap);
+  PostProcessOptions automatic = keep_every_junction(), off = keep_every_junction();
+  off.max_segment_length_m = 0.0;
+  const InferenceResult m = predictor.predict(merged, automatic);
+  EXPECT_THAT(m.notes.front(), HasSubstr("a merged line map (0 % of its long segments overlapped by another)"));
+  EXPECT_EQ(m.junctions.positions, predictor.predict(split_long_segments(merged, kMergedMapPieceLength), off).junctions.positions);
+  const InferenceResult f = predictor.predict(fragments, automatic);
+  EXPECT_EQ(f.junctions.positions, predictor.predict(fragments, off).junctions.positions);
+  for (const std::string& note : f.notes) EXPECT_THAT(note, ::testing::Not(HasSubstr("cut")));
 }
 
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {

@@ -309,8 +309,15 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_EQ(parse_flags({"--edge-test-time-views", "4"}).options().edge_test_time_views, 4);
   EXPECT_THAT(message({"--max-segment-length", "0.01"}), HasSubstr("--max-segment-length must be 0 (off) or in [0.05, 100]"));
   EXPECT_THAT(message({"--max-segment-length", "nan"}), HasSubstr("--max-segment-length"));
-  EXPECT_EQ(parse_flags({"--max-segment-length", "1.5"}).options().max_segment_length_m, 1.5);
-  EXPECT_EQ(PostProcessFlags{}.options().max_segment_length_m, 0.0);  // off: the release's cloud as it is
+  EXPECT_EQ(parse_flags({"--max-segment-length", "2.5"}).options().max_segment_length_m, 2.5);
+  EXPECT_FALSE(parse_flags({"--max-segment-length", "2.5"}).options().merged_maps_only);  // a number: every cloud
+  EXPECT_EQ(parse_flags({"--max-segment-length", "0"}).options().max_segment_length_m, 0.0);
+  const PostProcessOptions automatic = parse_flags({"--max-segment-length", "2.5", "--max-segment-length", "auto"}).options();
+  EXPECT_EQ(automatic.max_segment_length_m, kMergedMapPieceLength);
+  EXPECT_TRUE(automatic.merged_maps_only);
+  EXPECT_EQ(PostProcessFlags{}.options().max_segment_length_m, kMergedMapPieceLength);  // auto by default
+  EXPECT_TRUE(PostProcessFlags{}.options().merged_maps_only);
+  EXPECT_EQ(parse_flags({"--release-quirks"}).options().max_segment_length_m, 0.0);  // the release's cloud as it is
   PostProcessFlags flags;
   int i = 1;
   char* argv[] = {const_cast<char*>("cmd"), const_cast<char*>("--other")};
