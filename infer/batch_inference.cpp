@@ -60,6 +60,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     s.pairs += static_cast<int64_t>(r.pairs.size());
     ++s.buildings;
     if (r.wireframe.wireframe.edges.empty()) ++s.empty;
+    if (r.segments_cut) ++s.cut;
     s.names.push_back(name);
     write_prediction(out_dir, name, r.wireframe, r.notes, o.raw_units ? &cloud.units : nullptr);
     if (o.preview_path)

@@ -184,7 +184,8 @@ std::string inference_markdown(const InferenceTiming& s) {
                              (s.test_time_views > 1 ? ", " + std::to_string(s.test_time_views) + " test-time views" : "") +
                              (s.edge_test_time_views > 1 ? ", " + std::to_string(s.edge_test_time_views) + " edge views" : "") +
                              (s.max_segment_length_m > 0 ? ", segments cut at " + format_number("%g", s.max_segment_length_m) + " m" +
-                                                                (s.merged_maps_only ? " in merged line maps" : "")
+                                                                (s.merged_maps_only ? " in merged line maps" : "") + " (" + std::to_string(s.cut) + " of " +
+                                                                std::to_string(s.buildings) + " clouds cut)"
                                                           : "");
   char line[640];
   std::snprintf(line, sizeof line,
@@ -216,6 +217,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"edge_test_time_views", s.edge_test_time_views},
           {"max_segment_length_m", s.max_segment_length_m},
           {"merged_maps_only", s.merged_maps_only},
+          {"cut_clouds", s.cut},
           {"empty_wireframes", s.empty}};
 }
 
@@ -242,6 +244,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.edge_test_time_views = j.value("edge_test_time_views", 1);
   s.max_segment_length_m = j.value("max_segment_length_m", 0.0);  // uncut before the option existed
   s.merged_maps_only = j.value("merged_maps_only", false);
+  s.cut = j.value("cut_clouds", 0);
   s.empty = j.value("empty_wireframes", s.empty);
   return s;
 }

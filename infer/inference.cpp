@@ -209,6 +209,7 @@ InferenceResult WireframePredictor::predict(const LineCloud& input, const PostPr
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;
   if (cloud.segments.empty()) r.notes.insert(r.notes.begin(), "line cloud has no segments: no junction candidates");
+  r.segments_cut = cut_it;
   if (cut_it)
     r.notes.insert(r.notes.begin(),
                    (options.merged_maps_only ? "a merged line map (" + format_number("%.0f", 100 * overlapped) +

@@ -47,6 +47,7 @@ struct InferenceResult {
   JunctionSelection selection;     // the junctions that were paired
   std::vector<JunctionPair> pairs;  // the pairs the edge model classified (labelled when a GT was given)
   std::vector<std::string> notes;  // degenerate cases met on the way
+  bool segments_cut = false;       // the cloud's long segments were cut (PostProcessOptions::max_segment_length_m)
   double junction_seconds = 0.0;   // sampling + patches + junction model
   double edge_seconds = 0.0;       // pair patches + edge model
   double post_seconds = 0.0;       // selection + post-processing

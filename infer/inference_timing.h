@@ -12,6 +12,7 @@ namespace lc2wf {
 struct InferenceTiming {
   int buildings = 0;        // predicted (possibly empty wireframes)
   int empty = 0;            // no edge in the final wireframe
+  int cut = 0;              // clouds whose long segments were cut first (InferenceResult::segments_cut)
   double total_seconds = 0; // networks + post-processing, excluding file I/O
   double max_seconds = 0;
   double junction_seconds = 0, edge_seconds = 0, post_seconds = 0;

@@ -211,10 +211,12 @@ TEST_F(Inference, MaxSegmentLengthAutoCutsOnlyMergedLineMaps) {
   off.max_segment_length_m = 0.0;
   const InferenceResult m = predictor.predict(merged, automatic);
   EXPECT_THAT(m.notes.front(), HasSubstr("a merged line map (0 % of its long segments overlapped by another)"));
+  EXPECT_TRUE(m.segments_cut);
   EXPECT_EQ(m.junctions.positions, predictor.predict(split_long_segments(merged, kMergedMapPieceLength), off).junctions.positions);
   const InferenceResult f = predictor.predict(fragments, automatic);
   EXPECT_EQ(f.junctions.positions, predictor.predict(fragments, off).junctions.positions);
   for (const std::string& note : f.notes) EXPECT_THAT(note, ::testing::Not(HasSubstr("cut")));
+  EXPECT_FALSE(f.segments_cut);
 }
 
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {
