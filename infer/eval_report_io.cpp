@@ -187,7 +187,7 @@ std::string inference_markdown(const InferenceTiming& s) {
                                                                 (s.merged_maps_only ? " in merged line maps" : "") + " (" + std::to_string(s.cut) + " of " +
                                                                 std::to_string(s.buildings) + " clouds cut)"
                                                           : "");
-  char line[640];
+  char line[1024];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
                 "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building%s; junctions with "
