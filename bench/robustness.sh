@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # How one model serves clouds of other statistics (issue: robust to the cloud's statistics). For the
 # buildings of SPLIT, makes five kinds of cloud with lc2wf-cloud-styles (our own; the same segments through
-# the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter, as they are and cut into
-# pieces as merged line maps are by default; only our lines on GT edges; ours plus photo-like texture lines
-# on faces and ground), scores WEIGHTS on each with lc2wf-eval and prints Markdown tables (vAP/sAP avg,
-# WED, mean junctions/edges; which clouds the default takes for merged line maps).
+# the Line3D++ .txt path; every GT edge as 2-5 long noisy fragments plus clutter, in our format and as a
+# Line3D++ .txt, which the default cuts into pieces; only our lines on GT edges; ours plus photo-like
+# texture lines on faces and ground), scores WEIGHTS on each with lc2wf-eval and prints Markdown tables
+# (vAP/sAP avg, WED, mean junctions/edges; which clouds the default would cut if read from a line map).
 #
 #   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS]     CLOUDS: labelled clouds (default runs/dataset/clouds)
 #
@@ -24,8 +24,8 @@ eval_as() {  # eval_as ROW STYLE [extra lc2wf-eval flags]
 }
 eval_as own own
 eval_as line3dpp line3dpp --format line3dpp --gt "$out/clouds/gt"
-eval_as long long --max-segment-length 0
-eval_as long-cut long
+eval_as long long
+eval_as long-cut long-line3dpp --format line3dpp --gt "$out/clouds/gt"
 eval_as edges edges
 eval_as photo photo
 
@@ -34,8 +34,8 @@ import csv, json, statistics, sys
 from pathlib import Path
 out = Path(sys.argv[1])
 labels = {"own": "our clouds (lc2wf-dataset)", "line3dpp": "same segments via Line3D++ .txt",
-          "long": "long fragments from the GT + clutter, as they are (--max-segment-length 0)",
-          "long-cut": "the same, taken for merged line maps and cut at 1.5 m (the default, --max-segment-length auto)",
+          "long": "long fragments from the GT + clutter (our file format: not cut)",
+          "long-cut": "the same as a Line3D++ .txt: a merged line map, cut at 1.5 m by default",
           "edges": "our clouds, only the lines on a GT edge",
           "photo": "our clouds + texture lines on faces and ground (photo-like)"}
 print("| clouds | vAP avg | sAP avg | WED total (Dist) | junctions / building | edges / building |")

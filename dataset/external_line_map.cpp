@@ -19,6 +19,7 @@ LineCloud to_line_cloud(const ExternalLineMap& map, const std::string& name, con
   ExternalConversionReport& rep = report ? *report : local;
   LineCloud cloud;
   cloud.name = name;
+  cloud.external_line_map = true;
   // Image ids are sparse and 1-based in COLMAP: views are numbered in ascending id order.
   std::map<long long, int> view_of;
   if (options.cameras) {

@@ -36,6 +36,9 @@ struct LineCloud {
   Wireframe wireframe;                            // ground truth in metres (may be empty when unknown)
   UnitTransform units;                            // metres <-> raw units of the source building
   std::vector<SegmentLabel> labels;               // empty (unlabelled) or one per segment
+  // Read from another program's line map (Line3D++, LIMAP, line OBJ: external_line_map.h), whose lines merge
+  // the views' fragments; our files and the release's JSON hold per-view fragments. Not stored in files.
+  bool external_line_map = false;
 };
 
 // The release's per-endpoint labels (2N values: GT junction id or -1), derived from `labels`:

@@ -46,6 +46,7 @@ LineCloud split_long_segments(const LineCloud& cloud, double max_length_m) {
   out.cameras = cloud.cameras;
   out.wireframe = cloud.wireframe;
   out.units = cloud.units;
+  out.external_line_map = cloud.external_line_map;
   out.segments.reserve(static_cast<size_t>(total));
   for (const Segment3& s : cloud.segments) {
     const int64_t n = pieces_of(s, max_length_m);

@@ -14,7 +14,7 @@ constexpr int64_t kMaxSplitSegments = 2'000'000;
 // Every segment longer than max_length_m becomes two chains of consecutive pieces along it: n =
 // ceil(length / max_length_m) equal pieces, and the same pieces staggered by half a piece (a half piece at
 // each end). Both chains keep the segment's endpoints, as the overlapping fragments of several views of one
-// edge do. Shorter segments stay as they are. The result keeps the name, cameras, wireframe and units and
+// edge do. Shorter segments stay as they are. The result keeps the name, cameras, wireframe, units and origin and
 // drops the 2D supports and labels (inference uses neither; no view saw a piece). max_length_m <= 0 returns
 // the cloud unchanged. Throws std::invalid_argument for a non-finite max_length_m and DataError naming the
 // cloud when there would be more than kMaxSplitSegments segments.
@@ -29,8 +29,8 @@ LineCloud split_long_segments(const LineCloud& cloud, double max_length_m);
 // segments, at most kMaxSplitSegments of them: longer clouds are sampled more sparsely).
 double overlapped_long_fraction(const LineCloud& cloud, double min_length_m);
 
-// The rule of --max-segment-length auto: a cloud is a merged line map when fewer than this fraction of its
-// long segments are overlapped.
+// The rule of --max-segment-length auto: a cloud read from another program's line map
+// (LineCloud::external_line_map) is cut when fewer than this fraction of its long segments are overlapped.
 constexpr double kMergedMapOverlap = 0.7;
 // The pieces' length of --max-segment-length auto: the best of 0.5-3 m for models/base on long-fragment clouds.
 constexpr double kMergedMapPieceLength = 1.5;

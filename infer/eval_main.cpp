@@ -71,7 +71,7 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
                   see lc2wf-infer --help)
   --edge-test-time-views N  with --weights: the edge model's mean over N views of the pairs (default 1)
   --max-segment-length M|auto  with --weights: cut segments longer than M metres into pieces first
-                  (default auto: merged line maps only; 0 = never; see lc2wf-infer --help)
+                  (default auto: merged Line3D++/LIMAP/OBJ maps only; 0 = never; see lc2wf-infer --help)
   --previews      with --weights: also write OUT/previews/<name>.png
   --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
                   line3dpp (Line3D++ .txt), limap (finaltracks/ folder) or obj (line OBJ); clouds

@@ -62,10 +62,10 @@ wireframe and a note, never a failure.
                       N views (default 1; 4 views with 8 junction views: sAP +1.4), at N x its time
   --max-segment-length M|auto  cut segments longer than M metres into two staggered chains of pieces
                       before inference, as the per-view fragments the model was trained on (0 = never,
-                      0.05-100). Default auto: 1.5 m, only in merged line maps (one line per edge stretch:
-                      Line3D++, LIMAP), i.e. clouds where fewer than 70 % of the lines longer than 1.5 m
-                      are overlapped by another line (ours: >= 81 % on 957 buildings, so they pass as
-                      they are; long-fragment clouds: sAP 9.8 -> 51.5, reconstruct/README.md)
+                      0.05-100: every cloud). Default auto: 1.5 m, only clouds read from Line3D++, LIMAP or
+                      OBJ files whose lines merge the views' fragments (fewer than 70 % of the lines
+                      longer than 1.5 m overlapped by another line); our files are never cut
+                      (long-fragment clouds as Line3D++ .txt: sAP 9.8 -> 51, reconstruct/README.md)
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in

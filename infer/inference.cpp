@@ -198,8 +198,9 @@ InferenceResult WireframePredictor::predict(const LineCloud& input, const PostPr
   options.Check();  // before the cut, so a bad length is reported as the option it is
   const auto t0 = Clock::now();
   const double cut = options.max_segment_length_m;
-  const double overlapped = cut > 0.0 && options.merged_maps_only ? overlapped_long_fraction(input, cut) : 0.0;
-  const bool cut_it = cut > 0.0 && overlapped < kMergedMapOverlap;
+  const bool ask = cut > 0.0 && (!options.merged_maps_only || input.external_line_map);
+  const double overlapped = ask && options.merged_maps_only ? overlapped_long_fraction(input, cut) : 0.0;
+  const bool cut_it = ask && overlapped < kMergedMapOverlap;
   LineCloud split;
   if (cut_it) split = split_long_segments(input, cut);
   const LineCloud& cloud = cut_it ? split : input;

@@ -12,8 +12,9 @@ namespace lc2wf {
 struct PostProcessOptions {
   // Not in the release: segments longer than this are cut into two staggered chains of pieces before
   // inference (dataset/segment_split.h), for line maps with one line per edge stretch (Line3D++, LIMAP);
-  // 0 = never. With merged_maps_only, only clouds that look merged (overlapped_long_fraction below
-  // kMergedMapOverlap) are cut: per-view fragment clouds like ours pass unchanged.
+  // 0 = never. With merged_maps_only, only clouds read from such a map (LineCloud::external_line_map) whose
+  // long lines are rarely overlapped (overlapped_long_fraction below kMergedMapOverlap) are cut: our clouds,
+  // the release's and other programs' maps of per-view fragments pass unchanged.
   double max_segment_length_m = kMergedMapPieceLength;
   bool merged_maps_only = true;
   // Junction selection before pairing: the rule training uses too (dataset/junction_selection.h).

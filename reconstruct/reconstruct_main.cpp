@@ -75,7 +75,7 @@ Options:
   --test-time-views N    the junction model's mean over N views of each patch (default 1; see lc2wf-infer --help)
   --edge-test-time-views N  the edge model's mean over N views of the pairs (default 1; see lc2wf-infer --help)
   --max-segment-length M|auto  cut segments longer than M metres into pieces first (default auto: merged
-                         line maps only, which our triangulation does not make; see lc2wf-infer --help)
+                         Line3D++/LIMAP maps only; our triangulation's clouds are not cut; see lc2wf-infer --help)
   --workspace DIR        intermediate files there (must be new or empty; never deleted)
   --keep                 keep the private temporary workspace (its path is printed)
   -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)

@@ -30,13 +30,14 @@ For every building of FILE, reads DIR/<name>.lcloud (a labelled cloud of lc2wf-d
   OUT/line3dpp/<name>.txt     the same segments through the Line3D++ .txt writer and reader path
   OUT/long/<name>.lcloud      every GT edge as 2-5 long fragments with 2 cm noise, plus half of the
                               cloud's non-edge lines (dataset/long_fragment_cloud.h)
+  OUT/long-line3dpp/<name>.txt  the same as a Line3D++ .txt, as such a map would come
   OUT/edges/<name>.lcloud     only the cloud's lines on a GT edge (f = 1): what the other lines cost
   OUT/photo/<name>.lcloud     the cloud plus texture lines as a textured-photo reconstruction has them:
                               2.5 per segment on the faces, 3.5 on the ground around the building
                               (dataset/surface_clutter.h)
   OUT/gt/<name>.obj           the ground truth in metres, for lc2wf-eval --gt
-Prints on stdout, per kind, the share of long segments another segment overlaps (the rule of
---max-segment-length auto, dataset/segment_split.h) and how many clouds it takes for merged line maps.
+Prints on stdout, per kind, the share of long segments another segment overlaps and how many clouds the
+rule of --max-segment-length auto (dataset/segment_split.h) would cut were they read from a line map.
 Deterministic for a seed and the split's order.
 
   --data DIR     labelled line clouds
@@ -97,7 +98,7 @@ struct OverlapRange {
 int run(const Args& a) {
   const auto names = read_name_list(a.split);  // before OUT is made: a bad split writes nothing
   if (names.empty()) throw std::runtime_error(a.split.string() + ": names no building (nothing to do)");
-  for (const char* kind : {"own", "line3dpp", "long", "edges", "photo", "gt"}) fs::create_directories(a.out / kind);
+  for (const char* kind : {"own", "line3dpp", "long", "long-line3dpp", "edges", "photo", "gt"}) fs::create_directories(a.out / kind);
   std::map<std::string, OverlapRange> overlap;
   for (size_t i = 0; i < names.size(); ++i) {
     const std::string& name = names[i];
@@ -111,9 +112,10 @@ int run(const Args& a) {
       overlap[kinds[k]].add(styles[k]);
     }
     write_line3dpp_txt(a.out / "line3dpp" / (name + ".txt"), cloud);
+    write_line3dpp_txt(a.out / "long-line3dpp" / (name + ".txt"), styles[1]);
     write_obj_wireframe(a.out / "gt" / (name + ".obj"), cloud.wireframe);
   }
-  std::printf("| clouds | long segments overlapped (min / mean / max) | taken for merged line maps |\n|---|---|---|\n");
+  std::printf("| clouds | long segments overlapped (min / mean / max) | cut if read from a line map |\n|---|---|---|\n");
   for (const auto& [kind, r] : overlap)
     std::printf("| %s | %.2f / %.2f / %.2f | %d of %d |\n", kind.c_str(), r.low, r.sum / std::max(1, r.clouds), r.high,
                 r.merged, r.clouds);

@@ -193,13 +193,15 @@ TEST_F(Inference, MaxSegmentLengthPredictsOnTheCutCloud) {
   EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
 }
 
-// The default (auto) cuts a merged line map and leaves a per-view fragment cloud as it is.
+// The default (auto) cuts a merged line map read from another program's file and leaves per-view fragment
+// clouds, and our own files whatever they hold, as they are.
 TEST_F(Inference, MaxSegmentLengthAutoCutsOnlyMergedLineMaps) {
   const WireframePredictor predictor(dir_);
   LineCloud merged = cloud_;  // one line per GT edge: nothing overlaps it
   merged.segments.clear();
   merged.labels.clear();
   merged.support.clear();
+  merged.external_line_map = true;
   for (const auto& [j, k] : cloud_.wireframe.edges) merged.segments.push_back({cloud_.wireframe.junctions[j], cloud_.wireframe.junctions[k]});
   LineCloud fragments = merged;  // each edge seen by three views: overlapping pieces
   fragments.segments.clear();
@@ -213,10 +215,16 @@ TEST_F(Inference, MaxSegmentLengthAutoCutsOnlyMergedLineMaps) {
   EXPECT_THAT(m.notes.front(), HasSubstr("a merged line map (0 % of its long segments overlapped by another)"));
   EXPECT_TRUE(m.segments_cut);
   EXPECT_EQ(m.junctions.positions, predictor.predict(split_long_segments(merged, kMergedMapPieceLength), off).junctions.positions);
-  const InferenceResult f = predictor.predict(fragments, automatic);
-  EXPECT_EQ(f.junctions.positions, predictor.predict(fragments, off).junctions.positions);
-  for (const std::string& note : f.notes) EXPECT_THAT(note, ::testing::Not(HasSubstr("cut")));
-  EXPECT_FALSE(f.segments_cut);
+  const auto not_cut = [&](const LineCloud& c) {
+    const InferenceResult r = predictor.predict(c, automatic);
+    EXPECT_FALSE(r.segments_cut);
+    for (const std::string& note : r.notes) EXPECT_THAT(note, ::testing::Not(HasSubstr("cut")));
+    EXPECT_EQ(r.junctions.positions, predictor.predict(c, off).junctions.positions);
+  };
+  not_cut(fragments);
+  LineCloud ours = merged;  // the same lines from one of our files: ours are per-view fragments by making
+  ours.external_line_map = false;
+  not_cut(ours);
 }
 
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {
