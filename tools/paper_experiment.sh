@@ -19,6 +19,8 @@
 #   tools/paper_experiment.sh rotate    configs/rotate.json: models/base's junction stage fine-tuned with turns
 #                                       about the vertical, scored on the validation split with models/base's
 #                                       edge model (1 and 8 test-time views) -> runs/rotate
+#   tools/paper_experiment.sh rotate-edge  then the edge stage of configs/rotate.json on that junction
+#                                       model's hand-off, scored the same way -> runs/rotate/val-both-views*
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -236,6 +238,18 @@ step_rotate() {
   done
 }
 
+# The edge model fine-tuned with the same turns, on the hand-off of the turned junction model.
+step_rotate_edge() {
+  [[ -f runs/rotate/junction.safetensors ]] || step_rotate
+  "$build_dir/train/lc2wf-train" configs/rotate.json --stage edge --out runs/rotate --resume
+  local views
+  for views in 1 8; do
+    "$build_dir/infer/lc2wf-eval" --weights runs/rotate --data runs/dataset/clouds \
+      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/rotate/val-both-views$views"
+    cat "runs/rotate/val-both-views$views/metrics.md"
+  done
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -248,6 +262,7 @@ case "${1:-}" in
   local) step_local ;;
   robust) step_robust ;;
   rotate) step_rotate ;;
+  rotate-edge) step_rotate_edge ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
