@@ -14,6 +14,7 @@ void JunctionSelectionOptions::Check() const {
   if (top_k < 2) fail("top_k must be >= 2");
   if (sampling_passes < 1 || sampling_passes > 8) fail("sampling_passes must be in [1, 8]");
   if (!valid_view_count(test_time_views)) fail("test_time_views must be 1, 2, 4 or 8");
+  density_seeds.Check();
   refine.Check();
 }
 
@@ -25,6 +26,7 @@ JunctionSelectionOptions JunctionSelectionOptions::release() {
   o.max_offset_m = std::numeric_limits<double>::infinity();
   o.sampling_passes = 1;
   o.test_time_views = 1;
+  o.density_seeds = DensitySeedRule::release();
   o.refine.radius = 0.0;
   return o;
 }

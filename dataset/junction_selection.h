@@ -12,6 +12,7 @@
 #include "dataset/geometry.h"
 #include "dataset/junction_refine.h"
 #include "dataset/point_nms.h"
+#include "dataset/sampling.h"
 
 namespace lc2wf {
 
@@ -47,6 +48,10 @@ struct JunctionSelectionOptions {
   // of its patch, rotated by 90° steps or mirrored about the vertical axis (1, 2, 4 or 8; see
   // infer/test_time_symmetry.h). Costs views x the junction model's time.
   int test_time_views = 1;
+  // Not in the release (DensitySeedRule::release()): which endpoints seed the junction model's sample points
+  // at inference. The model was trained on the release's seeds; seeding the small endpoint clusters too puts
+  // more of its 256 patches where junctions are (bench/README.md, "Density seeds").
+  DensitySeedRule density_seeds = DensitySeedRule::loose();
   // The view counts there are (every one a group of turns and mirrors): 1, 2, 4 or 8.
   static bool valid_view_count(int64_t views) { return views == 1 || views == 2 || views == 4 || views == 8; }
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h.

@@ -1,6 +1,8 @@
 #include "dataset/sampling.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 
@@ -10,15 +12,39 @@
 
 namespace lc2wf {
 
+void DensitySeedRule::Check() const {
+  if (min_count < 0 || min_count > 1000) throw std::invalid_argument("DensitySeedRule.min_count must be in [0, 1000]");
+  if (!(min_ratio >= 0 && min_ratio <= 1)) throw std::invalid_argument("DensitySeedRule.min_ratio must be in [0, 1]");
+  if (!(nms_m >= 0 && nms_m <= 10)) throw std::invalid_argument("DensitySeedRule.nms_m must be in [0, 10] (metres)");
+}
+
+std::string DensitySeedRule::str() const {
+  if (*this == release()) return "release";
+  if (*this == loose()) return "loose";
+  char text[96];
+  std::snprintf(text, sizeof text, "%d,%g,%g", min_count, min_ratio, nms_m);
+  return text;
+}
+
+DensitySeedRule DensitySeedRule::parse(const std::string& text) {
+  if (text == "release") return release();
+  if (text == "loose") return loose();
+  DensitySeedRule r;
+  char rest = 0;
+  if (std::sscanf(text.c_str(), "%d,%lf,%lf%c", &r.min_count, &r.min_ratio, &r.nms_m, &rest) != 3) {
+    throw std::invalid_argument("'" + text + "' is not release, loose or MIN_COUNT,MIN_RATIO,NMS_M (e.g. 4,0.5,0.3)");
+  }
+  r.Check();
+  return r;
+}
+
 void SamplingOptions::Check() const {
   if (num_samples < 1) throw std::invalid_argument("SamplingOptions.num_samples must be >= 1");
   if (!(density_radius_m > 0)) throw std::invalid_argument("SamplingOptions.density_radius_m must be > 0");
   if (!(density_inner_radius_m > 0 && density_inner_radius_m <= density_radius_m)) {
     throw std::invalid_argument("SamplingOptions.density_inner_radius_m must be in (0, density_radius_m]");
   }
-  if (density_min_count < 0) throw std::invalid_argument("SamplingOptions.density_min_count must be >= 0");
-  if (!(density_min_ratio >= 0 && density_min_ratio <= 1)) throw std::invalid_argument("SamplingOptions.density_min_ratio must be in [0, 1]");
-  if (!(density_nms_m >= 0)) throw std::invalid_argument("SamplingOptions.density_nms_m must be >= 0");
+  seeds.Check();
   if (near_gt_samples < 0) throw std::invalid_argument("SamplingOptions.near_gt_samples must be >= 0");
   if (!(near_gt_radius_m > 0)) throw std::invalid_argument("SamplingOptions.near_gt_radius_m must be > 0");
   if (passes < 1 || passes > 8) throw std::invalid_argument("SamplingOptions.passes must be in [1, 8]");
@@ -44,7 +70,7 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
     int a = 0, b = 0;
     grid.count_within(p[i], o.density_radius_m, o.density_inner_radius_m, a, b);
     ratio[i] = b / (a + 1e-3);
-    if (a > o.density_min_count && ratio[i] > o.density_min_ratio) cand.push_back(static_cast<int>(i));
+    if (a > o.seeds.min_count && ratio[i] > o.seeds.min_ratio) cand.push_back(static_cast<int>(i));
   }
   std::vector<Vec3> cp;
   std::vector<double> cs;
@@ -53,7 +79,7 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
     cs.push_back(ratio[i]);
   }
   std::vector<int> out;
-  for (int k : point_nms(cp, cs, o.density_nms_m, PointNmsRule::kSuppressor)) out.push_back(cand[k]);
+  for (int k : point_nms(cp, cs, o.seeds.nms_m, PointNmsRule::kSuppressor)) out.push_back(cand[k]);
   return out;
 }
 

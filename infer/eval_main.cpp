@@ -67,6 +67,8 @@ B3D-nWED in a separate section. See infer/README.md for the exact definitions.
                   (default 0.75; 0 = every candidate; see lc2wf-infer --help)
   --sampling-passes N  with --weights: the junction model's sample points in N passes (default 1; see
                   lc2wf-infer --help)
+  --density-seeds S  with --weights: which endpoints seed the sample points, loose (default), release or
+                  MIN_COUNT,MIN_RATIO,NMS_M (see lc2wf-infer --help)
   --test-time-views N  with --weights: the junction model's mean over N views of each patch (default 1;
                   see lc2wf-infer --help)
   --edge-test-time-views N  with --weights: the edge model's mean over N views of the pairs (default 1)
@@ -162,7 +164,7 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
   if (a.weights.empty() && (a.post.any() || a.previews || a.format != "auto" || a.precision != "fp32"))
     throw UsageError(
-        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius, --max-offset, --sampling-passes, --test-time-views, --edge-test-time-views, --max-segment-length, --previews, --format and "
+        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --nms-radius, --max-offset, --sampling-passes, --density-seeds, --test-time-views, --edge-test-time-views, --max-segment-length, --previews, --format and "
         "--precision only apply with --weights");
   a.post.options();  // checks the values before anything is written
 #if LC2WF_EVAL_WITH_WEIGHTS

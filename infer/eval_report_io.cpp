@@ -180,13 +180,17 @@ std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
   const std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
-  const std::string passes = (s.sampling_passes > 1 ? ", " + std::to_string(s.sampling_passes) + " sampling passes" : "") +
-                             (s.test_time_views > 1 ? ", " + std::to_string(s.test_time_views) + " test-time views" : "") +
-                             (s.edge_test_time_views > 1 ? ", " + std::to_string(s.edge_test_time_views) + " edge views" : "") +
-                             (s.max_segment_length_m > 0 ? ", segments cut at " + format_number("%g", s.max_segment_length_m) + " m" +
-                                                                (s.merged_maps_only ? " in merged line maps" : "") + " (" + std::to_string(s.cut) + " of " +
-                                                                std::to_string(s.buildings) + " clouds cut)"
-                                                          : "");
+  // The options that differ from a one-pass, one-view, uncut run, in the order of the pipeline.
+  std::string passes;
+  if (s.sampling_passes > 1) passes += ", " + std::to_string(s.sampling_passes) + " sampling passes";
+  if (s.density_seeds != JunctionSelectionOptions{}.density_seeds.str()) passes += ", " + s.density_seeds + " density seeds";
+  if (s.test_time_views > 1) passes += ", " + std::to_string(s.test_time_views) + " test-time views";
+  if (s.edge_test_time_views > 1) passes += ", " + std::to_string(s.edge_test_time_views) + " edge views";
+  if (s.max_segment_length_m > 0) {
+    passes += ", segments cut at " + format_number("%g", s.max_segment_length_m) + " m";
+    if (s.merged_maps_only) passes += " in merged line maps";
+    passes += " (" + std::to_string(s.cut) + " of " + std::to_string(s.buildings) + " clouds cut)";
+  }
   char line[1024];
   std::snprintf(line, sizeof line,
                 "\nInference (%d buildings, %d threads, %s products): %.3f s per building on average (junction model %.3f, edge model "
@@ -214,6 +218,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
           {"sampling_passes", s.sampling_passes},
           {"test_time_views", s.test_time_views},
+          {"density_seeds", s.density_seeds},
           {"edge_test_time_views", s.edge_test_time_views},
           {"max_segment_length_m", s.max_segment_length_m},
           {"merged_maps_only", s.merged_maps_only},
@@ -241,6 +246,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.max_offset_m = j.contains("max_offset_m") && !j["max_offset_m"].is_null() ? j["max_offset_m"].get<double>() : then.max_offset_m;
   s.sampling_passes = j.value("sampling_passes", 1);  // one pass before the option existed
   s.test_time_views = j.value("test_time_views", 1);  // one view before the option existed
+  s.density_seeds = j.value("density_seeds", std::string("release"));  // the release's before the option existed
   s.edge_test_time_views = j.value("edge_test_time_views", 1);
   s.max_segment_length_m = j.value("max_segment_length_m", 0.0);  // uncut before the option existed
   s.merged_maps_only = j.value("merged_maps_only", false);

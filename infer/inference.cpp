@@ -62,12 +62,15 @@ PatchOptions pair_patch_options(const EdgeNetConfig& config) {
   return o;
 }
 
-PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud, int passes, int views_count) {
+PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud,
+                                               const JunctionSelectionOptions& selection) {
+  selection.Check();
   if (cloud.segments.empty()) return {};
-  if (passes < 1) throw std::invalid_argument("predict_junction_candidates: passes must be >= 1");
-  const std::vector<PlaneSymmetry> views = test_time_symmetries(views_count);
+  const int passes = selection.sampling_passes;
+  const std::vector<PlaneSymmetry> views = test_time_symmetries(selection.test_time_views);
   JunctionSampleOptions options = junction_sample_options(net.config());
   options.sampling.passes = passes;
+  options.sampling.seeds = selection.density_seeds;
   JunctionPatches patches = make_junction_sample(cloud, options, 0);
   // Patches are stored pass after pass, so each pass is one item of a batch the model reads G at a time.
   patches.batch = passes;
@@ -204,8 +207,7 @@ InferenceResult WireframePredictor::predict(const LineCloud& input, const PostPr
   LineCloud split;
   if (cut_it) split = split_long_segments(input, cut);
   const LineCloud& cloud = cut_it ? split : input;
-  const PredictedJunctions junctions =
-      predict_junction_candidates(*junction_, cloud, options.selection.sampling_passes, options.selection.test_time_views);
+  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, options.selection);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;

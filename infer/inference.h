@@ -26,12 +26,13 @@ JunctionSampleOptions junction_sample_options(const JunctionNetConfig& config);
 PatchOptions pair_patch_options(const EdgeNetConfig& config);
 
 // Every sample point's junction hypothesis: position (sample + offset, metres) and softmax confidence.
-// Runs in eval mode without a graph. A cloud without segments gives no candidates. With `passes` > 1 the
-// sample holds passes x G points (JunctionSelectionOptions::sampling_passes), run as passes patch sets of
-// G; the first pass's candidates are the one-pass candidates, the others follow. With `views` > 1
-// (test_time_symmetry.h) each candidate is the mean of the model's answers on as many views of its patch.
-PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud, int passes = 1,
-                                               int views = 1);
+// Runs in eval mode without a graph. A cloud without segments gives no candidates. Of `selection`, only
+// how the model is run counts: its sample points are seeded by density_seeds; with sampling_passes > 1 the
+// sample holds passes x G points, run as passes patch sets of G (the first pass's candidates are the
+// one-pass candidates, the others follow); with test_time_views > 1 (test_time_symmetry.h) each candidate is
+// the mean of the model's answers on as many views of its patch.
+PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud& cloud,
+                                               const JunctionSelectionOptions& selection);
 
 // Class logits (1, P, 5) of the given pairs of one building, in eval mode without a graph.
 Tensor predict_pair_logits(EdgeNet& net, const LineCloud& cloud, const std::vector<JunctionPair>& pairs);

@@ -25,6 +25,7 @@ struct InferenceTiming {
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;  // infinity: every candidate
   int sampling_passes = JunctionSelectionOptions{}.sampling_passes;
   int test_time_views = JunctionSelectionOptions{}.test_time_views;
+  std::string density_seeds = JunctionSelectionOptions{}.density_seeds.str();
   int edge_test_time_views = 1;  // PostProcessOptions::edge_test_time_views
   double max_segment_length_m = 0;  // PostProcessOptions::max_segment_length_m: 0 = the clouds as they are
   bool merged_maps_only = false;    // PostProcessOptions::merged_maps_only
@@ -37,6 +38,7 @@ struct InferenceTiming {
     max_offset_m = s.max_offset_m;
     sampling_passes = s.sampling_passes;
     test_time_views = s.test_time_views;
+    density_seeds = s.density_seeds.str();
     edge_test_time_views = o.edge_test_time_views;
     max_segment_length_m = o.max_segment_length_m;
     merged_maps_only = o.merged_maps_only;

@@ -21,6 +21,7 @@ struct PostProcessFlags {
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
+  std::optional<std::string> density_seeds; // --density-seeds release|loose|A,C,R
   std::optional<int64_t> test_time_views;   // --test-time-views N
   std::optional<int64_t> edge_test_time_views;   // --edge-test-time-views N
   std::optional<double> max_segment_length;      // --max-segment-length M (a number: every cloud)
@@ -28,7 +29,7 @@ struct PostProcessFlags {
 
   bool any() const {
     return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes ||
-           test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto;
+           density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -40,6 +41,7 @@ struct PostProcessFlags {
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--density-seeds") density_seeds = flag_value(argc, argv, i);
     else if (flag == "--test-time-views") test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-segment-length") {
@@ -62,6 +64,13 @@ struct PostProcessFlags {
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
     if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
+    if (density_seeds) {
+      try {
+        o.selection.density_seeds = DensitySeedRule::parse(*density_seeds);
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--density-seeds: ") + e.what());
+      }
+    }
     if (test_time_views) o.selection.test_time_views = static_cast<int>(std::min<int64_t>(*test_time_views, 1000));
     if (edge_test_time_views) o.edge_test_time_views = static_cast<int>(std::min<int64_t>(*edge_test_time_views, 1000));
     if (max_segment_length_auto) {

@@ -1,4 +1,5 @@
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -37,14 +38,15 @@ std::string clouds_fingerprint(const std::vector<const LineCloud*>& clouds) {
 
 // True when `file` (the manifest or the progress file) names this junction checkpoint step, these
 // clouds and this version.
-bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint, bool need_offsets, int passes,
-             int views) {
+bool made_by(const fs::path& file, int64_t step, const std::string& fingerprint, bool need_offsets,
+             const JunctionSelectionOptions& selection) {
   if (!fs::exists(file)) return false;
   std::ifstream in(file);
   const nlohmann::json m = nlohmann::json::parse(in, nullptr, false);
   return !m.is_discarded() && m.is_object() && m.value("junction_step", int64_t{-1}) == step &&
-         m.value("clouds_fingerprint", std::string()) == fingerprint && m.value("sampling_passes", 1) == passes &&
-         m.value("test_time_views", 1) == views &&
+         m.value("clouds_fingerprint", std::string()) == fingerprint && m.value("sampling_passes", 1) == selection.sampling_passes &&
+         m.value("test_time_views", 1) == selection.test_time_views &&
+         m.value("density_seeds", std::string("release")) == selection.density_seeds.str() &&
          handoff_version_usable(m.value("version", 0), need_offsets);
 }
 
@@ -55,7 +57,11 @@ bool handoff_version_usable(int version, bool need_offsets) {
 }
 
 fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log, const StageRun& run,
-                                bool need_offsets, int sampling_passes, int test_time_views) {
+                                const JunctionSelectionOptions& selection) {
+  const bool need_offsets = std::isfinite(selection.max_offset_m);
+  const nlohmann::json sampling = {{"sampling_passes", selection.sampling_passes},
+                                   {"test_time_views", selection.test_time_views},
+                                   {"density_seeds", selection.density_seeds.str()}};
   const fs::path dir = run.out / "predicted_junctions", manifest = dir / "manifest.json";
   // Written before the first prediction, removed with the manifest's arrival: an interrupted hand-off resumes.
   const fs::path progress = dir / "in_progress.json";
@@ -73,11 +79,11 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   const bool writer = comm.rank() == 0;
   std::string decision = "redo";
   if (writer && run.resume) {
-    bool complete = made_by(manifest, step, fingerprint, need_offsets, sampling_passes, test_time_views);
+    bool complete = made_by(manifest, step, fingerprint, need_offsets, selection);
     for (const LineCloud* c : clouds) complete = complete && fs::exists(predicted_junctions_path(dir, c->name));
     if (complete) decision = "keep";
     // An interrupted hand-off of the same weights: its files are whole (atomic writes), keep them.
-    else if (made_by(progress, step, fingerprint, true, sampling_passes, test_time_views)) decision = "continue";
+    else if (made_by(progress, step, fingerprint, true, selection)) decision = "continue";
   }
   comm.broadcast(decision, "hand-off decision");
   if (decision == "keep") {
@@ -87,11 +93,12 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   if (writer) {
     fs::remove(manifest);
     log.rewind("handoff", 0, stage_order());
-    if (decision == "redo")
-      write_text_atomically(progress, json_text({{"format", "lc2wf-predicted-junctions-progress"}, {"junction_step", step},
-                                                 {"clouds_fingerprint", fingerprint}, {"version", kHandoffVersion},
-                                                 {"sampling_passes", sampling_passes},
-                                                 {"test_time_views", test_time_views}}, 2) + "\n");
+    if (decision == "redo") {
+      nlohmann::json p = {{"format", "lc2wf-predicted-junctions-progress"}, {"junction_step", step},
+                          {"clouds_fingerprint", fingerprint}, {"version", kHandoffVersion}};
+      p.update(sampling);
+      write_text_atomically(progress, json_text(p, 2) + "\n");
+    }
   }
   comm.barrier("hand-off progress");  // the progress file exists before any rank writes a prediction
 
@@ -106,7 +113,7 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
     if (decision == "continue" && fs::exists(predicted_junctions_path(dir, c->name))) {
       ++kept;  // predicted before the interruption, by the same weights: inference is deterministic
     } else {
-      write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c, sampling_passes, test_time_views));
+      write_predicted_junctions(dir, c->name, predict_junction_candidates(*net, *c, selection));
     }
     if (bar) bar->step();
   }
@@ -116,14 +123,13 @@ fs::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val
   if (writer) {
     nlohmann::json names = nlohmann::json::array();
     for (const LineCloud* c : clouds) names.push_back(c->name);
-    const nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
-                              {"junction_checkpoint", weights.string()},
-                              {"junction_step", step},
-                              {"clouds_fingerprint", fingerprint},
-                              {"version", kHandoffVersion},
-                              {"sampling_passes", sampling_passes},
-                              {"test_time_views", test_time_views},
-                              {"buildings", names}};
+    nlohmann::json m = {{"format", "lc2wf-predicted-junctions-manifest"},
+                        {"junction_checkpoint", weights.string()},
+                        {"junction_step", step},
+                        {"clouds_fingerprint", fingerprint},
+                        {"version", kHandoffVersion}};
+    m.update(sampling);
+    m["buildings"] = names;
     write_text_atomically(manifest, json_text(m, 2) + "\n");
     fs::remove(progress);
     const double predicted = static_cast<double>(clouds.size()) - static_cast<double>(kept);
@@ -146,6 +152,7 @@ nlohmann::json handoff_identity(const fs::path& dir) {
   // Only when not the release's one pass, so the identities of earlier runs stay what they were.
   if (m.value("sampling_passes", 1) != 1) identity["sampling_passes"] = m["sampling_passes"];
   if (m.value("test_time_views", 1) != 1) identity["test_time_views"] = m["test_time_views"];
+  if (m.value("density_seeds", std::string("release")) != "release") identity["density_seeds"] = m["density_seeds"];
   return identity;
 }
 

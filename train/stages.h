@@ -48,12 +48,12 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
 
 // `<out>/predicted_junctions/<name>.json` for every train and validation building, plus manifest.json:
 // the junction model's raw candidates, which the edge stage selects and refines with inference's rule
-// (dataset/junction_selection.h). With run.resume a complete hand-off of the same junction checkpoint is kept,
-// unless `need_offsets` (edge.max_offset_m) and its files predate the candidates' offsets, or it was
-// sampled in another number of passes (edge.sampling_passes) or views (edge.test_time_views).
-std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val,
-                                             RunLog& log, const StageRun& run, bool need_offsets, int sampling_passes = 1,
-                                             int test_time_views = 1);
+// (dataset/junction_selection.h), run as `selection` says (predict_junction_candidates). With run.resume a
+// complete hand-off of the same junction checkpoint is kept, unless the selection screens offsets
+// (edge.max_offset_m) and its files predate them, or it was sampled in another number of passes
+// (edge.sampling_passes), views (edge.test_time_views) or with other seeds (edge.density_seeds).
+std::filesystem::path write_junction_handoff(const BuildingSet& train, const BuildingSet& val, RunLog& log,
+                                             const StageRun& run, const JunctionSelectionOptions& selection);
 
 // Whether a hand-off of this manifest version serves: the current one always, version 3 (no offsets) only
 // when no max_offset_m screen needs them, so older runs resume without predicting everything again.

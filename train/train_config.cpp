@@ -116,6 +116,11 @@ void EdgeStageConfig::Check() const {
   require(std::isfinite(max_offset_m), "edge.max_offset_m", "must be a number of metres (<= 0: every candidate)");
   require(sampling_passes >= 1 && sampling_passes <= 8, "edge.sampling_passes", "must be in [1, 8]");
   require(JunctionSelectionOptions::valid_view_count(test_time_views), "edge.test_time_views", "must be 1, 2, 4 or 8");
+  try {
+    DensitySeedRule::parse(density_seeds);
+  } catch (const std::invalid_argument& e) {
+    require(false, "edge.density_seeds", std::string("is invalid: ") + e.what());
+  }
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

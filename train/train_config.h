@@ -151,6 +151,9 @@ struct EdgeStageConfig {
   // The junction model's mean over this many views of each patch (1, 2, 4 or 8), in the hand-off and so in
   // the training pairs and validation, as lc2wf-infer --test-time-views (the release: 1).
   int64_t test_time_views = JunctionSelectionOptions{}.test_time_views;
+  // Which endpoints seed the junction model's sample points, in the hand-off and so in the training pairs
+  // and validation, as lc2wf-infer --density-seeds: "release", "loose" or "MIN_COUNT,MIN_RATIO,NMS_M".
+  std::string density_seeds = JunctionSelectionOptions{}.density_seeds.str();
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -168,6 +171,7 @@ struct EdgeStageConfig {
     v("max_offset_m", s.max_offset_m);
     v("sampling_passes", s.sampling_passes);
     v("test_time_views", s.test_time_views);
+    v("density_seeds", s.density_seeds);
   }
   void Check() const;
   nlohmann::json to_json() const;

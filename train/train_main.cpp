@@ -13,6 +13,7 @@
 #include "core/util/atomic_file.h"
 #include "train/building_set.h"
 #include "train/communicator.h"
+#include "train/edge_step.h"
 #include "train/model_card.h"
 #include "train/run_log.h"
 #include "train/stages.h"
@@ -118,9 +119,7 @@ int train(const Args& a, Communicator& comm) {
     std::fprintf(stderr, "lc2wf-train: precision bf16 is emulated (this CPU has no AVX512-BF16): same numbers, slower than fp32\n");
   if (a.stage == "junction" || a.stage == "all") train_junction_stage(config, train, val, log, run);
   if (a.stage == "edge" || a.stage == "all") {
-    const fs::path handoff = write_junction_handoff(train, val, log, run, config.edge.max_offset_m > 0,
-                                                   static_cast<int>(config.edge.sampling_passes),
-                                                   static_cast<int>(config.edge.test_time_views));
+    const fs::path handoff = write_junction_handoff(train, val, log, run, edge_training_selection(config.edge));
     train_edge_stage(config, train, val, handoff, log, run);
   }
   if (writer) write_model_card(run.out, a.config, config, train, val);

@@ -37,8 +37,7 @@ PredictedJunctions junctions(const WireframePredictor& predictor, const LineClou
                              const JunctionSelectionOptions& selection) {
   const std::vector<Vec3>& gt = cloud.wireframe.junctions;
   if (mode == "gt") return {gt, std::vector<double>(gt.size(), 1.0)};
-  const PredictedJunctions candidates = predict_junction_candidates(predictor.junction_net(), cloud, selection.sampling_passes,
-                                                                    selection.test_time_views);
+  const PredictedJunctions candidates = predict_junction_candidates(predictor.junction_net(), cloud, selection);
   if (mode == "predicted") return candidates;
   const JunctionSelection selected = select_junctions(candidates, cloud.segments, selection);
   const std::vector<int> label = assign_junction_labels(selected.positions, gt, PairSamplingOptions{}.fp_distance_m);

@@ -139,7 +139,7 @@ int run(const Options& o) {
   for (const LineCloud& cloud : train.clouds) {
     if (cloud.wireframe.junctions.size() < 2) continue;
     clouds.push_back(&cloud);
-    selected.push_back(select_junctions(predict_junction_candidates(*junction_net, cloud, static_cast<int>(c.sampling_passes)), cloud.segments,
+    selected.push_back(select_junctions(predict_junction_candidates(*junction_net, cloud, edge_training_selection(c)), cloud.segments,
                                         edge_training_selection(c), SelectionCut::kTopK));
   }
   const PairSampleOptions sampling = edge_training_sample_options(c);

@@ -123,7 +123,7 @@ void BM_InferBuilding(benchmark::State& state) {
   double pairs = 0;
   for (auto _ : state) {
     const LineCloud& cloud = clouds()[k % clouds().size()];
-    benchmark::DoNotOptimize(predict_junction_candidates(junction, cloud));
+    benchmark::DoNotOptimize(predict_junction_candidates(junction, cloud, post.selection));
     const InferenceResult r = predict_wireframe(edge, cloud, fake_predictions(cloud, k), post);
     const double n = static_cast<double>(r.selection.positions.size());
     pairs += n * (n - 1) / 2;

@@ -36,7 +36,9 @@ TEST(Constants, ReleaseValuesInMetres) {
   const SamplingOptions s;
   EXPECT_DOUBLE_EQ(s.density_radius_m * 20, 6.0);
   EXPECT_DOUBLE_EQ(s.density_inner_radius_m * 20, 3.0);
-  EXPECT_DOUBLE_EQ(s.density_nms_m * 20, 1.5);
+  EXPECT_DOUBLE_EQ(s.seeds.nms_m * 20, 1.5);
+  EXPECT_EQ(s.seeds.min_count, 12);
+  EXPECT_DOUBLE_EQ(s.seeds.min_ratio, 0.7);
   EXPECT_EQ(s.num_samples, 256);
   const PairSamplingOptions p;
   EXPECT_DOUBLE_EQ(p.fp_distance_m * 20, 7.0);
@@ -121,6 +123,36 @@ TEST(Sampling, DensitySeedsOnePerCluster) {
   EXPECT_EQ(seeds, (std::vector<int>{0, 15}));
 }
 
+// The loose rule also seeds small clusters (A > 4) and keeps one seed per 0.3 m.
+TEST(Sampling, LooseDensitySeedsTakeSmallClusters) {
+  std::vector<Vec3> p;
+  // Two groups of 6 endpoints 0.14 m apart (A = 12: not a release seed) leave one loose seed; 6 alone, one.
+  for (int k = 0; k < 6; ++k) p.push_back(Vec3(0.001 * k, 0, 0));
+  for (int k = 0; k < 6; ++k) p.push_back(Vec3(0.14 + 0.001 * k, 0, 0));
+  for (int k = 0; k < 6; ++k) p.push_back(Vec3(2 + 0.001 * k, 0, 0));
+  EXPECT_TRUE(density_seeds(p, SamplingOptions{}).empty());
+  SamplingOptions o;
+  o.seeds = DensitySeedRule::loose();
+  const std::vector<int> seeds = density_seeds(p, o);
+  ASSERT_EQ(seeds.size(), 2u);
+  EXPECT_LT(seeds[0], 12);
+  EXPECT_GE(seeds[1], 12);
+}
+
+TEST(Sampling, DensitySeedRuleText) {
+  EXPECT_EQ(DensitySeedRule::release().str(), "release");
+  EXPECT_EQ(DensitySeedRule::loose().str(), "loose");
+  EXPECT_EQ(DensitySeedRule::parse("release"), DensitySeedRule::release());
+  EXPECT_EQ(DensitySeedRule::parse("4,0.5,0.3"), DensitySeedRule::loose());
+  const DensitySeedRule other = DensitySeedRule::parse("6,0.45,0.25");
+  EXPECT_EQ(other.str(), "6,0.45,0.25");
+  EXPECT_EQ(DensitySeedRule::parse(other.str()), other);
+  for (const char* bad : {"", "dense", "4,0.5", "4,0.5,0.3,1", "4,0.5,0.3x", "4.5,0.5,0.3", "-1,0.5,0.3", "4,1.5,0.3",
+                          "4,0.5,-0.1", "4,nan,0.3"}) {
+    EXPECT_THROW(DensitySeedRule::parse(bad), std::invalid_argument) << bad;
+  }
+}
+
 TEST(Sampling, FarthestPointSampling) {
   std::vector<Vec3> p;
   for (int i = 0; i < 10; ++i) p.push_back(Vec3(i, 0, 0));
@@ -138,7 +170,7 @@ TEST(Sampling, PassesContinueAfterTheOnePassSample) {
     for (int i = 0; i < n; ++i) p.push_back(Vec3(0.37 * i, std::sin(i), 0));
     SamplingOptions o;
     o.num_samples = 5;
-    o.density_min_count = 1000;  // no density seeds: plain farthest-point sampling
+    o.seeds.min_count = 1000;  // no density seeds: plain farthest-point sampling
     const std::vector<int> one = sample_endpoints(p, o);
     o.passes = 3;
     const std::vector<int> three = sample_endpoints(p, o);

@@ -52,11 +52,19 @@ PostProcessOptions keep_every_junction() {
   return o;
 }
 
+// The junction model run in `passes` passes and `views` views (the other selection options do not matter).
+JunctionSelectionOptions run_as(int passes = 1, int views = 1) {
+  JunctionSelectionOptions o;
+  o.sampling_passes = passes;
+  o.test_time_views = views;
+  return o;
+}
+
 // More passes add candidates after the one-pass ones, which stay exactly as they were.
 TEST_F(Inference, SamplingPassesAppendCandidatesToTheFirstPass) {
   const WireframePredictor predictor(dir_);
-  const PredictedJunctions one = predict_junction_candidates(predictor.junction_net(), cloud_, 1);
-  const PredictedJunctions two = predict_junction_candidates(predictor.junction_net(), cloud_, 2);
+  const PredictedJunctions one = predict_junction_candidates(predictor.junction_net(), cloud_, run_as(1));
+  const PredictedJunctions two = predict_junction_candidates(predictor.junction_net(), cloud_, run_as(2));
   ASSERT_EQ(one.positions.size(), 32u);
   ASSERT_EQ(two.positions.size(), 64u);
   ASSERT_EQ(two.confidence.size(), 64u);
@@ -72,7 +80,7 @@ TEST_F(Inference, SamplingPassesAppendCandidatesToTheFirstPass) {
   PostProcessOptions o = keep_every_junction();
   o.selection.sampling_passes = 2;
   EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 64u);
-  EXPECT_THROW(predict_junction_candidates(predictor.junction_net(), cloud_, 0), std::invalid_argument);
+  EXPECT_THROW(predict_junction_candidates(predictor.junction_net(), cloud_, run_as(0)), std::invalid_argument);
 }
 
 // The cloud turned about the vertical through the network frame's centre by `view`.
@@ -93,14 +101,14 @@ LineCloud turned(const LineCloud& cloud, const PlaneSymmetry& view) {
 TEST_F(Inference, TestTimeViewsMakeTheCandidatesTurnWithTheCloud) {
   const WireframePredictor predictor(dir_);
   JunctionNet& net = predictor.junction_net();
-  const PredictedJunctions plain = predict_junction_candidates(net, cloud_, 1, 1);
-  EXPECT_EQ(predict_junction_candidates(net, cloud_).confidence, plain.confidence);  // one view: as before
+  const PredictedJunctions plain = predict_junction_candidates(net, cloud_, run_as(1, 1));
+  EXPECT_EQ(predict_junction_candidates(net, cloud_, run_as()).confidence, plain.confidence);  // one view: as before
   for (const auto& [count, which] : {std::pair{2, 1}, std::pair{8, 4}}) {
     const PlaneSymmetry view = test_time_symmetries(8)[static_cast<size_t>(which)];
     const LineCloud other = turned(cloud_, view);
-    const PredictedJunctions a = predict_junction_candidates(net, cloud_, 1, count);
-    const PredictedJunctions b = predict_junction_candidates(net, other, 1, count);
-    const PredictedJunctions b_plain = predict_junction_candidates(net, other, 1, 1);
+    const PredictedJunctions a = predict_junction_candidates(net, cloud_, run_as(1, count));
+    const PredictedJunctions b = predict_junction_candidates(net, other, run_as(1, count));
+    const PredictedJunctions b_plain = predict_junction_candidates(net, other, run_as(1, 1));
     ASSERT_EQ(a.positions.size(), 32u);
     ASSERT_EQ(b.positions.size(), 32u);
     double worst = 0.0, worst_plain = 0.0;
@@ -122,7 +130,7 @@ TEST_F(Inference, TestTimeViewsMakeTheCandidatesTurnWithTheCloud) {
   PostProcessOptions o = keep_every_junction();
   o.selection.test_time_views = 4;
   EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 32u);
-  EXPECT_THROW(predict_junction_candidates(net, cloud_, 1, 3), std::invalid_argument);
+  EXPECT_THROW(predict_junction_candidates(net, cloud_, run_as(1, 3)), std::invalid_argument);
 }
 
 // The edge model's views: averaged over a group, a pair's class probabilities do not change when the

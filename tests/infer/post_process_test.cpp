@@ -301,6 +301,12 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_EQ(parse_flags({"--sampling-passes", "2"}).options().selection.sampling_passes, 2);
   EXPECT_EQ(PostProcessFlags{}.options().selection.sampling_passes, 1);  // the release's one pass
   EXPECT_EQ(parse_flags({"--release-quirks"}).options().selection.sampling_passes, 1);
+  EXPECT_THAT(message({"--density-seeds", "dense"}), HasSubstr("--density-seeds: 'dense' is not release, loose"));
+  EXPECT_THAT(message({"--density-seeds", "4,2,0.3"}), HasSubstr("--density-seeds: DensitySeedRule.min_ratio must be in [0, 1]"));
+  EXPECT_EQ(PostProcessFlags{}.options().selection.density_seeds, DensitySeedRule::loose());
+  EXPECT_EQ(parse_flags({"--density-seeds", "release"}).options().selection.density_seeds, DensitySeedRule::release());
+  EXPECT_EQ(parse_flags({"--density-seeds", "6,0.45,0.25"}).options().selection.density_seeds.str(), "6,0.45,0.25");
+  EXPECT_EQ(parse_flags({"--release-quirks"}).options().selection.density_seeds, DensitySeedRule::release());
   EXPECT_THAT(message({"--test-time-views", "3"}), HasSubstr("--test-time-views must be 1, 2, 4 or 8"));
   EXPECT_THAT(message({"--test-time-views", "0"}), HasSubstr("--test-time-views"));
   EXPECT_EQ(parse_flags({"--test-time-views", "8"}).options().selection.test_time_views, 8);

@@ -134,6 +134,8 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
       {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
       {{"edge", "test_time_views"}, 3, "edge.test_time_views"},
+      {{"edge", "density_seeds"}, "dense", "edge.density_seeds"},
+      {{"edge", "density_seeds"}, 4, "edge.density_seeds"},
       {{"junction", "augment_rotate_z"}, "yes", "junction.augment_rotate_z"},
       {{"junction", "positive_radius_m"}, "near", "junction.positive_radius_m"},
   };
@@ -203,7 +205,9 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     c.max_offset_m = 1.0;
     c.sampling_passes = 2;
     c.test_time_views = 4;
+    c.density_seeds = "6,0.45,0.25";
     const PostProcessOptions o = edge_post_process_options(c);
+    EXPECT_EQ(o.selection.density_seeds.str(), "6,0.45,0.25") << mode;
     EXPECT_EQ(o.selection.sampling_passes, 2) << mode;
     EXPECT_EQ(o.selection.test_time_views, 4) << mode;
     EXPECT_DOUBLE_EQ(o.selection.min_confidence, 0.5) << mode;

@@ -148,7 +148,8 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   fs::remove(pj / "rect.json");
   std::ofstream(pj / "in_progress.json") << nlohmann::json{{"junction_step", manifest["junction_step"]},
                                                            {"clouds_fingerprint", manifest["clouds_fingerprint"]},
-                                                           {"version", manifest["version"]}}.dump();
+                                                           {"version", manifest["version"]},
+                                                           {"density_seeds", manifest["density_seeds"]}}.dump();
   const auto old_time = fs::last_write_time(pj / "ell.json") - std::chrono::hours(1);
   fs::last_write_time(pj / "ell.json", old_time);
   ASSERT_EQ(run(train_cmd(partial) + " --stage edge --resume"), 0) << command_output();
@@ -191,7 +192,7 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
 
   // Another value of a hand-off key: the hand-off is predicted again (the manifest records the value) and
   // the edge stage starts again on it.
-  auto edge_again_with = [&](const std::string& name, const std::string& key, int value) {
+  auto edge_again_with = [&](const std::string& name, const std::string& key, const nlohmann::json& value) {
     const fs::path out = dir_ / name;
     fs::copy(straight, out, fs::copy_options::recursive);
     nlohmann::json changed = config_;
@@ -211,6 +212,9 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   const nlohmann::json two_views = edge_again_with("two-views", "test_time_views", 2);
   EXPECT_EQ(two_views["positions"].size(), straight_candidates["positions"].size());
   EXPECT_NE(two_views["confidences"], straight_candidates["confidences"]);
+  // The release's density seeds: a hand-off of its own (this small cloud's sample is every endpoint either way).
+  EXPECT_EQ(edge_again_with("release-seeds", "density_seeds", "release")["positions"].size(),
+            straight_candidates["positions"].size());
 
   // Kill -9 part-way through each stage (every step writes a checkpoint), resume until the end, and
   // compare every step loss with the uninterrupted run.
