@@ -21,6 +21,8 @@
 #                                       edge model (1 and 8 test-time views) -> runs/rotate
 #   tools/paper_experiment.sh rotate-edge  then the edge stage of configs/rotate.json on that junction
 #                                       model's hand-off, scored the same way -> runs/rotate/val-both-views*
+#   tools/paper_experiment.sh loose-seeds  configs/loose-seeds.json: as rotate, with the junction stage's
+#                                       patches sampled from loose density seeds -> runs/loose-seeds
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -219,24 +221,33 @@ step_robust() {
   fi
 }
 
-# The junction model's answers depend on the building's orientation (8 test-time views: +4 vAP on val): the
-# junction stage once more with turns about the vertical, scored with the shipped edge model.
-step_rotate() {
-  [[ ! -e runs/rotate && -f models/rotate-training/config.json ]] && step_restore rotate
+# A junction-stage fine-tune of models/base (configs/RUN.json -> runs/RUN), scored on the validation split
+# beside the shipped edge model at 1 and 8 test-time views.
+finetune_junction() {
+  local run=$1
+  [[ ! -e runs/$run && -f models/$run-training/config.json ]] && step_restore "$run"
   local resume=()
-  [[ -d runs/rotate/checkpoints ]] && resume=(--resume)
-  "$build_dir/train/lc2wf-train" configs/rotate.json --stage junction --out runs/rotate "${resume[@]}"
+  [[ -d runs/$run/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" "configs/$run.json" --stage junction --out "runs/$run" "${resume[@]}"
   # The fine-tuned junction model beside the shipped edge model, as one weights folder.
-  mkdir -p runs/rotate/with-base-edge
-  ln -sfn ../junction.safetensors runs/rotate/with-base-edge/junction.safetensors
-  ln -sfn "$root/models/base/edge.safetensors" runs/rotate/with-base-edge/edge.safetensors
+  mkdir -p "runs/$run/with-base-edge"
+  ln -sfn ../junction.safetensors "runs/$run/with-base-edge/junction.safetensors"
+  ln -sfn "$root/models/base/edge.safetensors" "runs/$run/with-base-edge/edge.safetensors"
   local views
   for views in 1 8; do
-    "$build_dir/infer/lc2wf-eval" --weights runs/rotate/with-base-edge --data runs/dataset/clouds \
-      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/rotate/val-views$views"
-    cat "runs/rotate/val-views$views/metrics.md"
+    "$build_dir/infer/lc2wf-eval" --weights "runs/$run/with-base-edge" --data runs/dataset/clouds \
+      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/$run/val-views$views"
+    cat "runs/$run/val-views$views/metrics.md"
   done
 }
+
+# The junction model's answers depend on the building's orientation (8 test-time views: +4 vAP on val): the
+# junction stage once more with turns about the vertical (models/rotate).
+step_rotate() { finetune_junction rotate; }
+
+# The same with the loose density seeds in training, so the junction model learns on the patches that
+# inference samples by default.
+step_loose_seeds() { finetune_junction loose-seeds; }
 
 # The edge model fine-tuned with the same turns, on the hand-off of the turned junction model.
 step_rotate_edge() {
@@ -263,6 +274,7 @@ case "${1:-}" in
   robust) step_robust ;;
   rotate) step_rotate ;;
   rotate-edge) step_rotate_edge ;;
+  loose-seeds) step_loose_seeds ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

@@ -31,6 +31,7 @@ JunctionSampleOptions stage_sample_options(const JunctionStageConfig& c, bool tr
   o.sampling.near_gt_samples = o.augment_enabled ? static_cast<int>(c.near_gt_samples) : 0;
   if (c.endpoint_label_max_distance_m > 0) o.endpoint_label_max_distance_m = c.endpoint_label_max_distance_m;
   if (c.positive_radius_m > 0) o.patch.positive_radius_m = c.positive_radius_m;
+  o.sampling.seeds = DensitySeedRule::parse(c.density_seeds);
   return o;
 }
 

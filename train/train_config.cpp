@@ -19,6 +19,14 @@ void require(bool ok, const std::string& field, const std::string& rule) {
   if (!ok) throw std::invalid_argument(field + " " + rule);
 }
 
+void require_seed_rule(const std::string& text, const std::string& field) {
+  try {
+    DensitySeedRule::parse(text);
+  } catch (const std::invalid_argument& e) {
+    require(false, field, std::string("is invalid: ") + e.what());
+  }
+}
+
 // nn's Check() messages name the field relative to its struct ("optim.lr"); prefix the stage.
 template <class T>
 void check_nested(const T& c, const std::string& prefix) {
@@ -74,6 +82,7 @@ void JunctionStageConfig::Check() const {
   require(near_gt_samples >= 0 && near_gt_samples <= net.lpt.patches, "junction.near_gt_samples",
           "must be in [0, net.lpt.patches]");
   require(std::isfinite(positive_radius_m), "junction.positive_radius_m", "must be a number of metres (<= 0: the release's labels)");
+  require_seed_rule(density_seeds, "junction.density_seeds");
 }
 
 nlohmann::json JunctionStageConfig::to_json() const { return fields_to_json(*this); }
@@ -116,11 +125,7 @@ void EdgeStageConfig::Check() const {
   require(std::isfinite(max_offset_m), "edge.max_offset_m", "must be a number of metres (<= 0: every candidate)");
   require(sampling_passes >= 1 && sampling_passes <= 8, "edge.sampling_passes", "must be in [1, 8]");
   require(JunctionSelectionOptions::valid_view_count(test_time_views), "edge.test_time_views", "must be 1, 2, 4 or 8");
-  try {
-    DensitySeedRule::parse(density_seeds);
-  } catch (const std::invalid_argument& e) {
-    require(false, "edge.density_seeds", std::string("is invalid: ") + e.what());
-  }
+  require_seed_rule(density_seeds, "edge.density_seeds");
 }
 
 nlohmann::json EdgeStageConfig::to_json() const { return fields_to_json(*this); }

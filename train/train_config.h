@@ -106,6 +106,9 @@ struct JunctionStageConfig {
   int64_t near_gt_samples = 0;                // the paper's near-GT training samples (the release has none)
   double endpoint_label_max_distance_m = -1;  // <= 0: the plain (f, i1, i2) endpoint labels
   double positive_radius_m = -1;  // > 0: patches whose junction is farther than this are negative (PatchOptions)
+  // Which endpoints seed the sample points of the training and validation patches (DensitySeedRule::parse):
+  // the release's by default; "loose" trains on the patches inference samples by default.
+  std::string density_seeds = "release";
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
@@ -117,6 +120,7 @@ struct JunctionStageConfig {
     v("near_gt_samples", s.near_gt_samples);
     v("endpoint_label_max_distance_m", s.endpoint_label_max_distance_m);
     v("positive_radius_m", s.positive_radius_m);
+    v("density_seeds", s.density_seeds);
   }
   void Check() const;
   nlohmann::json to_json() const;

@@ -1,6 +1,6 @@
-// The published model (models/base) loads on a fresh clone and turns a building's line cloud into a
-// wireframe: finite scores, edges inside the building, most GT corners found. Registered only when
-// models/base holds both weight files (tests/infer/CMakeLists.txt).
+// The published models (models/base, models/rotate) load on a fresh clone and turn a building's line cloud
+// into a wireframe: finite scores, edges inside the building, most GT corners found. Registered only when
+// models/base holds both weight files (tests/infer/CMakeLists.txt); models/rotate is checked where present.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,8 +15,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(PretrainedModel, BaseTurnsAHipRoofCloudIntoAWireframe) {
-  const WireframePredictor predictor(fs::path(LC2WF_SOURCE_DIR) / "models" / "base");
+class PretrainedModel : public testing::TestWithParam<const char*> {};
+
+TEST_P(PretrainedModel, TurnsAHipRoofCloudIntoAWireframe) {
+  const fs::path dir = fs::path(LC2WF_SOURCE_DIR) / "models" / GetParam();
+  if (!fs::exists(dir / "junction.safetensors")) GTEST_SKIP() << dir << " is not in this tree";
+  const WireframePredictor predictor(dir);
   const Building building = make_rect_building("hip", RectBuildingSpec{});
   const LineCloud cloud = make_synthetic_line_cloud(building, 3);
   const InferenceResult r = predictor.predict(cloud, PostProcessOptions{});
@@ -48,6 +52,8 @@ TEST(PretrainedModel, BaseTurnsAHipRoofCloudIntoAWireframe) {
   }
   EXPECT_GE(found, static_cast<int>(cloud.wireframe.junctions.size()) / 2) << found << " of " << cloud.wireframe.junctions.size();
 }
+
+INSTANTIATE_TEST_SUITE_P(Published, PretrainedModel, testing::Values("base", "rotate"));
 
 }  // namespace
 }  // namespace lc2wf

@@ -135,6 +135,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
       {{"edge", "test_time_views"}, 3, "edge.test_time_views"},
       {{"edge", "density_seeds"}, "dense", "edge.density_seeds"},
+      {{"junction", "density_seeds"}, "4,0.5", "junction.density_seeds"},
       {{"edge", "density_seeds"}, 4, "edge.density_seeds"},
       {{"junction", "augment_rotate_z"}, "yes", "junction.augment_rotate_z"},
       {{"junction", "positive_radius_m"}, "near", "junction.positive_radius_m"},
