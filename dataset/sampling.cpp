@@ -1,7 +1,6 @@
 #include "dataset/sampling.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>

@@ -58,8 +58,8 @@ wireframe and a note, never a failure.
                       sampling: loose (default: more than 4 endpoints within 0.3 m, one seed per 0.3 m),
                       release (more than 12, one per 0.075 m; --release-quirks) or MIN_COUNT,MIN_RATIO,
                       NMS_M. Loose seeds leave 4 % of the GT junctions without a sample point within
-                      0.35 m instead of 15 % (models/base, validation split: vAP +1.4, sAP +3.3, WED
-                      -0.81; bench/README.md, "Density seeds")
+                      0.35 m instead of 15 % (models/base, test split: vAP +1.1, sAP +2.0, WED -0.73;
+                      bench/README.md, "Density seeds")
   --test-time-views N each junction candidate is the model's mean answer over N views of its patch (1, 2,
                       4 or 8: turned by quarter turns or mirrored about the vertical; default 1, the
                       release), at N x the junction model's time (models/base, validation split, 8 views:
