@@ -23,6 +23,8 @@
 #                                       model's hand-off, scored the same way -> runs/rotate/val-both-views*
 #   tools/paper_experiment.sh loose-seeds  configs/loose-seeds.json: as rotate, with the junction stage's
 #                                       patches sampled from loose density seeds -> runs/loose-seeds
+#   tools/paper_experiment.sh junction-turns  configs/junction-turns.json: base.json's whole junction
+#                                       schedule with turns and loose seeds, scored the same way
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -221,9 +223,9 @@ step_robust() {
   fi
 }
 
-# A junction-stage fine-tune of models/base (configs/RUN.json -> runs/RUN), scored on the validation split
-# beside the shipped edge model at 1 and 8 test-time views.
-finetune_junction() {
+# A junction stage of its own (configs/RUN.json -> runs/RUN: a fine-tune of models/base or a whole schedule),
+# scored on the validation split beside the shipped edge model at 1 and 8 test-time views.
+junction_variant() {
   local run=$1
   [[ ! -e runs/$run && -f models/$run-training/config.json ]] && step_restore "$run"
   local resume=()
@@ -243,11 +245,14 @@ finetune_junction() {
 
 # The junction model's answers depend on the building's orientation (8 test-time views: +4 vAP on val): the
 # junction stage once more with turns about the vertical (models/rotate).
-step_rotate() { finetune_junction rotate; }
+step_rotate() { junction_variant rotate; }
 
 # The same with the loose density seeds in training, so the junction model learns on the patches that
 # inference samples by default.
-step_loose_seeds() { finetune_junction loose-seeds; }
+step_loose_seeds() { junction_variant loose-seeds; }
+
+# The paper's whole junction schedule (41 epochs from scratch) with turns and loose seeds from the start.
+step_junction_turns() { junction_variant junction-turns; }
 
 # The edge model fine-tuned with the same turns, on the hand-off of the turned junction model.
 step_rotate_edge() {
@@ -275,6 +280,7 @@ case "${1:-}" in
   rotate) step_rotate ;;
   rotate-edge) step_rotate_edge ;;
   loose-seeds) step_loose_seeds ;;
+  junction-turns) step_junction_turns ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
