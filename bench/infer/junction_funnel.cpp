@@ -1,0 +1,172 @@
+// Where the GT junctions are lost on the way through the pipeline of `lc2wf-eval --weights`: for each GT
+// junction, whether some junction candidate lies within η of it (any confidence, any offset), one above the
+// confidence cut, one that also passes the offset screen, a selected (NMS'd, refined) junction, and a junction
+// of the final wireframe. Each stage's share of the GT junctions matched one-to-one within η (closest first),
+// at the three vertex η of the metrics: the recall each stage would allow.
+//   lc2wf_junction_funnel --weights DIR --data CLOUDS --split FILE [--precision fp32|bf16|auto] [selection flags]
+// Selection flags as lc2wf-eval's (infer/post_process_flags.h). Prints a Markdown table.
+#include <algorithm>
+#include <array>
+#include <tuple>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/matmul_precision.h"
+#include "core/util/cli.h"
+#include "dataset/cloud_input.h"
+#include "dataset/splits.h"
+#include "infer/batch_inference.h"
+#include "infer/inference.h"
+#include "infer/post_process_flags.h"
+
+namespace fs = std::filesystem;
+using namespace lc2wf;
+
+namespace {
+
+constexpr std::array<double, 3> kEta = {0.15, 0.25, 0.35};  // the vertex η of the metrics (metres)
+
+enum Stage { kCandidate, kConfident, kNear, kAgreed, kSelected, kFinal, kStages };
+const char* const kStageNames[kStages] = {
+    "a junction candidate (any confidence, any offset)",
+    "a candidate above the confidence cut",
+    "... also within the offset screen",
+    "... or a far vote that 2 other far votes agree with (within 0.25 m)",
+    "a selected junction (NMS, refined)",
+    "a junction of the final wireframe",
+};
+
+// GT junctions matched one-to-one by points within eta, closest pairs first (as the recall counts them: a
+// point stands for one GT junction at most).
+int64_t matched(const std::vector<Vec3>& gt, const std::vector<Vec3>& points, double eta) {
+  std::vector<std::tuple<double, size_t, size_t>> close;
+  for (size_t g = 0; g < gt.size(); ++g)
+    for (size_t p = 0; p < points.size(); ++p)
+      if (const double d = (points[p] - gt[g]).norm(); d <= eta) close.emplace_back(d, g, p);
+  std::sort(close.begin(), close.end());
+  std::vector<char> gt_used(gt.size(), 0), point_used(points.size(), 0);
+  int64_t n = 0;
+  for (const auto& [d, g, p] : close)
+    if (!gt_used[g] && !point_used[p]) gt_used[g] = point_used[p] = 1, ++n;
+  return n;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  fs::path weights, data, split;
+  std::string precision = "fp32";
+  PostProcessFlags flags;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    if (flags.parse(f, argc, argv, i)) continue;
+    if (i + 1 >= argc) throw UsageError(f + " needs a value");
+    const std::string v = argv[++i];
+    if (f == "--weights") weights = v;
+    else if (f == "--data") data = v;
+    else if (f == "--split") split = v;
+    else if (f == "--precision") precision = v;
+    else throw UsageError("unknown argument '" + f + "'");
+  }
+  if (weights.empty() || data.empty() || split.empty())
+    throw UsageError("usage: lc2wf_junction_funnel --weights DIR --data CLOUDS --split FILE [--precision P] [selection flags]");
+  const WireframePredictor predictor(weights);
+  const MatmulPrecisionGuard guard(precision_flag(precision));
+  const PostProcessOptions options = flags.options();
+  const JunctionSelectionOptions& sel = options.selection;
+  std::array<std::array<int64_t, kStages>, kEta.size()> found{};
+  std::array<int64_t, kStages> points{}, unmatched{};
+  int64_t gt_low = 0, missed = 0, missed_few_ends = 0, missed_degree = 0, missed_low = 0, missed_close = 0;
+  int64_t gt_total = 0, close_gt = 0, buildings = 0;
+  for (const std::string& name : read_name_list(split)) {
+    const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
+    const InferenceResult r = predictor.predict(cloud, options);
+    std::array<std::vector<Vec3>, kStages> at;
+    std::vector<Vec3> far;
+    for (size_t k = 0; k < r.junctions.positions.size(); ++k) {
+      const Vec3& p = r.junctions.positions[k];
+      at[kCandidate].push_back(p);
+      if (r.junctions.confidence[k] <= sel.min_confidence) continue;
+      at[kConfident].push_back(p);
+      const bool near = r.junctions.offset_m.empty() || r.junctions.offset_m[k] <= sel.max_offset_m;
+      if (near) at[kNear].push_back(p), at[kAgreed].push_back(p);
+      else far.push_back(p);
+    }
+    for (size_t a = 0; a < far.size(); ++a) {
+      int others = 0;
+      for (size_t b = 0; b < far.size(); ++b) others += b != a && (far[b] - far[a]).norm() <= 0.25;
+      if (others >= 2) at[kAgreed].push_back(far[a]);
+    }
+    at[kSelected] = r.selection.positions;
+    at[kFinal] = r.wireframe.wireframe.junctions;
+    const std::vector<Vec3>& gt = cloud.wireframe.junctions;
+    for (size_t e = 0; e < kEta.size(); ++e)
+      for (int s = 0; s < kStages; ++s) found[e][s] += matched(gt, at[s], kEta[e]);
+    for (int s = 0; s < kStages; ++s)
+      points[s] += static_cast<int64_t>(at[s].size()), unmatched[s] += static_cast<int64_t>(at[s].size()) - matched(gt, at[s], kEta.back());
+    for (size_t g = 0; g < gt.size(); ++g) {
+      for (size_t h = 0; h < gt.size(); ++h)
+        if (h != g && (gt[h] - gt[g]).norm() <= sel.nms_radius_m) {
+          ++close_gt;
+          break;
+        }
+    }
+    // What the GT junctions without any candidate within the largest η look like.
+    std::vector<int> degree(gt.size(), 0);
+    for (const auto& e : cloud.wireframe.edges) ++degree[e[0]], ++degree[e[1]];
+    for (size_t g = 0; g < gt.size(); ++g) {
+      bool reached = false;
+      for (const Vec3& p : at[kCandidate]) reached = reached || (p - gt[g]).norm() <= kEta.back();
+      if (reached) continue;
+      ++missed;
+      int ends = 0;
+      for (const Segment3& seg : cloud.segments) ends += ((seg.a - gt[g]).norm() <= kEta.back()) + ((seg.b - gt[g]).norm() <= kEta.back());
+      missed_few_ends += ends < 2;
+      missed_degree += degree[g];
+      missed_low += gt[g].z() < 0.5;
+      for (size_t h = 0; h < gt.size(); ++h)
+        if (h != g && (gt[h] - gt[g]).norm() <= 1.0) {
+          ++missed_close;
+          break;
+        }
+    }
+    for (const Vec3& g : gt) gt_low += g.z() < 0.5;
+    gt_total += static_cast<int64_t>(gt.size());
+    ++buildings;
+  }
+  std::printf("%lld buildings, %lld GT junctions; %.1f %% of them have another GT junction within the NMS radius %.2f m\n\n",
+              static_cast<long long>(buildings), static_cast<long long>(gt_total),
+              100.0 * static_cast<double>(close_gt) / static_cast<double>(gt_total ? gt_total : 1), sel.nms_radius_m);
+  std::printf("| GT junctions with ... within η | η = 0.15 | η = 0.25 | η = 0.35 | points per building | of them matching no GT junction within 0.35 m |\n|---|---|---|---|---|---|\n");
+  for (int s = 0; s < kStages; ++s) {
+    std::printf("| %s |", kStageNames[s]);
+    for (size_t e = 0; e < kEta.size(); ++e)
+      std::printf(" %.1f %% |", 100.0 * static_cast<double>(found[e][s]) / static_cast<double>(gt_total ? gt_total : 1));
+    const double per = static_cast<double>(buildings ? buildings : 1);
+    std::printf(" %.1f | %.1f |\n", static_cast<double>(points[s]) / per, static_cast<double>(unmatched[s]) / per);
+  }
+  const double m = static_cast<double>(missed ? missed : 1);
+  std::printf("\nGT junctions without any candidate within %.2f m: %lld (%.1f %%); of them %.1f %% with fewer than 2 cloud "
+              "endpoints within %.2f m, %.1f %% with another GT junction within 1 m, %.1f %% below 0.5 m height (of all GT "
+              "junctions %.1f %%); mean degree %.2f\n",
+              kEta.back(), static_cast<long long>(missed), 100.0 * static_cast<double>(missed) / static_cast<double>(gt_total ? gt_total : 1),
+              100.0 * static_cast<double>(missed_few_ends) / m, kEta.back(), 100.0 * static_cast<double>(missed_close) / m,
+              100.0 * static_cast<double>(missed_low) / m, 100.0 * static_cast<double>(gt_low) / static_cast<double>(gt_total ? gt_total : 1),
+              static_cast<double>(missed_degree) / m);
+  return 0;
+}
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lc2wf_junction_funnel: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "lc2wf_junction_funnel: %s\n", e.what());
+    return 3;
+  }
+}
