@@ -79,7 +79,7 @@ int run(int argc, char** argv) {
   const JunctionSelectionOptions& sel = options.selection;
   std::array<std::array<int64_t, kStages>, kEta.size()> found{};
   std::array<int64_t, kStages> points{}, unmatched{};
-  int64_t gt_low = 0, missed = 0, missed_few_ends = 0, missed_degree = 0, missed_low = 0, missed_close = 0;
+  int64_t missed_low_few_ends = 0, gt_low = 0, missed = 0, missed_few_ends = 0, missed_degree = 0, missed_low = 0, missed_close = 0;
   int64_t gt_total = 0, close_gt = 0, buildings = 0;
   for (const std::string& name : read_name_list(split)) {
     const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
@@ -127,6 +127,7 @@ int run(int argc, char** argv) {
       missed_few_ends += ends < 2;
       missed_degree += degree[g];
       missed_low += gt[g].z() < 0.5;
+      missed_low_few_ends += gt[g].z() < 0.5 && ends < 2;
       for (size_t h = 0; h < gt.size(); ++h)
         if (h != g && (gt[h] - gt[g]).norm() <= 1.0) {
           ++missed_close;
@@ -151,10 +152,11 @@ int run(int argc, char** argv) {
   const double m = static_cast<double>(missed ? missed : 1);
   std::printf("\nGT junctions without any candidate within %.2f m: %lld (%.1f %%); of them %.1f %% with fewer than 2 cloud "
               "endpoints within %.2f m, %.1f %% with another GT junction within 1 m, %.1f %% below 0.5 m height (of all GT "
-              "junctions %.1f %%); mean degree %.2f\n",
+              "junctions %.1f %%; of the missed ones below 0.5 m, %.1f %% with fewer than 2 endpoints); mean degree %.2f\n",
               kEta.back(), static_cast<long long>(missed), 100.0 * static_cast<double>(missed) / static_cast<double>(gt_total ? gt_total : 1),
               100.0 * static_cast<double>(missed_few_ends) / m, kEta.back(), 100.0 * static_cast<double>(missed_close) / m,
               100.0 * static_cast<double>(missed_low) / m, 100.0 * static_cast<double>(gt_low) / static_cast<double>(gt_total ? gt_total : 1),
+              100.0 * static_cast<double>(missed_low_few_ends) / static_cast<double>(missed_low ? missed_low : 1),
               static_cast<double>(missed_degree) / m);
   return 0;
 }
