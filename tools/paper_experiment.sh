@@ -25,6 +25,9 @@
 #                                       patches sampled from loose density seeds -> runs/loose-seeds
 #   tools/paper_experiment.sh junction-turns  configs/junction-turns.json: base.json's whole junction
 #                                       schedule with turns and loose seeds, scored the same way
+#   tools/paper_experiment.sh edge-sound  configs/edge-sound.json: models/base's edge model fine-tuned on
+#                                       the junctions inference selects (offset screen, NMS 0.5 m, loose
+#                                       seeds) beside models/rotate-loose's junction model -> runs/edge-sound
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -266,6 +269,25 @@ step_rotate_edge() {
   done
 }
 
+# The shipped edge model fine-tuned on the junctions that inference gives it (offset screen 0.75 m, c > 0.05,
+# NMS 0.5 m, loose seeds; base.json trains and validates it on the release's selection), beside the best
+# junction model; validated with that selection, so each epoch's score compares with lc2wf-eval's.
+step_edge_sound() {
+  local run=edge-sound junction=models/rotate-loose/junction.safetensors
+  [[ ! -e runs/$run && -f models/$run-training/config.json ]] && step_restore "$run"
+  mkdir -p "runs/$run"
+  [[ -f runs/$run/junction.safetensors ]] || cp "$junction" "runs/$run/junction.safetensors"
+  local resume=()
+  [[ -d runs/$run/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" "configs/$run.json" --stage edge --out "runs/$run" "${resume[@]}"
+  local views
+  for views in 1 8; do
+    "$build_dir/infer/lc2wf-eval" --weights "runs/$run" --data runs/dataset/clouds \
+      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/$run/val-views$views"
+    cat "runs/$run/val-views$views/metrics.md"
+  done
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -281,6 +303,7 @@ case "${1:-}" in
   rotate-edge) step_rotate_edge ;;
   loose-seeds) step_loose_seeds ;;
   junction-turns) step_junction_turns ;;
+  edge-sound) step_edge_sound ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
