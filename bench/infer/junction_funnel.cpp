@@ -1,13 +1,11 @@
 // Where the GT junctions are lost on the way through the pipeline of `lc2wf-eval --weights`: for each GT
 // junction, whether some junction candidate lies within η of it (any confidence, any offset), one above the
 // confidence cut, one that also passes the offset screen, a selected (NMS'd, refined) junction, and a junction
-// of the final wireframe. Each stage's share of the GT junctions matched one-to-one within η (closest first),
-// at the three vertex η of the metrics: the recall each stage would allow.
+// of the final wireframe. Each stage's share of the GT junctions the metric's matching would count within η
+// (infer/ap_metric.h, points in confidence order), at its three vertex η: the recall each stage would allow.
 //   lc2wf_junction_funnel --weights DIR --data CLOUDS --split FILE [--precision fp32|bf16|auto] [selection flags]
 // Selection flags as lc2wf-eval's (infer/post_process_flags.h). Prints a Markdown table.
-#include <algorithm>
 #include <array>
-#include <tuple>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -18,6 +16,7 @@
 #include "core/util/cli.h"
 #include "dataset/cloud_input.h"
 #include "dataset/splits.h"
+#include "infer/ap_metric.h"
 #include "infer/batch_inference.h"
 #include "infer/inference.h"
 #include "infer/post_process_flags.h"
@@ -39,18 +38,17 @@ const char* const kStageNames[kStages] = {
     "a junction of the final wireframe",
 };
 
-// GT junctions matched one-to-one by points within eta, closest pairs first (as the recall counts them: a
-// point stands for one GT junction at most).
-int64_t matched(const std::vector<Vec3>& gt, const std::vector<Vec3>& points, double eta) {
-  std::vector<std::tuple<double, size_t, size_t>> close;
-  for (size_t g = 0; g < gt.size(); ++g)
-    for (size_t p = 0; p < points.size(); ++p)
-      if (const double d = (points[p] - gt[g]).norm(); d <= eta) close.emplace_back(d, g, p);
-  std::sort(close.begin(), close.end());
-  std::vector<char> gt_used(gt.size(), 0), point_used(points.size(), 0);
+// The points of one stage with their confidences.
+struct StagePoints {
+  std::vector<Vec3> positions;
+  std::vector<double> scores;
+  void add(const Vec3& p, double score) { positions.push_back(p), scores.push_back(score); }
+};
+
+// GT junctions the metric's matching (infer/ap_metric.h) would count as found if these points were the output.
+int64_t matched(const std::vector<Vec3>& gt, const StagePoints& points, double eta) {
   int64_t n = 0;
-  for (const auto& [d, g, p] : close)
-    if (!gt_used[g] && !point_used[p]) gt_used[g] = point_used[p] = 1, ++n;
+  for (const RankedHit& hit : match_junctions(points.positions, points.scores, gt, eta, -1.0)) n += hit.true_positive;
   return n;
 }
 
@@ -84,29 +82,31 @@ int run(int argc, char** argv) {
   for (const std::string& name : read_name_list(split)) {
     const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
     const InferenceResult r = predictor.predict(cloud, options);
-    std::array<std::vector<Vec3>, kStages> at;
-    std::vector<Vec3> far;
+    std::array<StagePoints, kStages> at;
+    StagePoints far;
     for (size_t k = 0; k < r.junctions.positions.size(); ++k) {
       const Vec3& p = r.junctions.positions[k];
-      at[kCandidate].push_back(p);
+      const double c = r.junctions.confidence[k];
+      at[kCandidate].add(p, c);
       if (r.junctions.confidence[k] <= sel.min_confidence) continue;
-      at[kConfident].push_back(p);
+      at[kConfident].add(p, c);
       const bool near = r.junctions.offset_m.empty() || r.junctions.offset_m[k] <= sel.max_offset_m;
-      if (near) at[kNear].push_back(p), at[kAgreed].push_back(p);
-      else far.push_back(p);
+      if (near) at[kNear].add(p, c), at[kAgreed].add(p, c);
+      else far.add(p, c);
     }
-    for (size_t a = 0; a < far.size(); ++a) {
+    for (size_t a = 0; a < far.positions.size(); ++a) {
       int others = 0;
-      for (size_t b = 0; b < far.size(); ++b) others += b != a && (far[b] - far[a]).norm() <= 0.25;
-      if (others >= 2) at[kAgreed].push_back(far[a]);
+      for (size_t b = 0; b < far.positions.size(); ++b) others += b != a && (far.positions[b] - far.positions[a]).norm() <= 0.25;
+      if (others >= 2) at[kAgreed].add(far.positions[a], far.scores[a]);
     }
-    at[kSelected] = r.selection.positions;
-    at[kFinal] = r.wireframe.wireframe.junctions;
+    at[kSelected] = {r.selection.positions, r.selection.confidences};
+    at[kFinal] = {r.wireframe.wireframe.junctions, r.wireframe.junction_scores};
     const std::vector<Vec3>& gt = cloud.wireframe.junctions;
     for (size_t e = 0; e < kEta.size(); ++e)
       for (int s = 0; s < kStages; ++s) found[e][s] += matched(gt, at[s], kEta[e]);
     for (int s = 0; s < kStages; ++s)
-      points[s] += static_cast<int64_t>(at[s].size()), unmatched[s] += static_cast<int64_t>(at[s].size()) - matched(gt, at[s], kEta.back());
+      points[s] += static_cast<int64_t>(at[s].positions.size()),
+      unmatched[s] += static_cast<int64_t>(at[s].positions.size()) - matched(gt, at[s], kEta.back());
     for (size_t g = 0; g < gt.size(); ++g) {
       for (size_t h = 0; h < gt.size(); ++h)
         if (h != g && (gt[h] - gt[g]).norm() <= sel.nms_radius_m) {
@@ -119,7 +119,7 @@ int run(int argc, char** argv) {
     for (const auto& e : cloud.wireframe.edges) ++degree[e[0]], ++degree[e[1]];
     for (size_t g = 0; g < gt.size(); ++g) {
       bool reached = false;
-      for (const Vec3& p : at[kCandidate]) reached = reached || (p - gt[g]).norm() <= kEta.back();
+      for (const Vec3& p : at[kCandidate].positions) reached = reached || (p - gt[g]).norm() <= kEta.back();
       if (reached) continue;
       ++missed;
       int ends = 0;
