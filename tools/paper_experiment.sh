@@ -226,6 +226,17 @@ step_robust() {
   fi
 }
 
+# score_on_val WEIGHTS PREFIX: lc2wf-eval of WEIGHTS on the validation split at 1 and 8 test-time views
+# -> PREFIX1, PREFIX8 (metrics printed).
+score_on_val() {
+  local views
+  for views in 1 8; do
+    "$build_dir/infer/lc2wf-eval" --weights "$1" --data runs/dataset/clouds \
+      --split configs/splits/val.txt --test-time-views "$views" -q -o "$2$views"
+    cat "$2$views/metrics.md"
+  done
+}
+
 # A junction stage of its own (configs/RUN.json -> runs/RUN: a fine-tune of models/base or a whole schedule),
 # scored on the validation split beside the shipped edge model at 1 and 8 test-time views.
 junction_variant() {
@@ -238,12 +249,7 @@ junction_variant() {
   mkdir -p "runs/$run/with-base-edge"
   ln -sfn ../junction.safetensors "runs/$run/with-base-edge/junction.safetensors"
   ln -sfn "$root/models/base/edge.safetensors" "runs/$run/with-base-edge/edge.safetensors"
-  local views
-  for views in 1 8; do
-    "$build_dir/infer/lc2wf-eval" --weights "runs/$run/with-base-edge" --data runs/dataset/clouds \
-      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/$run/val-views$views"
-    cat "runs/$run/val-views$views/metrics.md"
-  done
+  score_on_val "runs/$run/with-base-edge" "runs/$run/val-views"
 }
 
 # The junction model's answers depend on the building's orientation (8 test-time views: +4 vAP on val): the
@@ -261,12 +267,7 @@ step_junction_turns() { junction_variant junction-turns; }
 step_rotate_edge() {
   [[ -f runs/rotate/junction.safetensors ]] || step_rotate
   "$build_dir/train/lc2wf-train" configs/rotate.json --stage edge --out runs/rotate --resume
-  local views
-  for views in 1 8; do
-    "$build_dir/infer/lc2wf-eval" --weights runs/rotate --data runs/dataset/clouds \
-      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/rotate/val-both-views$views"
-    cat "runs/rotate/val-both-views$views/metrics.md"
-  done
+  score_on_val runs/rotate runs/rotate/val-both-views
 }
 
 # The shipped edge model fine-tuned on the junctions that inference gives it (offset screen 0.75 m, c > 0.05,
@@ -280,12 +281,7 @@ step_edge_sound() {
   local resume=()
   [[ -d runs/$run/checkpoints ]] && resume=(--resume)
   "$build_dir/train/lc2wf-train" "configs/$run.json" --stage edge --out "runs/$run" "${resume[@]}"
-  local views
-  for views in 1 8; do
-    "$build_dir/infer/lc2wf-eval" --weights "runs/$run" --data runs/dataset/clouds \
-      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/$run/val-views$views"
-    cat "runs/$run/val-views$views/metrics.md"
-  done
+  score_on_val "runs/$run" "runs/$run/val-views"
 }
 
 case "${1:-}" in
