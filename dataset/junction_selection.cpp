@@ -31,6 +31,18 @@ JunctionSelectionOptions JunctionSelectionOptions::release() {
   return o;
 }
 
+std::vector<int> offset_screened(const PredictedJunctions& c, const JunctionSelectionOptions& o) {
+  std::vector<int> eligible;
+  const bool limited = std::isfinite(o.max_offset_m);
+  if (limited && c.offset_m.size() != c.positions.size())
+    throw std::invalid_argument("select_junctions: max_offset_m needs each candidate's offset, but " +
+                                std::to_string(c.offset_m.size()) + " offsets came with " +
+                                std::to_string(c.positions.size()) + " candidates (predict the junctions again)");
+  for (size_t k = 0; k < c.positions.size(); ++k)
+    if (!limited || c.offset_m[k] <= o.max_offset_m) eligible.push_back(static_cast<int>(k));
+  return eligible;
+}
+
 JunctionSelection select_junctions(const PredictedJunctions& c, const std::vector<Segment3>& segments,
                                    const JunctionSelectionOptions& o, SelectionCut cut) {
   o.Check();
@@ -40,15 +52,7 @@ JunctionSelection select_junctions(const PredictedJunctions& c, const std::vecto
   for (size_t k = 0; k < c.positions.size(); ++k)
     if (!c.positions[k].allFinite() || !std::isfinite(c.confidence[k]))
       throw std::invalid_argument("select_junctions: candidate " + std::to_string(k) + " has a non-finite value");
-  // The candidates near enough to their sample point, as indices into c.
-  std::vector<int> eligible;
-  const bool limited = std::isfinite(o.max_offset_m);
-  if (limited && c.offset_m.size() != c.positions.size())
-    throw std::invalid_argument("select_junctions: max_offset_m needs each candidate's offset, but " +
-                                std::to_string(c.offset_m.size()) + " offsets came with " +
-                                std::to_string(c.positions.size()) + " candidates (predict the junctions again)");
-  for (size_t k = 0; k < c.positions.size(); ++k)
-    if (!limited || c.offset_m[k] <= o.max_offset_m) eligible.push_back(static_cast<int>(k));
+  const std::vector<int> eligible = offset_screened(c, o);
   std::vector<Vec3> positions;
   std::vector<double> confidence;
   for (int k : eligible) positions.push_back(c.positions[k]), confidence.push_back(c.confidence[k]);

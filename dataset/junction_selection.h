@@ -72,6 +72,11 @@ struct JunctionSelection {
   std::vector<std::string> notes;   // set when fewer than 2 junctions remain (nothing to pair)
 };
 
+// The offset screen select_junctions applies before the NMS: the indices of the candidates regressed at most
+// max_offset_m from their sample point (all of them when it is infinite). Throws std::invalid_argument when a
+// finite limit meets candidates without offsets.
+std::vector<int> offset_screened(const PredictedJunctions& candidates, const JunctionSelectionOptions& options);
+
 // Throws std::invalid_argument on mismatched sizes or non-finite candidates.
 JunctionSelection select_junctions(const PredictedJunctions& candidates, const std::vector<Segment3>& segments,
                                    const JunctionSelectionOptions& options, SelectionCut cut = SelectionCut::kConfidence);

@@ -6,6 +6,7 @@
 //   lc2wf_junction_funnel --weights DIR --data CLOUDS --split FILE [--precision fp32|bf16|auto] [selection flags]
 // Selection flags as lc2wf-eval's (infer/post_process_flags.h). Prints a Markdown table.
 #include <array>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -52,6 +53,15 @@ int64_t matched(const std::vector<Vec3>& gt, const StagePoints& points, double e
   return n;
 }
 
+// Whether some point lies within `radius` of p (skipping index `self` of the same list).
+bool any_within(const Vec3& p, const std::vector<Vec3>& points, double radius, size_t self = SIZE_MAX) {
+  for (size_t k = 0; k < points.size(); ++k)
+    if (k != self && (points[k] - p).norm() <= radius) return true;
+  return false;
+}
+
+double percent(int64_t part, int64_t whole) { return 100.0 * static_cast<double>(part) / static_cast<double>(whole ? whole : 1); }
+
 }  // namespace
 
 int run(int argc, char** argv) {
@@ -76,7 +86,7 @@ int run(int argc, char** argv) {
   const PostProcessOptions options = flags.options();
   const JunctionSelectionOptions& sel = options.selection;
   std::array<std::array<int64_t, kStages>, kEta.size()> found{};
-  std::array<int64_t, kStages> points{}, unmatched{};
+  std::array<int64_t, kStages> points{};
   int64_t missed_low_few_ends = 0, gt_low = 0, missed = 0, missed_few_ends = 0, missed_degree = 0, missed_low = 0, missed_close = 0;
   int64_t gt_total = 0, close_gt = 0, buildings = 0;
   for (const std::string& name : read_name_list(split)) {
@@ -84,14 +94,15 @@ int run(int argc, char** argv) {
     const InferenceResult r = predictor.predict(cloud, options);
     std::array<StagePoints, kStages> at;
     StagePoints far;
+    std::vector<char> near(r.junctions.positions.size(), 0);
+    for (int k : offset_screened(r.junctions, sel)) near[static_cast<size_t>(k)] = 1;
     for (size_t k = 0; k < r.junctions.positions.size(); ++k) {
       const Vec3& p = r.junctions.positions[k];
       const double c = r.junctions.confidence[k];
       at[kCandidate].add(p, c);
-      if (r.junctions.confidence[k] <= sel.min_confidence) continue;
+      if (c <= sel.min_confidence) continue;
       at[kConfident].add(p, c);
-      const bool near = r.junctions.offset_m.empty() || r.junctions.offset_m[k] <= sel.max_offset_m;
-      if (near) at[kNear].add(p, c), at[kAgreed].add(p, c);
+      if (near[k]) at[kNear].add(p, c), at[kAgreed].add(p, c);
       else far.add(p, c);
     }
     for (size_t a = 0; a < far.positions.size(); ++a) {
@@ -102,62 +113,46 @@ int run(int argc, char** argv) {
     at[kSelected] = {r.selection.positions, r.selection.confidences};
     at[kFinal] = {r.wireframe.wireframe.junctions, r.wireframe.junction_scores};
     const std::vector<Vec3>& gt = cloud.wireframe.junctions;
-    for (size_t e = 0; e < kEta.size(); ++e)
-      for (int s = 0; s < kStages; ++s) found[e][s] += matched(gt, at[s], kEta[e]);
-    for (int s = 0; s < kStages; ++s)
-      points[s] += static_cast<int64_t>(at[s].positions.size()),
-      unmatched[s] += static_cast<int64_t>(at[s].positions.size()) - matched(gt, at[s], kEta.back());
-    for (size_t g = 0; g < gt.size(); ++g) {
-      for (size_t h = 0; h < gt.size(); ++h)
-        if (h != g && (gt[h] - gt[g]).norm() <= sel.nms_radius_m) {
-          ++close_gt;
-          break;
-        }
+    for (int s = 0; s < kStages; ++s) {
+      for (size_t e = 0; e < kEta.size(); ++e) found[e][s] += matched(gt, at[s], kEta[e]);
+      points[s] += static_cast<int64_t>(at[s].positions.size());
     }
     // What the GT junctions without any candidate within the largest η look like.
     std::vector<int> degree(gt.size(), 0);
     for (const auto& e : cloud.wireframe.edges) ++degree[e[0]], ++degree[e[1]];
     for (size_t g = 0; g < gt.size(); ++g) {
-      bool reached = false;
-      for (const Vec3& p : at[kCandidate].positions) reached = reached || (p - gt[g]).norm() <= kEta.back();
-      if (reached) continue;
+      const bool low = gt[g].z() < 0.5;
+      gt_low += low;
+      close_gt += any_within(gt[g], gt, sel.nms_radius_m, g);
+      if (any_within(gt[g], at[kCandidate].positions, kEta.back())) continue;
       ++missed;
       int ends = 0;
       for (const Segment3& seg : cloud.segments) ends += ((seg.a - gt[g]).norm() <= kEta.back()) + ((seg.b - gt[g]).norm() <= kEta.back());
       missed_few_ends += ends < 2;
       missed_degree += degree[g];
-      missed_low += gt[g].z() < 0.5;
-      missed_low_few_ends += gt[g].z() < 0.5 && ends < 2;
-      for (size_t h = 0; h < gt.size(); ++h)
-        if (h != g && (gt[h] - gt[g]).norm() <= 1.0) {
-          ++missed_close;
-          break;
-        }
+      missed_low += low;
+      missed_low_few_ends += low && ends < 2;
+      missed_close += any_within(gt[g], gt, 1.0, g);
     }
-    for (const Vec3& g : gt) gt_low += g.z() < 0.5;
     gt_total += static_cast<int64_t>(gt.size());
     ++buildings;
   }
   std::printf("%lld buildings, %lld GT junctions; %.1f %% of them have another GT junction within the NMS radius %.2f m\n\n",
-              static_cast<long long>(buildings), static_cast<long long>(gt_total),
-              100.0 * static_cast<double>(close_gt) / static_cast<double>(gt_total ? gt_total : 1), sel.nms_radius_m);
+              static_cast<long long>(buildings), static_cast<long long>(gt_total), percent(close_gt, gt_total), sel.nms_radius_m);
   std::printf("| GT junctions with ... within η | η = 0.15 | η = 0.25 | η = 0.35 | points per building | of them matching no GT junction within 0.35 m |\n|---|---|---|---|---|---|\n");
+  const double per = static_cast<double>(buildings ? buildings : 1);
   for (int s = 0; s < kStages; ++s) {
     std::printf("| %s |", kStageNames[s]);
-    for (size_t e = 0; e < kEta.size(); ++e)
-      std::printf(" %.1f %% |", 100.0 * static_cast<double>(found[e][s]) / static_cast<double>(gt_total ? gt_total : 1));
-    const double per = static_cast<double>(buildings ? buildings : 1);
-    std::printf(" %.1f | %.1f |\n", static_cast<double>(points[s]) / per, static_cast<double>(unmatched[s]) / per);
+    for (size_t e = 0; e < kEta.size(); ++e) std::printf(" %.1f %% |", percent(found[e][s], gt_total));
+    std::printf(" %.1f | %.1f |\n", static_cast<double>(points[s]) / per,
+                static_cast<double>(points[s] - found[kEta.size() - 1][s]) / per);
   }
-  const double m = static_cast<double>(missed ? missed : 1);
   std::printf("\nGT junctions without any candidate within %.2f m: %lld (%.1f %%); of them %.1f %% with fewer than 2 cloud "
               "endpoints within %.2f m, %.1f %% with another GT junction within 1 m, %.1f %% below 0.5 m height (of all GT "
               "junctions %.1f %%; of the missed ones below 0.5 m, %.1f %% with fewer than 2 endpoints); mean degree %.2f\n",
-              kEta.back(), static_cast<long long>(missed), 100.0 * static_cast<double>(missed) / static_cast<double>(gt_total ? gt_total : 1),
-              100.0 * static_cast<double>(missed_few_ends) / m, kEta.back(), 100.0 * static_cast<double>(missed_close) / m,
-              100.0 * static_cast<double>(missed_low) / m, 100.0 * static_cast<double>(gt_low) / static_cast<double>(gt_total ? gt_total : 1),
-              100.0 * static_cast<double>(missed_low_few_ends) / static_cast<double>(missed_low ? missed_low : 1),
-              static_cast<double>(missed_degree) / m);
+              kEta.back(), static_cast<long long>(missed), percent(missed, gt_total), percent(missed_few_ends, missed), kEta.back(),
+              percent(missed_close, missed), percent(missed_low, missed), percent(gt_low, gt_total),
+              percent(missed_low_few_ends, missed_low), static_cast<double>(missed_degree) / static_cast<double>(missed ? missed : 1));
   return 0;
 }
 
