@@ -10,6 +10,7 @@
 
 #include "dataset/errors.h"
 #include "dataset/rng.h"
+#include "dataset/segment_split.h"
 
 namespace lc2wf {
 namespace {
@@ -23,6 +24,7 @@ struct Piece {
 };
 
 constexpr uint64_t kClutterStream = 0xC1u;
+constexpr uint64_t kMergedMapStream = 0xC2u;
 
 bool probability_ok(double p) { return p >= 0.0 && p <= 1.0; }
 
@@ -107,6 +109,25 @@ void append_clutter(const LineCloud& cloud, const CloudAugmentOptions& o, uint64
   for (const Segment3& s : make_surface_clutter(cloud.wireframe, c, rng)) pieces.push_back({s, SegmentLabel{}, false, false});
 }
 
+// The staggered pieces inference cuts a merged line map into; a piece keeps a one-sided label's endpoint
+// only where it still ends there.
+std::vector<Piece> cut_as_merged_map(const std::vector<Piece>& pieces) {
+  std::vector<Piece> out;
+  std::vector<Segment3> cut;
+  for (const Piece& p : pieces) {
+    cut.clear();
+    append_staggered_pieces(p.s, kMergedMapPieceLength, cut);
+    for (const Segment3& s : cut) {
+      Piece q = p;
+      q.s = s;
+      q.keeps_a = p.keeps_a && s.a == p.s.a;
+      q.keeps_b = p.keeps_b && s.b == p.s.b;
+      out.push_back(q);
+    }
+  }
+  return out;
+}
+
 SegmentLabel relabel(const Piece& p, const Wireframe& wf) {
   if (p.label.f) return make_edge_label(p.s, wf, p.label.i1, p.label.i2);
   SegmentLabel l;
@@ -138,6 +159,7 @@ void CloudAugmentOptions::Check() const {
     throw std::invalid_argument("cloud_augment.ground_clutter_max must be in [0, 20] (lines per segment of the cloud)");
   if (!(clutter_length_max_m >= min_length_m && clutter_length_max_m <= 100.0))
     throw std::invalid_argument("cloud_augment.clutter_length_max_m must be in [min_length_m, 100] (metres)");
+  if (!probability_ok(merged_map_prob)) throw std::invalid_argument("cloud_augment.merged_map_prob must be in [0, 1]");
 }
 
 LineCloud augment_cloud_statistics(const LineCloud& cloud, const CloudAugmentOptions& o, uint64_t seed) {
@@ -150,12 +172,14 @@ LineCloud augment_cloud_statistics(const LineCloud& cloud, const CloudAugmentOpt
   const double densify_p = rng.uniform(0.0, o.densify_prob_max);
   const double drop_p = rng.uniform(0.0, o.drop_max);
   const double sigma = rng.uniform(0.0, o.endpoint_noise_max_m);
+  // Own generator: with merged_map_prob 0 every other draw stays what it was before the key existed.
+  const bool merged_map = o.merged_map_prob > 0.0 && DataRng(mix_seed(seed, kMergedMapStream)).uniform() < o.merged_map_prob;
 
   std::vector<Piece> pieces;
   pieces.reserve(cloud.segments.size());
   for (size_t i = 0; i < cloud.segments.size(); ++i)
     pieces.push_back({cloud.segments[i], labelled ? cloud.labels[i] : SegmentLabel{}});
-  if (labelled) pieces = merge_edge_fragments(std::move(pieces), merge_p, rng);
+  if (labelled) pieces = merge_edge_fragments(std::move(pieces), merged_map ? 1.0 : merge_p, rng);
 
   std::vector<Piece> reshaped;
   for (const Piece& p : pieces) {
@@ -165,23 +189,26 @@ LineCloud augment_cloud_statistics(const LineCloud& cloud, const CloudAugmentOpt
   }
   append_clutter(cloud, o, seed, reshaped);
 
-  LineCloud out;
-  out.name = cloud.name;
-  out.cameras = cloud.cameras;
-  out.wireframe = cloud.wireframe;
-  out.units = cloud.units;
+  std::vector<Piece> kept;
   for (const Piece& p : reshaped) {
     if (rng.uniform() < drop_p) continue;
     Piece q = p;
     q.s.a += sigma * Vec3(rng.normal(), rng.normal(), rng.normal());
     q.s.b += sigma * Vec3(rng.normal(), rng.normal(), rng.normal());
     if (q.s.length() < o.min_length_m) q.s = p.s;  // noise must not collapse a segment
+    kept.push_back(q);
+  }
+  if (kept.empty()) kept.push_back(reshaped.front());  // every line dropped: keep the first, a cloud needs one
+  if (merged_map) kept = cut_as_merged_map(kept);
+
+  LineCloud out;
+  out.name = cloud.name;
+  out.cameras = cloud.cameras;
+  out.wireframe = cloud.wireframe;
+  out.units = cloud.units;
+  for (const Piece& q : kept) {
     out.segments.push_back(q.s);
     if (labelled) out.labels.push_back(relabel(q, cloud.wireframe));
-  }
-  if (out.segments.empty()) {  // every line dropped: keep the first, a cloud needs one
-    out.segments.push_back(reshaped.front().s);
-    if (labelled) out.labels.push_back(relabel(reshaped.front(), cloud.wireframe));
   }
   return out;
 }

@@ -26,6 +26,11 @@ struct CloudAugmentOptions {
   double face_clutter_max = 0.0;
   double ground_clutter_max = 0.0;
   double clutter_length_max_m = 1.0;  // clutter lengths are uniform in [min_length_m, this]
+  // Per building (not drawn in [0, max]): the cloud becomes a merged line map, as Line3D++ and LIMAP make
+  // them (every GT edge's fragments fused), and is then cut as inference cuts such maps
+  // (split_long_segments at kMergedMapPieceLength), so the model learns what --max-segment-length auto
+  // gives it. 0 = never, which keeps every other draw as it was without this key.
+  double merged_map_prob = 0.0;
   void Check() const;
 };
 

@@ -27,6 +27,12 @@ void append_chains(const Segment3& s, int64_t n, std::vector<Segment3>& out) {
 
 }  // namespace
 
+void append_staggered_pieces(const Segment3& s, double max_length_m, std::vector<Segment3>& out) {
+  const int64_t n = pieces_of(s, max_length_m);
+  if (n == 1) out.push_back(s);
+  else append_chains(s, n, out);
+}
+
 LineCloud split_long_segments(const LineCloud& cloud, double max_length_m) {
   if (!std::isfinite(max_length_m)) throw std::invalid_argument("split_long_segments: max_length_m must be finite");
   if (max_length_m <= 0.0) return cloud;
@@ -48,11 +54,7 @@ LineCloud split_long_segments(const LineCloud& cloud, double max_length_m) {
   out.units = cloud.units;
   out.external_line_map = cloud.external_line_map;
   out.segments.reserve(static_cast<size_t>(total));
-  for (const Segment3& s : cloud.segments) {
-    const int64_t n = pieces_of(s, max_length_m);
-    if (n == 1) out.segments.push_back(s);
-    else append_chains(s, n, out.segments);
-  }
+  for (const Segment3& s : cloud.segments) append_staggered_pieces(s, max_length_m, out.segments);
   return out;
 }
 

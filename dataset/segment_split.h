@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "dataset/line_cloud.h"
 
@@ -19,6 +20,10 @@ constexpr int64_t kMaxSplitSegments = 2'000'000;
 // the cloud unchanged. Throws std::invalid_argument for a non-finite max_length_m and DataError naming the
 // cloud when there would be more than kMaxSplitSegments segments.
 LineCloud split_long_segments(const LineCloud& cloud, double max_length_m);
+
+// The pieces split_long_segments makes of one segment, appended to out (the segment itself when it is not
+// longer than max_length_m > 0). Pieces at the segment's ends keep its endpoints exactly.
+void append_staggered_pieces(const Segment3& s, double max_length_m, std::vector<Segment3>& out);
 
 // Fraction of the segments longer than min_length_m that another segment overlaps along the same line
 // (directions within 5 degrees, the midpoint within 10 cm of the other segment and inside its extent); 1

@@ -28,6 +28,10 @@
 #   tools/paper_experiment.sh edge-sound  configs/edge-sound.json: models/base's edge model fine-tuned on
 #                                       the junctions inference selects (offset screen, NMS 0.5 m, loose
 #                                       seeds) beside models/rotate-loose's junction model -> runs/edge-sound
+#   tools/paper_experiment.sh merged-maps  configs/merged-maps.json: models/edge-sound fine-tuned (both
+#                                       stages) with half the training buildings made merged line maps and
+#                                       cut as inference cuts them, scored on validation and with
+#                                       bench/robustness.sh on held-out buildings -> runs/merged-maps
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -284,6 +288,18 @@ step_edge_sound() {
   score_on_val "runs/$run" "runs/$run/val-views"
 }
 
+# Merged line maps (Line3D++, LIMAP) are cut into staggered pieces at inference; the model fine-tuned on
+# exactly that (cloud_augment.merged_map_prob), both stages from models/edge-sound.
+step_merged_maps() {
+  local run=merged-maps
+  [[ ! -e runs/$run && -f models/$run-training/config.json ]] && step_restore "$run"
+  local resume=()
+  [[ -d runs/$run/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" "configs/$run.json" --out "runs/$run" "${resume[@]}"
+  score_on_val "runs/$run" "runs/$run/val-views"
+  bench/robustness.sh "runs/$run" bench/reconstruct/robustness-buildings.txt "runs/$run/robustness"
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -300,6 +316,7 @@ case "${1:-}" in
   loose-seeds) step_loose_seeds ;;
   junction-turns) step_junction_turns ;;
   edge-sound) step_edge_sound ;;
+  merged-maps) step_merged_maps ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac

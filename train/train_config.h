@@ -55,6 +55,7 @@ struct CloudAugmentConfig {
     v("face_clutter_max", s.options.face_clutter_max);
     v("ground_clutter_max", s.options.ground_clutter_max);
     v("clutter_length_max_m", s.options.clutter_length_max_m);
+    v("merged_map_prob", s.options.merged_map_prob);
   }
   nlohmann::json to_json() const;
   static CloudAugmentConfig from_json(const nlohmann::json& j, const std::string& where, CloudAugmentConfig base);

@@ -7,6 +7,7 @@
 
 #include "dataset/errors.h"
 #include "dataset/samples.h"
+#include "dataset/segment_split.h"
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 
@@ -168,6 +169,45 @@ TEST(CloudAugmentation, ClutterAddsUnlabelledSurfaceLinesAndLeavesTheRestAsItWas
   const LineCloud p = augment_cloud_statistics(c, plain, 11), q = augment_cloud_statistics(c, cluttered, 11);
   ASSERT_GE(q.segments.size(), p.segments.size());
   for (size_t i = 0; i < p.segments.size(); ++i) EXPECT_EQ(p.segments[i].a, q.segments[i].a);
+}
+
+// A merged-map building: every edge's fragments fused, then cut into the staggered pieces inference cuts a
+// merged line map into; a one-sided label stays only on the piece still ending at its junction.
+TEST(CloudAugmentation, MergedMapsAreFusedThenCutAsInferenceCutsThem) {
+  CloudAugmentOptions o = nothing();
+  o.merged_map_prob = 1.0;
+  LineCloud c = fragmented_square();
+  c.segments[4] = {{0.2, 0.2, 1}, {2.2, 3.2, 1}};  // clutter longer than a piece: cut too
+  c.labels[4].d1 = (c.segments[4].a - c.wireframe.junctions[0]).norm();
+  const LineCloud a = augment_cloud_statistics(c, o, 5);
+  // What inference would make of the fused map: the edge (0, 1) as one 8.5 m line, then cut.
+  LineCloud fused = c;
+  fused.segments = {{{0.5, 0, 0}, {9, 0, 0}}, c.segments[3], c.segments[4]};
+  fused.labels.clear();
+  const LineCloud expected = split_long_segments(fused, kMergedMapPieceLength);
+  ASSERT_EQ(a.segments.size(), expected.segments.size());
+  ASSERT_EQ(a.labels.size(), a.segments.size());
+  int labelled_clutter = 0;
+  for (size_t i = 0; i < a.segments.size(); ++i) {
+    EXPECT_LT((a.segments[i].a - expected.segments[i].a).norm(), 1e-9);
+    EXPECT_LT((a.segments[i].b - expected.segments[i].b).norm(), 1e-9);
+    EXPECT_LE(a.segments[i].length(), kMergedMapPieceLength + 1e-9);
+    if (!a.labels[i].f && a.labels[i].i1 == 0) {
+      EXPECT_EQ(a.segments[i].a, c.segments[4].a);
+      ++labelled_clutter;
+    }
+  }
+  EXPECT_EQ(labelled_clutter, 2);  // both chains start at the clutter line's endpoint a
+  // A building left as it is draws everything else as without the key (the coin has its own generator).
+  CloudAugmentOptions plain;
+  CloudAugmentOptions rarely = plain;
+  rarely.merged_map_prob = 1e-12;
+  const LineCloud syn = make_synthetic_line_cloud(make_random_building(6, "b"), 6);
+  const LineCloud p = augment_cloud_statistics(syn, plain, 3), q = augment_cloud_statistics(syn, rarely, 3);
+  ASSERT_EQ(p.segments.size(), q.segments.size());
+  for (size_t i = 0; i < p.segments.size(); ++i) EXPECT_EQ(p.segments[i].a, q.segments[i].a);
+  o.merged_map_prob = 1.5;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
 TEST(CloudAugmentation, UnlabelledCloudsStayUnlabelled) {
