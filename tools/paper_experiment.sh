@@ -32,6 +32,10 @@
 #                                       stages) with half the training buildings made merged line maps and
 #                                       cut as inference cuts them, scored on validation and with
 #                                       bench/robustness.sh on held-out buildings -> runs/merged-maps
+#   tools/paper_experiment.sh dense     the Blender clouds again from 30 views instead of 20 (≈ 1.2K lines per
+#                                       building, the paper's ≈ 1.4K) -> runs/dataset-30v: test split first
+#   tools/paper_experiment.sh dense-eval  models/edge-sound on the 30-view test clouds, 1 and 8 test-time
+#                                       views -> runs/dense-test/views{1,8}
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -71,6 +75,32 @@ step_dataset() {
     > runs/dataset-summary-test.json
   cp runs/dataset-summary-trainval.json runs/dataset/summary.json.tmp && mv runs/dataset/summary.json.tmp runs/dataset/summary.json
   cp runs/dataset-summary-test.json runs/dataset/summary-test.json
+}
+
+# More views give the junction model the walls' feet it misses (bench/README.md, "Denser clouds"): the same
+# renders from 30 views. The test split first, so the shipped models can be scored on it while the
+# validation and training clouds are made.
+step_dense() {
+  LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
+  link_meshes runs/test-meshes configs/splits/test.txt
+  "$build_dir/tools/lc2wf-dataset" --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 \
+    > runs/dataset-30v-summary-test.json
+  link_meshes runs/trainval-meshes configs/splits/train.txt configs/splits/val.txt
+  "$build_dir/tools/lc2wf-dataset" --meshes runs/trainval-meshes --out runs/dataset-30v --renderer blender --views 30 \
+    -j 2 > runs/dataset-30v-summary-trainval.json
+  cp runs/dataset-30v-summary-trainval.json runs/dataset-30v/summary.json.tmp
+  mv runs/dataset-30v/summary.json.tmp runs/dataset-30v/summary.json
+  cp runs/dataset-30v-summary-test.json runs/dataset-30v/summary-test.json
+}
+
+step_dense_eval() {
+  local views
+  for views in 1 8; do
+    "$build_dir/infer/lc2wf-eval" --weights models/edge-sound --data runs/dataset-30v/clouds \
+      --split configs/splits/test.txt --test-time-views "$views" --method "models/edge-sound, 30-view clouds" \
+      -q -o "runs/dense-test/views$views"
+    cat "runs/dense-test/views$views/metrics.md"
+  done
 }
 
 # A run's resumable state is committed as models/<run>-training (runs/base -> models/base-training).
@@ -317,6 +347,8 @@ case "${1:-}" in
   junction-turns) step_junction_turns ;;
   edge-sound) step_edge_sound ;;
   merged-maps) step_merged_maps ;;
+  dense) step_dense ;;
+  dense-eval) step_dense_eval ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
