@@ -34,8 +34,10 @@
 #                                       bench/robustness.sh on held-out buildings -> runs/merged-maps
 #   tools/paper_experiment.sh dense     the Blender clouds again from 30 views instead of 20 (≈ 1.2K lines per
 #                                       building, the paper's ≈ 1.4K) -> runs/dataset-30v: test split first
-#   tools/paper_experiment.sh dense-eval  models/edge-sound on the 30-view test clouds, 1 and 8 test-time
-#                                       views -> runs/dense-test/views{1,8}
+#   tools/paper_experiment.sh dense-eval [WEIGHTS]  WEIGHTS (default models/edge-sound) on the 30-view test
+#                                       clouds, 1 and 8 test-time views -> runs/dense-test/<name>-views{1,8}
+#   tools/paper_experiment.sh dense-train  configs/dense.json: models/edge-sound fine-tuned (both stages) on
+#                                       the 30-view clouds, scored on their validation split -> runs/dense
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
 #                                       checkpoint of each stage, best weights, log) to models/RUN-training/
 #   tools/paper_experiment.sh restore [RUN]   put that state back into runs/RUN (train and local do it by
@@ -94,12 +96,27 @@ step_dense() {
 }
 
 step_dense_eval() {
+  local weights=${1:-models/edge-sound} views
+  for views in 1 8; do
+    "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/dataset-30v/clouds \
+      --split configs/splits/test.txt --test-time-views "$views" --method "$weights, 30-view clouds" \
+      -q -o "runs/dense-test/$(basename "$weights")-views$views"
+    cat "runs/dense-test/$(basename "$weights")-views$views/metrics.md"
+  done
+}
+
+# The shipped models fine-tuned on the 30-view clouds (after `dense` has made the training clouds).
+step_dense_train() {
+  local run=dense
+  [[ ! -e runs/$run && -f models/$run-training/config.json ]] && step_restore "$run"
+  local resume=()
+  [[ -d runs/$run/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" "configs/$run.json" --out "runs/$run" "${resume[@]}"
   local views
   for views in 1 8; do
-    "$build_dir/infer/lc2wf-eval" --weights models/edge-sound --data runs/dataset-30v/clouds \
-      --split configs/splits/test.txt --test-time-views "$views" --method "models/edge-sound, 30-view clouds" \
-      -q -o "runs/dense-test/views$views"
-    cat "runs/dense-test/views$views/metrics.md"
+    "$build_dir/infer/lc2wf-eval" --weights "runs/$run" --data runs/dataset-30v/clouds \
+      --split configs/splits/val.txt --test-time-views "$views" -q -o "runs/$run/val-views$views"
+    cat "runs/$run/val-views$views/metrics.md"
   done
 }
 
@@ -348,7 +365,8 @@ case "${1:-}" in
   edge-sound) step_edge_sound ;;
   merged-maps) step_merged_maps ;;
   dense) step_dense ;;
-  dense-eval) step_dense_eval ;;
+  dense-eval) step_dense_eval "${2:-}" ;;
+  dense-train) step_dense_train ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
