@@ -6,21 +6,27 @@
 # texture lines on faces and ground), scores WEIGHTS on each with lc2wf-eval and prints Markdown tables
 # (vAP/sAP avg, WED, mean junctions/edges; which clouds the default would cut if read from a line map).
 #
-#   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS]     CLOUDS: labelled clouds (default runs/dataset/clouds)
+#   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS] [-- LC2WF_EVAL_FLAGS...]
+#   CLOUDS: labelled clouds (default runs/dataset/clouds); flags after -- go to every lc2wf-eval (e.g.
+#   --test-time-views 8)
 #
 # Run it on held-out buildings (e.g. configs/splits/test.txt or a subset) for each model to compare.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${LC2WF_BUILD_DIR:-$root/build}
-[[ $# -ge 3 ]] || { sed -n '2,10p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
-weights=$1 split=$2 out=$3 clouds=${4:-$root/runs/dataset/clouds}
+[[ $# -ge 3 ]] || { sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+weights=$1 split=$2 out=$3 clouds=$root/runs/dataset/clouds
+shift 3
+if [[ $# -gt 0 && $1 != -- ]]; then clouds=$1; shift; fi
+[[ ${1:-} == -- ]] && shift
+eval_flags=("$@")
 
 "$build/bench/dataset/lc2wf-cloud-styles" --data "$clouds" --split "$split" -o "$out/clouds"
 eval_as() {  # eval_as ROW STYLE [extra lc2wf-eval flags]
   local row=$1 style=$2
   shift 2
   "$build/infer/lc2wf-eval" --weights "$weights" --data "$out/clouds/$style" --split "$split" --out "$out/$row" \
-    --method "$row" --quiet "$@" >/dev/null
+    --method "$row" --quiet "$@" ${eval_flags[@]+"${eval_flags[@]}"} >/dev/null
 }
 eval_as own own
 eval_as line3dpp line3dpp --format line3dpp --gt "$out/clouds/gt"
