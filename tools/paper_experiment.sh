@@ -33,7 +33,8 @@
 #                                       cut as inference cuts them, scored on validation and with
 #                                       bench/robustness.sh on held-out buildings -> runs/merged-maps
 #   tools/paper_experiment.sh dense     the Blender clouds again from 30 views instead of 20 (≈ 1.2K lines per
-#                                       building, the paper's ≈ 1.4K) -> runs/dataset-30v: test split first
+#                                       building, the paper's ≈ 1.4K) -> runs/dataset-30v: test split first,
+#                                       then validation, then training
 #   tools/paper_experiment.sh dense-eval [WEIGHTS]  WEIGHTS (default models/edge-sound) on the 30-view test
 #                                       clouds, 1 and 8 test-time views -> runs/dense-test/<name>-views{1,8}
 #   tools/paper_experiment.sh dense-train  configs/dense.json: models/edge-sound fine-tuned (both stages) on
@@ -87,6 +88,11 @@ step_dense() {
   link_meshes runs/test-meshes configs/splits/test.txt
   "$build_dir/tools/lc2wf-dataset" --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 \
     > runs/dataset-30v-summary-test.json
+  # The validation split next (200 buildings): test-time options are chosen on it while the training
+  # clouds are made; the train + val pass below skips its finished buildings.
+  link_meshes runs/val-meshes configs/splits/val.txt
+  "$build_dir/tools/lc2wf-dataset" --meshes runs/val-meshes --out runs/dataset-30v --renderer blender --views 30 \
+    -j 2 > runs/dataset-30v-summary-val.json
   link_meshes runs/trainval-meshes configs/splits/train.txt configs/splits/val.txt
   "$build_dir/tools/lc2wf-dataset" --meshes runs/trainval-meshes --out runs/dataset-30v --renderer blender --views 30 \
     -j 2 > runs/dataset-30v-summary-trainval.json
