@@ -35,8 +35,12 @@
 #   tools/paper_experiment.sh dense     the Blender clouds again from 30 views instead of 20 (≈ 1.2K lines per
 #                                       building, the paper's ≈ 1.4K) -> runs/dataset-30v: test split first,
 #                                       then validation, then training
-#   tools/paper_experiment.sh dense-eval [WEIGHTS]  WEIGHTS (default models/edge-sound) on the 30-view test
-#                                       clouds, 1 and 8 test-time views -> runs/dense-test/<name>-views{1,8}
+#   tools/paper_experiment.sh dense-eval [WEIGHTS [TAG FLAGS...]]  WEIGHTS (default models/edge-sound) on the
+#                                       30-view test clouds, 1 and 8 test-time views -> runs/dense-test/
+#                                       <name>-views{1,8}; with TAG, the one setting FLAGS -> <name>-TAG
+#   tools/paper_experiment.sh dense-select [WEIGHTS]  test-time settings of WEIGHTS (default
+#                                       models/edge-sound) on the 30-view validation clouds, best first
+#                                       -> runs/dense-select/<name>/table.md
 #   tools/paper_experiment.sh dense-train  configs/dense.json: models/edge-sound fine-tuned (both stages) on
 #                                       the 30-view clouds, scored on their validation split -> runs/dense
 #   tools/paper_experiment.sh snapshot [RUN]  copy the training state of runs/RUN (default base: newest
@@ -102,13 +106,49 @@ step_dense() {
 }
 
 step_dense_eval() {
-  local weights=${1:-models/edge-sound} views
+  local weights=${1:-models/edge-sound}
+  local name
+  name=$(basename "$weights")
+  # A TAG and flags after the weights: that one setting (e.g. the one dense-select chose) instead of 1 and 8 views.
+  if [[ $# -ge 2 ]]; then
+    local tag=$2
+    shift 2
+    "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/dataset-30v/clouds \
+      --split configs/splits/test.txt --method "$weights, 30-view clouds, $tag" -q -o "runs/dense-test/$name-$tag" "$@"
+    cat "runs/dense-test/$name-$tag/metrics.md"
+    return
+  fi
+  local views
   for views in 1 8; do
     "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/dataset-30v/clouds \
       --split configs/splits/test.txt --test-time-views "$views" --method "$weights, 30-view clouds" \
-      -q -o "runs/dense-test/$(basename "$weights")-views$views"
-    cat "runs/dense-test/$(basename "$weights")-views$views/metrics.md"
+      -q -o "runs/dense-test/$name-views$views"
+    cat "runs/dense-test/$name-views$views/metrics.md"
   done
+}
+
+# Test-time settings for the 30-view clouds, chosen on their validation split (junction views, sampling
+# passes, edge views, NMS radius and confidence cut around the default); each finished cell is kept.
+step_dense_select() {
+  local weights=${1:-models/edge-sound}
+  local dir=runs/dense-select/$(basename "$weights")
+  mkdir -p "$dir"
+  local cells=("views1:" "views8:--test-time-views 8"
+               "views8_edge4:--test-time-views 8 --edge-test-time-views 4"
+               "views8_passes2:--test-time-views 8 --sampling-passes 2"
+               "views8_passes2_edge4:--test-time-views 8 --sampling-passes 2 --edge-test-time-views 4"
+               "views8_nms0.35:--test-time-views 8 --nms-radius 0.35"
+               "views8_c0.02:--test-time-views 8 --min-confidence 0.02")
+  for cell in "${cells[@]}"; do
+    local tag=${cell%%:*} flags=${cell#*:}
+    [[ -f $dir/$tag/metrics.json ]] && continue
+    # shellcheck disable=SC2086  # flags are words
+    "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/dataset-30v/clouds --split configs/splits/val.txt \
+      --out "$dir/$tag.tmp" --method "$tag" --quiet $flags
+    rm -rf "${dir:?}/$tag" && mv "$dir/$tag.tmp" "$dir/$tag"
+  done
+  /usr/bin/python3 tools/selection_table.py "$dir" > "$dir/table.md"
+  cat "$dir/table.md"
 }
 
 # The shipped models fine-tuned on the 30-view clouds (after `dense` has made the training clouds).
@@ -371,7 +411,8 @@ case "${1:-}" in
   edge-sound) step_edge_sound ;;
   merged-maps) step_merged_maps ;;
   dense) step_dense ;;
-  dense-eval) step_dense_eval "${2:-}" ;;
+  dense-select) step_dense_select "${2:-}" ;;
+  dense-eval) shift; step_dense_eval "$@" ;;
   dense-train) step_dense_train ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
