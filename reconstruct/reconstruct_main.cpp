@@ -46,7 +46,8 @@ not bias them.
 With --cameras FILE.json (the project's cameras: metres, z up) the frame is kept: up z, scale 1.
 
 Options:
-  --weights DIR          junction.safetensors + edge.safetensors written by lc2wf-train (required)
+  --weights DIR          junction.safetensors + edge.safetensors written by lc2wf-train (required;
+                         models/merged-maps scores best on photo reconstructions, reconstruct/README.md)
   -o, --out OUT          output folder (created; other files in it are left alone)
   --cameras PATH         known cameras instead of COLMAP: a COLMAP model folder (cameras/images .txt
                          or .bin, matched by image name) or a cameras JSON (one entry or null per image)
