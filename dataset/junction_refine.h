@@ -15,6 +15,10 @@ struct JunctionRefineOptions {
   int min_segments = 2;         // fewer supporting segments: the junction stays where it was
   double prior_weight = 0.05;   // pull towards the predicted position, relative to one supporting line
   double min_length = 0.2;      // metres; shorter segments carry no usable direction
+  // metres; > 0: reweighted least squares (Cauchy weights of each line's distance from the estimate, this
+  // scale) so that a stray line near the junction does not drag it; 0 = plain least squares
+  double robust_scale = 0.0;
+  int robust_iterations = 4;
 
   void Check() const;  // throws std::invalid_argument naming the bad field
 };

@@ -54,8 +54,9 @@ struct JunctionSelectionOptions {
   DensitySeedRule density_seeds = DensitySeedRule::loose();
   // The view counts there are (every one a group of turns and mirrors): 1, 2, 4 or 8.
   static bool valid_view_count(int64_t views) { return views == 1 || views == 2 || views == 4 || views == 8; }
-  // Not in the release (its junctions stay where they were regressed): see junction_refine.h.
-  JunctionRefineOptions refine{.radius = 0.5};
+  // Not in the release (its junctions stay where they were regressed): see junction_refine.h. The robust
+  // scale was chosen on the validation split (bench/README.md, "Robust junction refinement").
+  JunctionRefineOptions refine{.radius = 0.5, .robust_scale = 0.05};
 
   void Check() const;  // throws std::invalid_argument naming the bad field
   static JunctionSelectionOptions release();

@@ -10,9 +10,9 @@ struct LineMeetingPoint {
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   Vec3 b = Vec3::Zero();
 
-  // The line through `point` with unit direction `u`.
-  void add_line(const Vec3& point, const Vec3& u) {
-    const Eigen::Matrix3d P = Eigen::Matrix3d::Identity() - u * u.transpose();
+  // The line through `point` with unit direction `u`, counted `weight` times.
+  void add_line(const Vec3& point, const Vec3& u, double weight = 1.0) {
+    const Eigen::Matrix3d P = weight * (Eigen::Matrix3d::Identity() - u * u.transpose());
     A += P;
     b += P * point;
   }

@@ -70,6 +70,23 @@ TEST(JunctionRefine, NoisyCornersGetCloser) {
   EXPECT_LT(after, 0.25 * before);
 }
 
+// A fourth segment ends near the corner but passes it 0.2 m away (another edge's fragment, a texture line):
+// plain least squares is dragged towards it, the robust weights outvote it.
+TEST(JunctionRefine, RobustScaleIgnoresALineThatPassesTheCornerBy) {
+  const Vec3 C(1, -2, 4);
+  std::vector<Segment3> segs = corner_segments(C);
+  segs.push_back({C + Vec3(-2, 0.2, 0.1), C + Vec3(0.1, 0.2, 0.1)});
+  const Vec3 P = C + Vec3(0.1, 0.1, -0.1);
+  JunctionRefineOptions plain = radius(0.5), robust = radius(0.5);
+  robust.robust_scale = 0.05;
+  const double plain_error = (refine_junctions({P}, segs, plain)[0] - C).norm();
+  const double robust_error = (refine_junctions({P}, segs, robust)[0] - C).norm();
+  EXPECT_GT(plain_error, 0.04);
+  EXPECT_LT(robust_error, 0.01) << "plain " << plain_error;
+  // Without the stray line both agree on the corner.
+  EXPECT_LT((refine_junctions({P}, corner_segments(C), robust)[0] - C).norm(), 0.02);
+}
+
 TEST(JunctionRefine, RejectsBadOptions) {
   JunctionRefineOptions o;
   o.radius = -1;
@@ -80,6 +97,12 @@ TEST(JunctionRefine, RejectsBadOptions) {
   o = {};
   o.prior_weight = 0;
   EXPECT_THROW(refine_junctions({}, {}, o), std::invalid_argument);
+  o = {};
+  o.robust_scale = -0.05;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  o = {};
+  o.robust_iterations = -1;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
 }  // namespace

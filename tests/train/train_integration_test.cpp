@@ -80,7 +80,9 @@ class TrainIntegration : public ::testing::Test {
 
     const testing::TinyLpt tiny = testing::tiny_lpt();
     const nlohmann::json &junction_lpt = tiny.junction, &edge_lpt = tiny.edge;
-    config_ = {{"seed", 7},
+    // A seed whose tiny model draws a wireframe with a non-zero sAP for the validation building (half the
+    // seeds tried draw an empty one after 30 edge epochs), so the one-rule check below compares real scores.
+    config_ = {{"seed", 15},
                {"threads", 2},
                {"data", {{"format", "lc2wf"}, {"dir", (dir_ / "clouds").string()},
                          {"train_split", (dir_ / "train.txt").string()}, {"val_split", (dir_ / "val.txt").string()}}},
@@ -303,7 +305,10 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
     EXPECT_DOUBLE_EQ(metrics["edge"][k]["recall"].get<double>(), best["sRecall"][k].get<double>()) << k;
   }
   EXPECT_DOUBLE_EQ(metrics["vertex_avg"]["ap"].get<double>(), best["vAP_mean"].get<double>());
-  EXPECT_GT(metrics["per_building"][0]["pred_edges"].get<int>(), 0) << "an empty wireframe would make this check vacuous";
+  int predicted_edges = 0;
+  for (const auto& b : metrics["per_building"]) predicted_edges += b["pred_edges"].get<int>();
+  EXPECT_GT(predicted_edges, 0) << "empty wireframes would make this check vacuous";
+  EXPECT_GT(metrics["edge_avg"]["ap"].get<double>(), 0.0) << "so would an sAP of zero";
 
   // Hostile clouds (regressions): outputs are named after the file stem, never the `name` inside the cloud
   // ("../escape" wrote outside -o); a point 6e8 m away no longer ends the batch; a FIFO fails alone.
