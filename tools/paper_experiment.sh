@@ -132,23 +132,13 @@ step_dense_eval() {
 step_dense_select() {
   local weights=${1:-models/edge-sound}
   local dir=runs/dense-select/$(basename "$weights")
-  mkdir -p "$dir"
   local cells=("views1:" "views8:--test-time-views 8"
                "views8_edge4:--test-time-views 8 --edge-test-time-views 4"
                "views8_passes2:--test-time-views 8 --sampling-passes 2"
                "views8_passes2_edge4:--test-time-views 8 --sampling-passes 2 --edge-test-time-views 4"
                "views8_nms0.35:--test-time-views 8 --nms-radius 0.35"
                "views8_c0.02:--test-time-views 8 --min-confidence 0.02")
-  for cell in "${cells[@]}"; do
-    local tag=${cell%%:*} flags=${cell#*:}
-    [[ -f $dir/$tag/metrics.json ]] && continue
-    # shellcheck disable=SC2086  # flags are words
-    "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/dataset-30v/clouds --split configs/splits/val.txt \
-      --out "$dir/$tag.tmp" --method "$tag" --quiet $flags
-    rm -rf "${dir:?}/$tag" && mv "$dir/$tag.tmp" "$dir/$tag"
-  done
-  /usr/bin/python3 tools/selection_table.py "$dir" > "$dir/table.md"
-  cat "$dir/table.md"
+  score_cells "$weights" runs/dataset-30v/clouds "$dir" "${cells[@]}"
 }
 
 # The shipped models fine-tuned on the 30-view clouds (after `dense` has made the training clouds).
@@ -227,6 +217,24 @@ evaluate() {  # evaluate CLOUDS OUT METHOD [extra lc2wf-eval flags]
     --method "$method" "$@"
 }
 
+# score_cells WEIGHTS CLOUDS DIR CELL...: lc2wf-eval of WEIGHTS on the validation split of CLOUDS once per
+# "tag:flags" cell into DIR/tag (a finished cell is kept, so a killed run resumes), then the table, best first.
+score_cells() {
+  local weights=$1 clouds=$2 dir=$3 cell
+  shift 3
+  mkdir -p "$dir"
+  for cell in "$@"; do
+    local tag=${cell%%:*} flags=${cell#*:}
+    [[ -f $dir/$tag/metrics.json ]] && continue
+    # shellcheck disable=SC2086  # flags are words
+    "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "$clouds" --split configs/splits/val.txt \
+      --out "$dir/$tag.tmp" --method "$tag" --quiet $flags
+    rm -rf "${dir:?}/$tag" && mv "$dir/$tag.tmp" "$dir/$tag"
+  done
+  /usr/bin/python3 tools/selection_table.py "$dir" > "$dir/table.md"
+  cat "$dir/table.md"
+}
+
 # The junction selection is chosen on the validation split: each cell of the grid once (a finished cell is
 # kept, so the step resumes), then the table, best first. Every candidate (no offset limit) is left out:
 # with a low cut it classifies thousands of pairs per building (bench/README.md has its rows).
@@ -244,16 +252,7 @@ step_select() {
           "c0_offset0.75:--min-confidence 0 --nms-radius 0.5 --max-offset 0.75"
           "c0.05_offset0.75_nms0.35:--min-confidence 0.05 --nms-radius 0.35 --max-offset 0.75"
           "c0.05_offset0.75_nms0.75:--min-confidence 0.05 --nms-radius 0.75 --max-offset 0.75")
-  for cell in "${cells[@]}"; do
-    local tag=${cell%%:*} flags=${cell#*:}
-    [[ -f $dir/$tag/metrics.json ]] && continue
-    # shellcheck disable=SC2086  # flags are words
-    "$build_dir/infer/lc2wf-eval" --weights runs/base --data runs/dataset/clouds --split configs/splits/val.txt \
-      --out "$dir/$tag.tmp" --method "$tag" --quiet $flags
-    rm -rf "${dir:?}/$tag" && mv "$dir/$tag.tmp" "$dir/$tag"
-  done
-  /usr/bin/python3 tools/selection_table.py "$dir" > "$dir/table.md"
-  cat "$dir/table.md"
+  score_cells runs/base runs/dataset/clouds "$dir" "${cells[@]}"
 }
 
 step_eval() {
