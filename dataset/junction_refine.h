@@ -1,7 +1,8 @@
 // Junction refinement (beyond the paper): the junction model regresses a position from a 32-line patch,
 // which is coarse (tens of centimetres); the line cloud's own segments ending near a junction usually pin
 // it much more precisely. Each selected junction moves to the least-squares meeting point of the lines
-// through the segments that end near it, regularised towards the predicted position.
+// through the segments that end near it, regularised towards the predicted position and, with a robust
+// scale, reweighted so that lines passing the junction by are outvoted by those meeting there.
 #pragma once
 
 #include <vector>
