@@ -240,7 +240,6 @@ score_cells() {
 # with a low cut it classifies thousands of pairs per building (bench/README.md has its rows).
 step_select() {
   local dir=runs/base/selection
-  mkdir -p "$dir"
   local cells=("release:--min-confidence 0.85 --nms-radius 0.25")
   for offset in 1.25 1 0.75 0.5; do
     for c in 0.85 0.5 0.3 0.1 0.05; do
