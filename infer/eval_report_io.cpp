@@ -189,7 +189,10 @@ std::string inference_markdown(const InferenceTiming& s) {
   if (s.max_segment_length_m > 0) {
     passes += ", segments cut at " + format_number("%g", s.max_segment_length_m) + " m";
     if (s.merged_maps_only) passes += " in merged line maps";
-    passes += " (" + std::to_string(s.cut) + " of " + std::to_string(s.buildings) + " clouds cut)";
+    passes += " (" + std::to_string(s.cut) + " of " + std::to_string(s.buildings) + " clouds cut";
+    if (s.cut_sampling_passes > s.sampling_passes)
+      passes += ", sampled in " + std::to_string(s.cut_sampling_passes) + " passes";
+    passes += ")";
   }
   char line[1024];
   std::snprintf(line, sizeof line,
@@ -222,6 +225,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"edge_test_time_views", s.edge_test_time_views},
           {"max_segment_length_m", s.max_segment_length_m},
           {"merged_maps_only", s.merged_maps_only},
+          {"cut_sampling_passes", s.cut_sampling_passes},
           {"cut_clouds", s.cut},
           {"empty_wireframes", s.empty}};
 }
@@ -250,6 +254,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.edge_test_time_views = j.value("edge_test_time_views", 1);
   s.max_segment_length_m = j.value("max_segment_length_m", 0.0);  // uncut before the option existed
   s.merged_maps_only = j.value("merged_maps_only", false);
+  s.cut_sampling_passes = j.value("cut_sampling_passes", 1);  // the selection's passes before the option existed
   s.cut = j.value("cut_clouds", 0);
   s.empty = j.value("empty_wireframes", s.empty);
   return s;

@@ -207,7 +207,9 @@ InferenceResult WireframePredictor::predict(const LineCloud& input, const PostPr
   LineCloud split;
   if (cut_it) split = split_long_segments(input, cut);
   const LineCloud& cloud = cut_it ? split : input;
-  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, options.selection);
+  JunctionSelectionOptions sampling = options.selection;
+  if (cut_it) sampling.sampling_passes = std::max(sampling.sampling_passes, options.cut_sampling_passes);
+  const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, sampling);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;
@@ -219,7 +221,8 @@ InferenceResult WireframePredictor::predict(const LineCloud& input, const PostPr
                                                    " % of its long segments overlapped by another): "
                                              : std::string()) +
                        std::to_string(input.segments.size()) + " segments cut at " +
-                       format_number("%g", cut) + " m into " + std::to_string(cloud.segments.size()));
+                       format_number("%g", cut) + " m into " + std::to_string(cloud.segments.size()) + ", sampled in " +
+                       std::to_string(sampling.sampling_passes) + " passes");
   return r;
 }
 

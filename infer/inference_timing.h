@@ -29,6 +29,7 @@ struct InferenceTiming {
   int edge_test_time_views = 1;  // PostProcessOptions::edge_test_time_views
   double max_segment_length_m = 0;  // PostProcessOptions::max_segment_length_m: 0 = the clouds as they are
   bool merged_maps_only = false;    // PostProcessOptions::merged_maps_only
+  int cut_sampling_passes = 1;      // PostProcessOptions::cut_sampling_passes
 
   void record_selection(const PostProcessOptions& o) {
     const JunctionSelectionOptions& s = o.selection;
@@ -42,6 +43,7 @@ struct InferenceTiming {
     edge_test_time_views = o.edge_test_time_views;
     max_segment_length_m = o.max_segment_length_m;
     merged_maps_only = o.merged_maps_only;
+    cut_sampling_passes = o.cut_sampling_passes;
   }
 };
 

@@ -17,6 +17,10 @@ struct PostProcessOptions {
   // the release's and other programs' maps of per-view fragments pass unchanged.
   double max_segment_length_m = kMergedMapPieceLength;
   bool merged_maps_only = true;
+  // A cut cloud's junction model runs on at least this many sampling passes: at a corner of a cut map meet
+  // two chains' endpoints per edge, not one per view, so the density seeds find 78 % of the GT junctions
+  // (our clouds 94 %); chosen on validation (reconstruct/README.md, "Sampling a cut map").
+  int cut_sampling_passes = 3;
   // Junction selection before pairing: the rule training uses too (dataset/junction_selection.h).
   JunctionSelectionOptions selection;
   // Which pairs of the selection the edge model classifies: all of them unless min_support > 0

@@ -93,14 +93,16 @@ TEST(EvalReportIo, InferenceRecordRoundTrips) {
   s.edge_test_time_views = 2;
   s.max_segment_length_m = 1.5;
   s.cut = 3;
+  s.cut_sampling_passes = 3;
   EXPECT_EQ(inference_json(inference_from_json(inference_json(s))), inference_json(s));
-  EXPECT_THAT(inference_markdown(s), HasSubstr("2 sampling passes, release density seeds, 4 test-time views, 2 edge views, segments cut at 1.5 m (3 of 4 clouds cut)"));
+  EXPECT_THAT(inference_markdown(s), HasSubstr("2 sampling passes, release density seeds, 4 test-time views, 2 edge views, "
+                                               "segments cut at 1.5 m (3 of 4 clouds cut, sampled in 3 passes)"));
   s.max_offset_m = std::numeric_limits<double>::infinity();  // every candidate: null in JSON
   EXPECT_TRUE(std::isinf(inference_from_json(inference_json(s)).max_offset_m));
   // Records written before the selection was kept were made with the release's.
   nlohmann::json old = inference_json(s);
   for (const char* key : {"min_confidence", "nms_radius_m", "max_offset_m", "sampling_passes", "test_time_views", "density_seeds",
-                          "edge_test_time_views", "max_segment_length_m", "cut_clouds"})
+                          "edge_test_time_views", "max_segment_length_m", "cut_clouds", "cut_sampling_passes"})
     old.erase(key);
   const InferenceTiming then = inference_from_json(old);
   EXPECT_EQ(then.sampling_passes, 1);
@@ -109,6 +111,7 @@ TEST(EvalReportIo, InferenceRecordRoundTrips) {
   EXPECT_EQ(then.edge_test_time_views, 1);
   EXPECT_EQ(then.max_segment_length_m, 0.0);
   EXPECT_EQ(then.cut, 0);
+  EXPECT_EQ(then.cut_sampling_passes, 1);
   EXPECT_EQ(then.min_confidence, 0.85);
   EXPECT_EQ(then.nms_radius_m, 0.25);
   EXPECT_TRUE(std::isinf(then.max_offset_m));

@@ -184,9 +184,11 @@ TEST_F(Inference, MaxSegmentLengthPredictsOnTheCutCloud) {
   o.merged_maps_only = false;
   PostProcessOptions as_is = keep_every_junction();
   as_is.max_segment_length_m = 0.0;
+  as_is.selection.sampling_passes = o.cut_sampling_passes;  // a cut cloud is sampled in that many passes
   const InferenceResult cut = predictor.predict(cloud_, o);
   const InferenceResult first = predictor.predict(split_long_segments(cloud_, 0.7), as_is);
   const InferenceResult whole = predictor.predict(cloud_, as_is);
+  ASSERT_EQ(cut.junctions.positions.size(), 3u * 32u);
   ASSERT_EQ(cut.junctions.positions.size(), first.junctions.positions.size());
   double differs = 0.0;
   for (size_t k = 0; k < cut.junctions.positions.size(); ++k) {
@@ -197,6 +199,16 @@ TEST_F(Inference, MaxSegmentLengthPredictsOnTheCutCloud) {
   EXPECT_EQ(cut.wireframe.wireframe.edges, first.wireframe.wireframe.edges);
   ASSERT_FALSE(cut.notes.empty());
   EXPECT_THAT(cut.notes.front(), HasSubstr("segments cut at 0.7 m"));
+  EXPECT_THAT(cut.notes.front(), HasSubstr("sampled in 3 passes"));
+  // More passes asked for than the cut's: the selection's count wins; an uncut cloud keeps the selection's.
+  o.selection.sampling_passes = 4;
+  EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 4u * 32u);
+  EXPECT_EQ(whole.junctions.positions.size(), 3u * 32u);
+  EXPECT_EQ(predictor.predict(cloud_, keep_every_junction()).junctions.positions.size(), 32u);
+  o.selection.sampling_passes = 1;
+  o.cut_sampling_passes = 9;
+  EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
+  o.cut_sampling_passes = 3;
   o.max_segment_length_m = 0.01;
   EXPECT_THROW(predictor.predict(cloud_, o), std::invalid_argument);
 }
@@ -222,7 +234,10 @@ TEST_F(Inference, MaxSegmentLengthAutoCutsOnlyMergedLineMaps) {
   const InferenceResult m = predictor.predict(merged, automatic);
   EXPECT_THAT(m.notes.front(), HasSubstr("a merged line map (0 % of its long segments overlapped by another)"));
   EXPECT_TRUE(m.segments_cut);
-  EXPECT_EQ(m.junctions.positions, predictor.predict(split_long_segments(merged, kMergedMapPieceLength), off).junctions.positions);
+  PostProcessOptions cut_first = off;
+  cut_first.selection.sampling_passes = automatic.cut_sampling_passes;
+  EXPECT_EQ(m.junctions.positions,
+            predictor.predict(split_long_segments(merged, kMergedMapPieceLength), cut_first).junctions.positions);
   const auto not_cut = [&](const LineCloud& c) {
     const InferenceResult r = predictor.predict(c, automatic);
     EXPECT_FALSE(r.segments_cut);
