@@ -6,7 +6,7 @@
 #include <string>
 
 #include "dataset/errors.h"
-#include "dataset/spatial_grid.h"
+#include "dataset/segment_overlap.h"
 
 namespace lc2wf {
 namespace {
@@ -59,46 +59,14 @@ LineCloud split_long_segments(const LineCloud& cloud, double max_length_m) {
 }
 
 double overlapped_long_fraction(const LineCloud& cloud, double min_length_m) {
-  constexpr double kRadius = 0.10, kMinCos = 0.9961946980917455;  // 10 cm, cos 5 degrees
-  double total_length = 0.0;
-  for (const Segment3& s : cloud.segments) total_length += s.length();
-  // Sample points along every segment, close enough that a segment passing within kRadius of a midpoint has
-  // one within the query radius.
-  const double spacing = std::max(0.05, total_length / static_cast<double>(kMaxSplitSegments));
-  std::vector<Vec3> points;
-  std::vector<int> owner;
-  for (size_t i = 0; i < cloud.segments.size(); ++i) {
-    const Segment3& s = cloud.segments[i];
-    const int64_t n = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(s.length() / spacing)));
-    for (int64_t k = 0; k <= n; ++k) {
-      points.push_back(s.a + (s.b - s.a) * (static_cast<double>(k) / static_cast<double>(n)));
-      owner.push_back(static_cast<int>(i));
-    }
-  }
-  const double radius = std::hypot(kRadius, spacing / 2);
-  const SpatialGrid grid(points, radius);
-  std::vector<int> near;
+  const SegmentOverlapIndex index(cloud.segments, kMaxSplitSegments);
+  std::vector<int> along;
   int64_t long_segments = 0, overlapped = 0;
   for (size_t i = 0; i < cloud.segments.size(); ++i) {
-    const Segment3& s = cloud.segments[i];
-    const double length = s.length();
-    if (length <= min_length_m) continue;
+    if (cloud.segments[i].length() <= min_length_m) continue;
     ++long_segments;
-    const Vec3 mid = 0.5 * (s.a + s.b), dir = (s.b - s.a) / length;
-    grid.query(mid, radius, near);
-    for (int p : near) {
-      const auto j = static_cast<size_t>(owner[static_cast<size_t>(p)]);
-      if (j == i) continue;
-      const Segment3& o = cloud.segments[j];
-      const double other_length = o.length();
-      if (!(other_length > 0.0)) continue;
-      const Vec3 other_dir = (o.b - o.a) / other_length;
-      if (std::abs(dir.dot(other_dir)) < kMinCos) continue;
-      const double t = other_dir.dot(mid - o.a);
-      if (t < 0.0 || t > other_length || (mid - o.a - t * other_dir).norm() > kRadius) continue;
-      ++overlapped;
-      break;
-    }
+    index.runs_along(i, along);
+    overlapped += !along.empty();
   }
   return long_segments == 0 ? 1.0 : static_cast<double>(overlapped) / static_cast<double>(long_segments);
 }

@@ -21,13 +21,14 @@ const char* kUsage = R"(Usage: lc2wf-reconstruct IMAGES_DIR --weights DIR -o OUT
 
 Photos of one building -> 3D wireframe. Stages (progress on stderr): weights, images (*.png, *.jpg of
 IMAGES_DIR in name order, one camera), cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments),
-triangulation (our multi-view line triangulation), frame (scale, up, ground), inference (junction and
-edge models), outputs. OUT receives, only when every stage succeeded:
+triangulation (our multi-view line triangulation), frame (scale, up, ground), confirmation (lines no
+other view confirms dropped), inference (junction and edge models), outputs. OUT receives, only when every stage succeeded:
   wireframe.obj + wireframe.json   the wireframe (metres, z up) and its scores
   cloud.lcloud, cloud.obj          the line cloud (our format; OBJ for MeshLab)
   cameras.json                     the cameras in the output frame (null = not registered)
   preview.png                      cloud (grey) and wireframe (red)
-  report.json                      images registered, segments, 3D lines, junctions, edges, the frame
+  report.json                      images registered, segments, 3D lines (and unconfirmed ones), junctions,
+                                   edges, the frame
                                    and the seconds of every stage
 
 Frame. COLMAP's frame has no metric scale and an arbitrary up axis; the networks expect metres, z up,
@@ -60,6 +61,9 @@ Options:
   --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
                          the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two
                          confirming views)
+  --min-confirming-views K  keep a 3D line only when lines triangulated from >= K other views overlap
+                         it (default 1; 0 keeps every line): most lone lines of a textured scene are
+                         chance matches floating above the roof (reconstruct/README.md)
   --up U                 auto (default), cameras (no line refinement), z, or X,Y,Z
   --scale F              metres per input unit
   --known-distance A,B,D camera centres of images A and B (file names) are D metres apart
@@ -117,6 +121,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--first-octave") o.colmap.first_octave = int_flag(f, value());
     else if (f == "--matcher") o.colmap.matcher = value();
     else if (f == "--min-score") o.triangulator.min_best_score = number_flag(f, value());
+    else if (f == "--min-confirming-views") o.confirmation.min_other_views = int_flag(f, value());
     else if (f == "--scale") {
       o.frame.scale = number_flag(f, value());
       if (!(o.frame.scale > 0)) throw UsageError("--scale must be > 0");
@@ -164,7 +169,8 @@ ReconstructOptions parse_args(int argc, char** argv) {
                                      {"ColmapOptions.max_features", "--max-features"},
                                      {"ColmapOptions.first_octave", "--first-octave"},
                                      {"ColmapOptions.matcher", "--matcher"},
-                                     {"TriangulatorOptions.min_best_score", "--min-score"}});
+                                     {"TriangulatorOptions.min_best_score", "--min-score"},
+                                     {"LineConfirmationOptions.min_other_views", "--min-confirming-views"}});
   if (!fs::is_directory(o.images)) throw std::runtime_error("'" + o.images.string() + "' is not a folder");  // a data error
   return o;
 }

@@ -20,6 +20,7 @@ void ReconstructOptions::Check() const {
   colmap.Check();
   lsd.Check();
   triangulator.Check();
+  confirmation.Check();
   MetricFrameOptions f = frame;
   f.known_view_a = f.known_view_b = -1;  // resolved from the image names later
   if (f.known_distance_m > 0) f.known_view_a = 0, f.known_view_b = 1;

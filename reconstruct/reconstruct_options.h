@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "dataset/line_confirmation.h"
 #include "dataset/metric_frame.h"
 #include "infer/post_process_options.h"
 #include "tools/colmap/colmap_poses.h"
@@ -39,6 +40,9 @@ struct ReconstructOptions {
 
   LsdOptions lsd;
   TriangulatorOptions triangulator;
+  // Lines no other source view confirms are dropped before inference (dataset/line_confirmation.h): in
+  // photo clouds most of them are chance matches among texture lines, floating above the roof.
+  LineConfirmationOptions confirmation;
 
   MetricFrameOptions frame;
   // The frame is measured on the lines with >= k supporting 2D segments, k the largest in

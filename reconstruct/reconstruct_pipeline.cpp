@@ -212,6 +212,16 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
                      {"height_m", frame.height_input * frame.to_metric.scale}};
   log.done(seconds, "up from " + frame.up_source + ", scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source + ")");
 
+  log.start("confirmation");
+  const size_t triangulated = cloud.segments.size();
+  cloud = keep_confirmed_lines(cloud, o.confirmation);  // in metres: the overlap test's 10 cm needs the frame
+  report["lines_unconfirmed"] = triangulated - cloud.segments.size();
+  if (cloud.segments.empty())
+    throw StageError("confirmation", "none of the " + std::to_string(triangulated) + " 3D lines is overlapped by a line of " +
+                                         std::to_string(o.confirmation.min_other_views) +
+                                         " other view(s) (--min-confirming-views; 0 keeps every line)");
+  log.done(seconds, std::to_string(cloud.segments.size()) + " of " + std::to_string(triangulated) + " lines confirmed by another view");
+
   log.start("inference");
   const InferenceResult r = predictor->predict(cloud, o.post);
   report["junctions"] = r.wireframe.wireframe.junctions.size();

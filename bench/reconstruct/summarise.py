@@ -23,7 +23,7 @@ for run, label in [("eval-known-clouds", "lc2wf-dataset, known cameras"), ("eval
         print(f"| {label} | {v:.1f} | {s:.1f} | {r:.1f} |")
 
 print()
-print("| building | registered | 3D lines | junctions | edges | scale / true | rotation err (deg) | exit | colmap s | lsd s | triangulation s | inference s | total s |")
+print("| building | registered | 3D lines (kept) | junctions | edges | scale / true | rotation err (deg) | exit | colmap s | lsd s | triangulation s | inference s | total s |")
 print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 totals = {}
 for n in names:
@@ -36,7 +36,7 @@ for n in names:
     ref = r.get("reference", {})
     for k in ("cameras", "lsd", "triangulation", "inference", "total"):
         totals.setdefault(k, []).append(sec[k])
-    print(f"| {n} | {r['cameras']['registered']}/{r['images']['read']} | {r['lines_3d']} | {r['junctions']} | {r['edges']} | "
+    print(f"| {n} | {r['cameras']['registered']}/{r['images']['read']} | {r['lines_3d']} ({r['lines_3d'] - r.get('lines_unconfirmed', 0)}) | {r['junctions']} | {r['edges']} | "
           f"{ref.get('scale_to_reference', float('nan')):.3f} | {ref.get('rotation_error_deg_median', float('nan')):.3f} | {r['exit_code']} | "
           f"{sec['cameras']:.1f} | {sec['lsd']:.2f} | {sec['triangulation']:.2f} | {sec['inference']:.2f} | {sec['total']:.1f} |")
 if totals:
