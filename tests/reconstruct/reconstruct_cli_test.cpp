@@ -35,6 +35,10 @@ TEST(ReconstructCli, HelpAndUsageErrors) {
   const auto zero_up = testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --up 0,0,0");
   EXPECT_EQ(zero_up.code, 2);
   EXPECT_NE(zero_up.err.find("--up '0,0,0' is the zero vector"), std::string::npos) << zero_up.err;
+  EXPECT_THAT(help.out, HasSubstr("--min-confirming-views"));
+  const auto negative = testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --min-confirming-views -1");
+  EXPECT_EQ(negative.code, 2);
+  EXPECT_THAT(negative.err, HasSubstr("--min-confirming-views")) << negative.err;
   fs::remove_all(dir);
 }
 
