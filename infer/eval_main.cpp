@@ -19,10 +19,10 @@
 #include "infer/evaluator.h"
 #include "infer/html_report.h"
 #include "infer/prediction_io.h"
+#include "dataset/cloud_input.h"
 #if LC2WF_EVAL_WITH_WEIGHTS
 #include "core/parallel.h"
 #include "infer/batch_inference.h"
-#include "dataset/cloud_input.h"
 #endif
 
 namespace {
@@ -255,7 +255,10 @@ int run(const Args& a) {
   options.strict_wed = a.strict_wed;
   options.raw_per_metre = source.raw_per_metre;
   Evaluator evaluator(options);
-  // Building3D-style counts in the frame of the line cloud (or of the GT corners when there is no cloud).
+  // Building3D-style counts in the frame of the line cloud (or of the GT corners when there is no cloud): with
+  // --gt, the clouds of --data that inference ran on, so every kind of cloud of a building shares one frame.
+  const bool clouds_beside_gt = !a.gt.empty() && !a.data.empty();
+  const CloudFormat cloud_format = parse_cloud_format(a.format, "--format");
   std::vector<Building3dCounts> building3d;
   std::unique_ptr<HtmlReport> html;
   if (a.html) html = std::make_unique<HtmlReport>(HtmlReportOptions{default_three_js_dir()});
@@ -278,16 +281,18 @@ int run(const Args& a) {
         missing ? ScoredWireframe{}
                 : read_prediction(pred_path, a.units == CoordinateUnits::kRaw ? &gt.units : nullptr);
     evaluator.add(name, pred, gt.wireframe, missing);
+    const std::vector<Segment3> cloud_segments =
+        clouds_beside_gt ? load_line_cloud(find_cloud_file(a.data, name), cloud_format).segments : gt.cloud_segments;
     const NormalisationFrame frame =
-        gt.cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(gt.cloud_segments);
+        cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(cloud_segments);
     building3d.push_back(building3d_counts(pred, gt.wireframe, frame));
-    if (html) html->add(pred, gt.wireframe, gt.cloud_segments, options);
+    if (html) html->add(pred, gt.wireframe, cloud_segments, options);
     if (progress) progress->step();
   }
   if (progress) progress->finish();
 
   const EvalReport report = evaluator.report();
-  const Building3dReport b3d{summarize_building3d(building3d, {}, a.gt.empty() ? "line-cloud segment endpoints" : "GT corners"),
+  const Building3dReport b3d{summarize_building3d(building3d, {}, a.gt.empty() || clouds_beside_gt ? "line-cloud segment endpoints" : "GT corners"),
                              names, building3d};
   write_eval_outputs(a.out, report, a.method, &b3d, inference_summary ? &*inference_summary : nullptr);
   const auto missing = report.missing_predictions();

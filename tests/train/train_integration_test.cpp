@@ -19,7 +19,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "dataset/line3dpp_io.h"
 #include "dataset/line_cloud_io.h"
+#include "dataset/mesh_io.h"
+#include "dataset/splits.h"
 #include "dataset/synthetic_building.h"
 #include "dataset/synthetic_line_cloud.h"
 #include "infer/post_process_options.h"
@@ -292,6 +295,25 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
                 quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " + quote(eval)),
             0);
   EXPECT_EQ(nlohmann::json::parse(read_text(eval / "metrics.json")).at("inference"), timing);
+
+  // The same clouds as Line3D++ maps with the GT beside them: Building3D's frame is still the cloud's (it was
+  // the GT corners', a different scale, so the two rows of one building could not be compared).
+  const fs::path maps = dir_ / "maps", gt = dir_ / "gt";
+  fs::create_directories(maps), fs::create_directories(gt);
+  for (const std::string& name : read_name_list(dir_ / "val.txt")) {
+    const LineCloud c = read_line_cloud(dir_ / "clouds" / (name + ".lcloud"));
+    write_line3dpp_txt(maps / (name + ".txt"), c);
+    write_obj_wireframe(gt / (name + ".obj"), c.wireframe);
+  }
+  const fs::path as_maps = dir_ / "eval-maps";
+  ASSERT_EQ(run(std::string(LC2WF_EVAL_BIN) + " --quiet --weights " + quote(straight) + " --data " + quote(maps) +
+                " --format line3dpp --max-segment-length 0 --gt " + quote(gt) + " --split " + quote(dir_ / "val.txt") +
+                " --out " + quote(as_maps)),
+            0) << command_output();
+  const nlohmann::json map_metrics = nlohmann::json::parse(read_text(as_maps / "metrics.json"));
+  EXPECT_EQ(map_metrics["building3d"]["frame"], metrics["building3d"]["frame"]);
+  EXPECT_NEAR(map_metrics["building3d"]["mean_frame_radius_m"].get<double>(),
+              metrics["building3d"]["mean_frame_radius_m"].get<double>(), 1e-5);
 
   // One rule for junctions: the edge stage's validation of the weights it kept scores exactly what
   // lc2wf-eval --weights scores for the same weights and buildings.
