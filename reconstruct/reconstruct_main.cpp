@@ -24,7 +24,7 @@ IMAGES_DIR in name order, one camera), cameras (COLMAP 3.8 on the CPU, or --came
 triangulation (our multi-view line triangulation), frame (scale, up, ground), confirmation (lines no
 other view confirms dropped), inference (junction and edge models), outputs. OUT receives, only when every stage succeeded:
   wireframe.obj + wireframe.json   the wireframe (metres, z up) and its scores
-  cloud.lcloud, cloud.obj          the line cloud (our format; OBJ for MeshLab)
+  cloud.lcloud, cloud.obj          the confirmed line cloud inference ran on (our format; OBJ for MeshLab)
   cameras.json                     the cameras in the output frame (null = not registered)
   preview.png                      cloud (grey) and wireframe (red)
   report.json                      images registered, segments, 3D lines (and unconfirmed ones), junctions,
