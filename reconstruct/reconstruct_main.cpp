@@ -22,7 +22,8 @@ const char* kUsage = R"(Usage: lc2wf-reconstruct IMAGES_DIR --weights DIR -o OUT
 Photos of one building -> 3D wireframe. Stages (progress on stderr): weights, images (*.png, *.jpg of
 IMAGES_DIR in name order, one camera), cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments),
 triangulation (our multi-view line triangulation), frame (scale, up, ground), confirmation (lines no
-other view confirms dropped), inference (junction and edge models), outputs. OUT receives, only when every stage succeeded:
+other view confirms dropped), inference (junction and edge models), outputs. OUT receives, only when
+every stage succeeded:
   wireframe.obj + wireframe.json   the wireframe (metres, z up) and its scores
   cloud.lcloud, cloud.obj          the confirmed line cloud inference ran on (our format; OBJ for MeshLab)
   cameras.json                     the cameras in the output frame (null = not registered)
