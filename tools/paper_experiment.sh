@@ -35,6 +35,11 @@
 #   tools/paper_experiment.sh dense     the Blender clouds again from 30 views instead of 20 (≈ 1.2K lines per
 #                                       building, the paper's ≈ 1.4K) -> runs/dataset-30v: test split first,
 #                                       then validation, then training
+#   tools/paper_experiment.sh edge-cheaper  evidence for a cheaper edge stage (issue: the schedule in 8 h):
+#                                       base.json's edge stage on a quarter of the 30-view training clouds,
+#                                       the paper's 512 pair patches (two seeds: the noise) against 256 patches
+#                                       and against 32 lines per pair patch, on models/base's hand-off ->
+#                                       runs/edge-cheaper/table.md (best val sAP/vAP/WED and seconds per step)
 #   tools/paper_experiment.sh dense-eval [WEIGHTS [TAG FLAGS...]]  WEIGHTS (default models/edge-sound) on the
 #                                       30-view test clouds, 1 and 8 test-time views -> runs/dense-test/
 #                                       <name>-views{1,8}; with TAG, the one setting FLAGS -> <name>-TAG
@@ -391,6 +396,54 @@ step_merged_maps() {
   bench/robustness.sh "runs/$run" bench/reconstruct/robustness-buildings.txt "runs/$run/robustness"
 }
 
+# The edge stage is two thirds of base.json's wall time; is half of it as good? Each variant is base.json's
+# edge stage (milestones scaled to the shorter schedule) on models/base's junction model, trained on every
+# 4th training building of the 30-view clouds and validated on the whole validation split.
+step_edge_cheaper() {
+  local out=runs/edge-cheaper
+  mkdir -p "$out"
+  awk 'NR % 4 == 1' configs/splits/train.txt > "$out/train.txt"
+  local variant
+  for variant in p512-s1 p512-s2 p256-s1 l32-s1; do
+    local dir=$out/$variant
+    mkdir -p "$dir"
+    /usr/bin/python3 - configs/base.json "$dir/config.json" "$variant" "$out/train.txt" <<'PY'
+import json, sys
+config = json.load(open(sys.argv[1]))
+variant, train = sys.argv[3], sys.argv[4]
+config["seed"] = 1555 + int(variant.split("-s")[1])
+config["data"].update(dir="runs/dataset-30v/clouds", train_split=train)
+edge = config["edge"]
+edge["epochs"], edge["optim"]["milestones"] = 8, [4, 7]
+if variant.startswith("p256"):
+    edge["net"]["lpt"]["patches"], edge["max_static_pairs"] = 256, 128  # half the pairs, the same GT share
+if variant.startswith("l32"):
+    edge["net"]["lpt"]["lines_per_patch"] = 32  # 16 lines around each junction of a pair
+json.dump(config, open(sys.argv[2] + ".tmp", "w"), indent=2)
+PY
+    mv "$dir/config.json.tmp" "$dir/config.json"
+    [[ -f $dir/junction.safetensors ]] || cp models/base/junction.safetensors "$dir/junction.safetensors"
+    local resume=()
+    [[ -d $dir/checkpoints ]] && resume=(--resume)
+    "$build_dir/train/lc2wf-train" "$dir/config.json" --stage edge --out "$dir" -q "${resume[@]}"
+  done
+  /usr/bin/python3 - "$out" <<'PY' | tee "$out/table.md"
+import json, statistics, sys
+from pathlib import Path
+print("| variant | best val sAP avg | its vAP avg | its WED | median s per step |")
+print("|---|---|---|---|---|")
+for run in sorted(p for p in Path(sys.argv[1]).iterdir() if (p / "log.jsonl").exists()):
+    records = [json.loads(line) for line in open(run / "log.jsonl")]
+    val = [r for r in records if r.get("type") == "val" and r.get("stage") == "edge"]
+    steps = [r["seconds"] for r in records if r.get("type") == "step" and r.get("stage") == "edge" and "seconds" in r]
+    if not val:
+        continue
+    best = max(val, key=lambda r: r["sAP_mean"])
+    step = f"{statistics.median(steps):.2f}" if steps else "-"
+    print(f"| {run.name} | {100 * best['sAP_mean']:.1f} | {100 * best['vAP_mean']:.1f} | {best['wed_total']:.2f} | {step} |")
+PY
+}
+
 case "${1:-}" in
   dataset) step_dataset ;;
   train) step_train ;;
@@ -412,6 +465,7 @@ case "${1:-}" in
   dense-select) step_dense_select "${2:-}" ;;
   dense-eval) shift; step_dense_eval "$@" ;;
   dense-train) step_dense_train ;;
+  edge-cheaper) step_edge_cheaper ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
