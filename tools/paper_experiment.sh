@@ -136,7 +136,8 @@ step_dense_eval() {
 # passes, edge views, NMS radius and confidence cut around the default); each finished cell is kept.
 step_dense_select() {
   local weights=${1:-models/edge-sound}
-  local dir=runs/dense-select/$(basename "$weights")
+  local dir
+  dir=runs/dense-select/$(basename "$weights")
   local cells=("views1:" "views8:--test-time-views 8"
                "views8_edge4:--test-time-views 8 --edge-test-time-views 4"
                "views8_passes2:--test-time-views 8 --sampling-passes 2"
