@@ -184,7 +184,7 @@ step_snapshot() {
   [[ -f $src/predicted_junctions/manifest.json ]] &&
     tar -C "$src" -czf - predicted_junctions | split -b 19m -d - "$tmp/predicted_junctions.tar.gz.part"
   local step=$run
-  case $run in base) step=train ;; local-labels) step=local ;; esac
+  case $run in base) step=train ;; local-labels) step=local ;; dense) step=dense-train ;; esac
   sed "s|@RUN@|$run|g; s|@STEP@|$step|g" tools/paper_experiment-snapshot.md > "$tmp/README.md"
   # The learning curves so far, shown in the top README (skipped without matplotlib).
   /usr/bin/python3 tools/plots/plot_training.py "$src" --out "$tmp/learning_curves.png" >/dev/null ||
