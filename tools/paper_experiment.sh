@@ -416,6 +416,7 @@ config["seed"] = 1555 + int(variant.split("-s")[1])
 config["data"].update(dir="runs/dataset-30v/clouds", train_split=train)
 edge = config["edge"]
 edge["epochs"], edge["optim"]["milestones"] = 8, [4, 7]
+edge["val_every"] = 2  # after epochs 2, 4, 6, 8: a validation pass costs half an epoch here
 if variant.startswith("p256"):
     edge["net"]["lpt"]["patches"], edge["max_static_pairs"] = 256, 128  # half the pairs, the same GT share
 if variant.startswith("l32"):

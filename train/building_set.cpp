@@ -30,6 +30,10 @@ BuildingSet load_building_set(const DataConfig& data, const std::filesystem::pat
     LineCloud cloud = load_line_cloud(file, format, data.raw_per_metre);
     cloud.name = name;
     if (cloud.segments.empty()) throw DataError(file.string(), "line cloud has no segments (cannot be trained on)");
+    // Training reads segments, labels and the wireframe only; a rendered cloud's 2D observations and cameras
+    // are most of its memory (1.1 of 1.4 GB for the 2,626 training clouds rendered from 30 views).
+    cloud.support = std::vector<std::vector<Observation>>();
+    cloud.cameras = std::vector<Camera>();
     set.clouds.push_back(std::move(cloud));
     if (progress) progress->step();
   }

@@ -16,7 +16,8 @@ struct BuildingSet {
   std::vector<LineCloud> clouds;
 };
 
-// Reads the names of `split_file` and their clouds from data.dir (format data.format). Throws DataError
+// Reads the names of `split_file` and their clouds from data.dir (format data.format), without the clouds'
+// 2D observations and cameras (training does not read them). Throws DataError
 // naming the file on a missing building, an empty split or a cloud without segments, and the config key
 // (`key`, e.g. "data.train_split") when the split file itself does not exist.
 BuildingSet load_building_set(const DataConfig& data, const std::filesystem::path& split_file, const std::string& key,
