@@ -26,6 +26,7 @@ struct SegmentLabel {
   double d1 = -1;
   int i2 = -1;
   double d2 = -1;
+  friend bool operator==(const SegmentLabel&, const SegmentLabel&) = default;
 };
 
 struct LineCloud {

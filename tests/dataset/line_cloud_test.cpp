@@ -53,14 +53,7 @@ void expect_same(const LineCloud& x, const LineCloud& y) {
   EXPECT_EQ(x.wireframe.junctions, y.wireframe.junctions);
   EXPECT_EQ(x.units.raw_per_metre, y.units.raw_per_metre);
   EXPECT_EQ(x.units.origin_raw, y.units.origin_raw);
-  ASSERT_EQ(x.labels.size(), y.labels.size());
-  for (size_t i = 0; i < x.labels.size(); ++i) {
-    EXPECT_EQ(x.labels[i].f, y.labels[i].f);
-    EXPECT_EQ(x.labels[i].i1, y.labels[i].i1);
-    EXPECT_EQ(x.labels[i].i2, y.labels[i].i2);
-    EXPECT_EQ(x.labels[i].d1, y.labels[i].d1);
-    EXPECT_EQ(x.labels[i].d2, y.labels[i].d2);
-  }
+  EXPECT_TRUE(x.labels == y.labels);
 }
 
 TEST(LineCloudIo, BinaryAndJsonRoundTripExactly) {

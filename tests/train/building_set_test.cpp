@@ -67,14 +67,7 @@ TEST(BuildingSet, KeepsWhatTrainingReadsAndDropsTheObservations) {
   EXPECT_TRUE(kept.support.empty());
   EXPECT_TRUE(kept.cameras.empty());
   EXPECT_EQ(segments_fingerprint(kept), segments_fingerprint(read));
-  ASSERT_EQ(kept.labels.size(), read.labels.size());
-  for (size_t i = 0; i < kept.labels.size(); ++i) {
-    EXPECT_EQ(kept.labels[i].f, read.labels[i].f);
-    EXPECT_EQ(kept.labels[i].i1, read.labels[i].i1);
-    EXPECT_EQ(kept.labels[i].i2, read.labels[i].i2);
-    EXPECT_EQ(kept.labels[i].d1, read.labels[i].d1);
-    EXPECT_EQ(kept.labels[i].d2, read.labels[i].d2);
-  }
+  EXPECT_TRUE(kept.labels == read.labels);
   EXPECT_EQ(kept.wireframe.junctions.size(), read.wireframe.junctions.size());
   EXPECT_EQ(kept.wireframe.edges.size(), read.wireframe.edges.size());
   EXPECT_EQ(kept.units.raw_per_metre, read.units.raw_per_metre);
