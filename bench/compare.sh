@@ -39,8 +39,8 @@ export OMP_NUM_THREADS=$threads OPENBLAS_NUM_THREADS=$threads OPENBLAS_CORETYPE=
 
 # *_bf16: our step with bf16 GEMM operands against PyTorch's fp32 step (Debian's PyTorch cannot autocast
 # this model to bf16 on the CPU).
-declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1/bf16:0 [edge_train]=BM_EdgeTrainStep/fused:1/bf16:0
-                   [junction_train_bf16]=BM_JunctionTrainStep/fused:1/bf16:1 [edge_train_bf16]=BM_EdgeTrainStep/fused:1/bf16:1
+declare -A filter=([junction_train]=BM_JunctionTrainStep/fused:1/bf16:0/recompute:0 [edge_train]=BM_EdgeTrainStep/fused:1/bf16:0/recompute:0
+                   [junction_train_bf16]=BM_JunctionTrainStep/fused:1/bf16:1/recompute:0 [edge_train_bf16]=BM_EdgeTrainStep/fused:1/bf16:1/recompute:0
                    [junction_infer]=BM_JunctionInference/bf16:0 [edge_infer]=BM_EdgeInference/bf16:0
                    [junction_infer_bf16]=BM_JunctionInference/bf16:1 [edge_infer_bf16]=BM_EdgeInference/bf16:1)
 tmp=$(mktemp -d)

@@ -20,6 +20,7 @@ class EdgeNet : public Module {
   Tensor forward(const Tensor& x, const Tensor& mask);
   const EdgeNetConfig& config() const { return config_; }
   Rng& dropout_rng() { return dropout_rng_; }
+  void set_recompute_mlp(bool on) { lpt_.set_recompute_mlp(on); }  // LinePatchTransformer::set_recompute_mlp
 
  private:
   EdgeNetConfig config_;

@@ -26,6 +26,7 @@ class JunctionNet : public Module {
   JunctionOutput forward(const Tensor& x, const Tensor& mask);
   const JunctionNetConfig& config() const { return config_; }
   Rng& dropout_rng() { return dropout_rng_; }
+  void set_recompute_mlp(bool on) { lpt_.set_recompute_mlp(on); }  // LinePatchTransformer::set_recompute_mlp
 
  private:
   JunctionNetConfig config_;

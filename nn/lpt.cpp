@@ -84,9 +84,9 @@ Tensor LinePatchTransformer::encode_patches(const Tensor& rows, const Tensor& ma
   return pool(enc1_.forward(h.reshape({R, N, E}), mask, rng), mask);
 }
 
-// The MLP runs on every line slot: checkpointed, its Linear outputs and ReLU activations (M x 640 floats
-// twice at the paper's sizes) are rebuilt from the (M x F) input in the backward pass instead of being
-// kept through the whole step. Forward values and gradients are the same ops on the same data.
+// The MLP runs on every line slot: checkpointed (set_recompute_mlp), its Linear outputs and ReLU
+// activations are rebuilt from the (M x F) input in the backward pass instead of being kept through the
+// whole step. Forward values and gradients are the same ops on the same data either way.
 Tensor LinePatchTransformer::line_mlp(const Tensor& rows) const {
   struct Running {
     Tensor mean, var;
@@ -100,7 +100,7 @@ Tensor LinePatchTransformer::line_mlp(const Tensor& rows) const {
     inputs.insert(inputs.end(), {stage->fc().weight(), stage->fc().bias(), bn.weight(), bn.bias()});
     running.push_back({bn.running_mean(), bn.running_var(), bn.momentum(), bn.eps(), bn.is_training()});
   }
-  return checkpoint(inputs, [running](const std::vector<Tensor>& in, bool recompute) {
+  auto stages = [running](const std::vector<Tensor>& in, bool recompute) {
     Tensor h = in[0];
     for (size_t i = 0; i < running.size(); ++i) {
       const Running& r = running[i];
@@ -111,7 +111,8 @@ Tensor LinePatchTransformer::line_mlp(const Tensor& rows) const {
       h = relu(batch_norm(linear(h, p[0], p[1]), p[2], p[3], mean, var, r.training, r.momentum, r.eps));
     }
     return h;
-  });
+  };
+  return recompute_mlp_ ? checkpoint(inputs, stages) : stages(inputs, false);
 }
 
 Tensor LinePatchTransformer::pool(const Tensor& lines, const Tensor& mask) const {

@@ -37,6 +37,9 @@ class LinePatchTransformer : public Module {
   // x (B, G, N, F) F32; mask Bool (B, G, N), true = padded slot. Returns (B, G, hidden_dim).
   Tensor forward(const Tensor& x, const Tensor& mask, Rng& rng);
   const LptConfig& config() const { return config_; }
+  // Training only: rebuild the line MLP's activations (M x 640 floats twice at the paper's sizes) in the
+  // backward pass instead of keeping them. Same values and gradients; less memory, slower steps.
+  void set_recompute_mlp(bool on) { recompute_mlp_ = on; }
 
  private:
   // Line MLP, line encoder and pooling of R patches: rows (R, N, F), mask (R, N) -> (R, E).
@@ -45,6 +48,7 @@ class LinePatchTransformer : public Module {
   Tensor pool(const Tensor& lines, const Tensor& mask) const;
 
   LptConfig config_;
+  bool recompute_mlp_ = false;
   std::vector<std::unique_ptr<LinearBnRelu>> mlp_;
   TransformerEncoder enc1_, enc2_;
 };

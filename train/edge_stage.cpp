@@ -55,6 +55,7 @@ void train_edge_stage(const TrainConfig& config, const BuildingSet& train, const
                       const std::filesystem::path& handoff_dir, RunLog& log, const StageRun& run) {
   const EdgeStageConfig& c = config.edge;
   EdgeNet net(c.net, config.seed);
+  net.set_recompute_mlp(c.schedule.recompute_mlp);
   Communicator& comm = run.communicator();
   DataParallel dp(comm, net, net.dropout_rng(), c.schedule.batch_norm == "sync");
 

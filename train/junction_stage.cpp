@@ -41,6 +41,7 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
                           const StageRun& run) {
   const JunctionStageConfig& c = config.junction;
   JunctionNet net(c.net, config.seed);
+  net.set_recompute_mlp(c.schedule.recompute_mlp);
   const JunctionSampleOptions train_options = stage_sample_options(c, true);
   const JunctionSampleOptions val_options = stage_sample_options(c, false);
   Communicator& comm = run.communicator();

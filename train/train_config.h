@@ -76,6 +76,9 @@ struct StageSchedule {
   // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the
   // optimiser step, so only BatchNorm's statistics see fewer buildings. Bounds activation memory.
   int64_t micro_batch = 0;          // 0 = the whole batch at once
+  // Rebuild the line MLP's activations in the backward pass instead of keeping them: ≈ 0.23 GB less per 4
+  // edge or 16 junction buildings, ≈ 9 % slower steps in both stages (bench/README.md).
+  bool recompute_mlp = false;
   CloudAugmentConfig cloud_augment;  // training batches only, never validation
   // Data-parallel jobs (mpirun): BatchNorm statistics of each rank's own passes ("per_rank") or summed
   // over the ranks' passes ("sync"). One process: no difference.
@@ -94,6 +97,7 @@ struct StageSchedule {
     v("augment_rotate_z", s.augment_rotate_z);
     v("drop_last", s.drop_last);
     v("micro_batch", s.micro_batch);
+    v("recompute_mlp", s.recompute_mlp);
     v("cloud_augment", s.cloud_augment);
     v("batch_norm", s.batch_norm);
   }

@@ -77,7 +77,8 @@ class StepCost {
 // Arg "fused" 0 runs attention on the reference kernel (the one before core/attention_fused.cpp), for a
 // before/after of the training step from one build; run one variant per process for its peak RSS.
 // Arg "bf16" 1 runs the matrix products with bf16 operands (core/matmul_precision.h; the AVX512-BF16 kernel
-// where the CPU has it, else its emulation).
+// where the CPU has it, else its emulation). Arg "recompute" 1 rebuilds the line MLP's activations in the
+// backward pass (<stage>.recompute_mlp: less memory, more time).
 struct AttentionKernel {
   explicit AttentionKernel(const benchmark::State& state)
       : before(fused_attention_enabled()),
@@ -92,6 +93,7 @@ struct AttentionKernel {
 void BM_JunctionTrainStep(benchmark::State& state) {
   AttentionKernel kernel(state);
   JunctionNet net{JunctionNetConfig{}};
+  net.set_recompute_mlp(state.range(2) != 0);
   AdamW opt(net.named_parameters(), OptimConfig{});
   const Batch b = make_batch(16, 256, 32, 7, 2, 1);
   JunctionLossConfig loss_config;
@@ -112,6 +114,7 @@ void BM_JunctionTrainStep(benchmark::State& state) {
 void BM_EdgeTrainStep(benchmark::State& state) {
   AttentionKernel kernel(state);
   EdgeNet net{EdgeNetConfig{}};
+  net.set_recompute_mlp(state.range(2) != 0);
   AdamW opt(net.named_parameters(), OptimConfig{});
   const Batch b = make_batch(4, 512, 64, 6, 5, 2);
   auto step = [&] {
@@ -149,8 +152,8 @@ void BM_EdgeInference(benchmark::State& state) {
   finish(state);
 }
 
-BENCHMARK(BM_JunctionTrainStep)->ArgNames({"fused", "bf16"})->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
-BENCHMARK(BM_EdgeTrainStep)->ArgNames({"fused", "bf16"})->Args({1, 0})->Args({0, 0})->Args({1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_JunctionTrainStep)->ArgNames({"fused", "bf16", "recompute"})->Args({1, 0, 0})->Args({0, 0, 0})->Args({1, 1, 0})->Args({1, 1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_EdgeTrainStep)->ArgNames({"fused", "bf16", "recompute"})->Args({1, 0, 0})->Args({0, 0, 0})->Args({1, 1, 0})->Args({1, 1, 1})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(3);
 BENCHMARK(BM_JunctionInference)->ArgName("bf16")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 BENCHMARK(BM_EdgeInference)->ArgName("bf16")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
 

@@ -8,6 +8,7 @@
 
 #include "core/ops.h"
 #include "core/parallel.h"
+#include "core/storage_cache.h"
 #include "nn/edge_net.h"
 #include "nn/junction_net.h"
 #include "nn/losses.h"
@@ -96,6 +97,45 @@ TEST(Lpt, TrainingForwardIsDeterministicAcrossThreadCounts) {
   set_num_threads(0);
   EXPECT_EQ(one, two);
   EXPECT_EQ(two, again);
+}
+
+TEST(Lpt, KeptMlpActivationsGiveTheRecomputedValuesAndGradients) {
+  // Recomputing the line MLP trades time for memory only: outputs, every gradient and the BatchNorm
+  // running statistics (updated once, not again by the recomputation) are the same bits either way.
+  auto run = [](bool recompute) {
+    JunctionNet net(small(), 9);
+    net.set_recompute_mlp(recompute);
+    const JunctionOutput out = net.forward(inputs(2, 4, 6, 7, 5), mask_every(2, 4, 6, 4));
+    (sum(out.logits) + sum(mul(out.offsets, out.offsets))).backward();
+    std::vector<std::vector<double>> values{out.logits.to_vector(), out.offsets.to_vector()};
+    for (const auto& [name, p] : net.named_parameters()) values.push_back(p.grad().to_vector());
+    for (const auto& [name, b] : net.named_buffers()) values.push_back(b.to_vector());
+    return values;
+  };
+  const auto recomputed = run(true), kept = run(false);
+  ASSERT_EQ(recomputed.size(), kept.size());
+  EXPECT_GT(recomputed.size(), 20u);
+  for (size_t i = 0; i < kept.size(); ++i) EXPECT_EQ(recomputed[i], kept[i]) << "tensor " << i;
+}
+
+TEST(Lpt, RecomputingTheMlpKeepsLessForTheBackwardPass) {
+  // 4,096 line slots at width 256: the MLP's activations are 4 MB blocks, which the storage cache counts.
+  auto live_after_forward = [](bool recompute) {
+    JunctionNetConfig c = small();
+    c.lpt.mlp_dims = {256, 256};
+    c.lpt.hidden_dim = 256;
+    c.lpt.lines_per_patch = 32;
+    c.lpt.patches = 64;
+    JunctionNet net(c, 9);
+    net.set_recompute_mlp(recompute);
+    const size_t before = storage_cache_stats().live_bytes;
+    const JunctionOutput out = net.forward(inputs(2, 64, 32, 7, 5), mask_every(2, 64, 32, 4));
+    return storage_cache_stats().live_bytes - before;  // what the graph keeps for backward
+  };
+  const size_t kept = live_after_forward(false), recomputed = live_after_forward(true);
+  // Kept besides: the first layer's Linear and ReLU outputs and the second's Linear output (its ReLU
+  // output is the MLP's result, which the encoder keeps either way).
+  EXPECT_GE(kept, recomputed + 3 * (size_t{4} << 20));
 }
 
 TEST(Lpt, InferenceInChunksEqualsTheWholeForward) {
