@@ -1,6 +1,6 @@
 // The published models (models/base, models/rotate, models/rotate-loose, models/edge-sound,
-// models/merged-maps) load on a fresh clone and turn a building's line cloud into a wireframe: finite scores,
-// edges inside the building, most GT corners found. Registered only when models/base holds both weight files
+// models/merged-maps, models/dense) load on a fresh clone and turn a building's line cloud into a
+// wireframe: finite scores, edges inside the building, most GT corners found. Registered only when models/base holds both weight files
 // (tests/infer/CMakeLists.txt); the others are checked where present.
 #include <gtest/gtest.h>
 
@@ -54,7 +54,7 @@ TEST_P(PretrainedModel, TurnsAHipRoofCloudIntoAWireframe) {
   EXPECT_GE(found, static_cast<int>(cloud.wireframe.junctions.size()) / 2) << found << " of " << cloud.wireframe.junctions.size();
 }
 
-INSTANTIATE_TEST_SUITE_P(Published, PretrainedModel, testing::Values("base", "rotate", "rotate-loose", "edge-sound", "merged-maps"));
+INSTANTIATE_TEST_SUITE_P(Published, PretrainedModel, testing::Values("base", "rotate", "rotate-loose", "edge-sound", "merged-maps", "dense"));
 
 }  // namespace
 }  // namespace lc2wf
