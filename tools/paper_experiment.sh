@@ -405,7 +405,7 @@ step_edge_cheaper() {
   mkdir -p "$out"
   awk 'NR % 4 == 1' configs/splits/train.txt > "$out/train.txt"
   local variant
-  for variant in p512-s1 p512-s2 p256-s1 l32-s1; do
+  for variant in p512-s1 p256-s1 p512-s2 l32-s1; do  # the cheaper variant right after the first reference
     local dir=$out/$variant
     mkdir -p "$dir"
     /usr/bin/python3 - configs/base.json "$dir/config.json" "$variant" "$out/train.txt" <<'PY'
