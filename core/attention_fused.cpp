@@ -5,6 +5,7 @@
 // the four gradient products. Probabilities are never stored.
 #include "core/attention_fused.h"
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -252,34 +253,53 @@ RowKernels row_kernels(int64_t n) {
 
 bool fused_supported(int64_t Lk, int64_t D) { return Lk > 0 && D > 0 && Lk % 8 == 0 && D % 8 == 0; }
 
+int64_t padded_key_count(int64_t Lk) {
+#ifdef __AVX512F__
+  return (Lk + 15) / 16 * 16;
+#else
+  return (Lk + 7) / 8 * 8;
+#endif
+}
+
+// Query rows per pass of one head: the scores of a block stay in L2 next to k^T and v. Short patches (training's
+// 32 and 64 lines) are one block; a building's thousands of pair patches at inference go in blocks. Each
+// row's scores, softmax and output are the same arithmetic in any block, so blocking changes no bit.
+int64_t query_block(int64_t Lq, int64_t Lk) {
+  constexpr int64_t kBlockScores = int64_t{1} << 16;  // floats (256 KiB)
+  if (Lq * Lk <= kBlockScores) return Lq;
+  return std::max<int64_t>(kRowGroup, kBlockScores / Lk / kRowGroup * kRowGroup);
+}
+
 void fused_forward(const Shape4& s, const float* q, Layout lq, const float* k, Layout lk, const float* v, Layout lv,
                    float* o, Layout lo, const uint8_t* mask, float scale, const DropoutPlan& drop, float* probs,
                    float* stats, uint8_t* keep_bits) {
-  const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8;
+  const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8, qb = query_block(Lq, Lk);
   const RowKernels kernels = row_kernels(Lk);
-  parallel_for_work(s.B, 1, H * 4 * Lq * Lk * (D + 4), [&](int64_t b0, int64_t b1) {
-    float* kt = thread_scratch(static_cast<size_t>(D * Lk + Lk * D + Lq * Lk));
+  // One task per (batch item, head): inference scores one building at a time, so the heads are the parallelism.
+  parallel_for_work(s.B * H, kPairsPerTask, 4 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
+    float* kt = thread_scratch(static_cast<size_t>(D * Lk + Lk * D + qb * Lk));
     float *vc = kt + D * Lk, *S = vc + Lk * D;
     std::vector<int32_t> valid;
-    for (int64_t b = b0; b < b1; ++b) {
-      if (mask) key_lanes(mask + b * Lk, Lk, valid);
-      for (int64_t h = 0; h < H; ++h) {
-        const int64_t p = b * H + h;
-        transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt);
-        copy_head(Lk, D, v + lv.at(b, h), lv.row, vc);
+    for (int64_t p = p0; p < p1; ++p) {
+      const int64_t b = p / H, h = p % H;
+      if (mask && (p == p0 || h == 0)) key_lanes(mask + b * Lk, Lk, valid);
+      transpose_into(Lk, D, k + lk.at(b, h), lk.row, kt);
+      copy_head(Lk, D, v + lv.at(b, h), lv.row, vc);
+      const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv);
+      for (int64_t i0 = 0; i0 < Lq; i0 += qb) {
+        const int64_t rows_in_block = std::min(qb, Lq - i0);
         // q is read in place: each row block of the product touches a few of its rows (see head_gemm).
-        head_gemm::gemm_nn(Lq, Lk, D, q + lq.at(b, h), lq.row, kt, Lk, S, Lk);
-        const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv);
-        for (int64_t i = 0; i < Lq;) {
-          const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
+        head_gemm::gemm_nn(rows_in_block, Lk, D, q + lq.at(b, h) + i0 * lq.row, lq.row, kt, Lk, S, Lk);
+        for (int64_t i = i0; i < i0 + rows_in_block;) {
+          const int64_t row = p * Lq + i, group = i + kRowGroup <= i0 + rows_in_block ? kRowGroup : 1;
           for (int64_t r = i; r < i + group; ++r) next.share(r);
           auto rows = group == kRowGroup ? kernels.forward_group : kernels.forward_one;
-          rows(S + i * Lk, probs ? probs + row * Lk : nullptr, Lk, scale, mask ? valid.data() : nullptr, drop,
+          rows(S + (i - i0) * Lk, probs ? probs + row * Lk : nullptr, Lk, scale, mask ? valid.data() : nullptr, drop,
                static_cast<uint64_t>(row * Lk), stats ? stats + 2 * row : nullptr,
                keep_bits ? keep_bits + row * nv : nullptr);
           i += group;
         }
-        head_gemm::gemm_nn(Lq, D, Lk, S, Lk, vc, D, o + lo.at(b, h), lo.row);
+        head_gemm::gemm_nn(rows_in_block, D, Lk, S, Lk, vc, D, o + lo.at(b, h) + i0 * lo.row, lo.row);
       }
     }
   });
@@ -292,34 +312,32 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
   const int64_t H = s.H, Lq = s.Lq, Lk = s.Lk, D = s.D, nv = Lk / 8;
   const int64_t qn = Lq * D, kn = Lk * D, sn = Lq * Lk;
   const RowKernels kernels = row_kernels(Lk);
-  parallel_for_work(s.B, 1, H * 12 * Lq * Lk * (D + 4), [&](int64_t b0, int64_t b1) {
+  parallel_for_work(s.B * H, kPairsPerTask, 12 * Lq * Lk * (D + 4), [&](int64_t p0, int64_t p1) {
     float* kt = thread_scratch(static_cast<size_t>(2 * D * Lk + 2 * qn + kn + 3 * sn));
     float *vt = kt + D * Lk, *Q = vt + D * Lk, *K = Q + qn, *G = K + kn, *S = G + qn, *dP = S + sn, *Pd = dP + sn;
     std::vector<int32_t> valid;
-    for (int64_t b = b0; b < b1; ++b) {
-      if (mask) key_lanes(mask + b * Lk, Lk, valid);
-      for (int64_t h = 0; h < H; ++h) {
-        const int64_t p = b * H + h;
-        copy_head(Lq, D, q + lq.at(b, h), lq.row, Q);
-        copy_head(Lk, D, k + lk.at(b, h), lk.row, K);
-        copy_head(Lq, D, go + lo.at(b, h), lo.row, G);
-        transpose_into(Lk, D, K, D, kt);
-        transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt);
-        head_gemm::gemm_nn(Lq, Lk, D, Q, D, kt, Lk, S, Lk);   // raw scores again
-        head_gemm::gemm_nn(Lq, Lk, D, G, D, vt, Lk, dP, Lk);  // dP~ = g v^T
-        const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv, go, lo);
-        for (int64_t i = 0; i < Lq;) {
-          const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
-          for (int64_t r = i; r < i + group; ++r) next.share(r);
-          auto rows = group == kRowGroup ? kernels.backward_group : kernels.backward_one;
-          rows(S + i * Lk, dP + i * Lk, Pd + i * Lk, Lk, scale, mask ? valid.data() : nullptr, drop, stats + 2 * row,
-               keep_bits ? keep_bits + row * nv : nullptr);
-          i += group;
-        }
-        head_gemm::gemm_nn(Lq, D, Lk, dP, Lk, K, D, dq + ldq.at(b, h), ldq.row);  // dS k
-        head_gemm::gemm_tn(Lk, D, Lq, dP, Lk, Q, D, dk + ldk.at(b, h), ldk.row);  // dS^T q
-        head_gemm::gemm_tn(Lk, D, Lq, Pd, Lk, G, D, dv + ldv.at(b, h), ldv.row);  // P~^T g
+    for (int64_t p = p0; p < p1; ++p) {
+      const int64_t b = p / H, h = p % H;
+      if (mask && (p == p0 || h == 0)) key_lanes(mask + b * Lk, Lk, valid);
+      copy_head(Lq, D, q + lq.at(b, h), lq.row, Q);
+      copy_head(Lk, D, k + lk.at(b, h), lk.row, K);
+      copy_head(Lq, D, go + lo.at(b, h), lo.row, G);
+      transpose_into(Lk, D, K, D, kt);
+      transpose_into(Lk, D, v + lv.at(b, h), lv.row, vt);
+      head_gemm::gemm_nn(Lq, Lk, D, Q, D, kt, Lk, S, Lk);   // raw scores again
+      head_gemm::gemm_nn(Lq, Lk, D, G, D, vt, Lk, dP, Lk);  // dP~ = g v^T
+      const NextPairRows<float> next(s, p, q, lq, k, lk, v, lv, go, lo);
+      for (int64_t i = 0; i < Lq;) {
+        const int64_t row = p * Lq + i, group = i + kRowGroup <= Lq ? kRowGroup : 1;
+        for (int64_t r = i; r < i + group; ++r) next.share(r);
+        auto rows = group == kRowGroup ? kernels.backward_group : kernels.backward_one;
+        rows(S + i * Lk, dP + i * Lk, Pd + i * Lk, Lk, scale, mask ? valid.data() : nullptr, drop, stats + 2 * row,
+             keep_bits ? keep_bits + row * nv : nullptr);
+        i += group;
       }
+      head_gemm::gemm_nn(Lq, D, Lk, dP, Lk, K, D, dq + ldq.at(b, h), ldq.row);  // dS k
+      head_gemm::gemm_tn(Lk, D, Lq, dP, Lk, Q, D, dk + ldk.at(b, h), ldk.row);  // dS^T q
+      head_gemm::gemm_tn(Lk, D, Lq, Pd, Lk, G, D, dv + ldv.at(b, h), ldv.row);  // P~^T g
     }
   });
 }
@@ -327,6 +345,7 @@ void fused_backward(const Shape4& s, const float* q, Layout lq, const float* k, 
 #else
 
 bool fused_supported(int64_t, int64_t) { return false; }
+int64_t padded_key_count(int64_t Lk) { return Lk; }
 void fused_forward(const Shape4&, const float*, Layout, const float*, Layout, const float*, Layout, float*, Layout,
                    const uint8_t*, float, const DropoutPlan&, float*, float*, uint8_t*) {}
 void fused_backward(const Shape4&, const float*, Layout, const float*, Layout, const float*, Layout, const float*,

@@ -1,6 +1,6 @@
 // The fused float attention kernel (AVX2 + FMA; softmax rows on AVX-512 where the build has it): forward
-// and backward of every (batch item, head) in one cache-resident pass each; the reference kernel in
-// ops_attention.cpp covers the other cases.
+// and backward of every (batch item, head) in one cache-resident pass each (a forward pass over thousands
+// of keys in blocks of query rows); the reference kernel in ops_attention.cpp covers the other cases.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,10 @@ namespace lc2wf::attention {
 
 // True when this build has the kernel and the shape fits it (key count and head width multiples of 8).
 bool fused_supported(int64_t Lk, int64_t D);
+
+// The key count a shape the kernel does not take is padded to (masked keys) at inference: a multiple of the
+// softmax rows' lane width, 16 where the build has AVX-512.
+int64_t padded_key_count(int64_t Lk);
 
 // What the forward pass keeps for the backward pass instead of the probabilities: per query row the
 // shifted maximum and the inverse sum of the softmax (2 floats), and with dropout the keep bits

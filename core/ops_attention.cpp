@@ -263,30 +263,30 @@ bool takes_fused(DType dtype, const AttnShape& s) {
 }
 
 // Inference with a key count the fused kernel does not take (the patch encoder over a building's
-// thousands of pairs): k and v are copied with zero rows up to a multiple of 8 that the key mask hides,
+// thousands of pairs): k and v are copied with zero rows up to padded_key_count that the key mask hides,
 // which gives the fused kernel's result for the real keys. Returns false when the case does not apply.
 bool fused_forward_padded(const AttnShape& s, const Operands& x, Tensor& out, const uint8_t* mask, double scale,
                           const DropoutPlan& drop, const Tensor& probs, bool keep_for_backward) {
   if (!g_fused_attention || keep_for_backward || drop.active || probs.defined() || x.qs.dtype() != DType::F32) return false;
-  const int64_t Lk8 = (s.Lk + 7) / 8 * 8;
-  if (Lk8 == s.Lk || !attention::fused_supported(Lk8, s.D)) return false;
+  const int64_t Lk_padded = attention::padded_key_count(s.Lk);
+  if (s.Lk % 8 == 0 || !attention::fused_supported(Lk_padded, s.D)) return false;
   const int64_t HD = s.H * s.D;
-  Tensor kp = Tensor::zeros({s.B, Lk8, HD}, DType::F32), vp = Tensor::zeros({s.B, Lk8, HD}, DType::F32);
-  std::vector<uint8_t> padded_mask(static_cast<size_t>(s.B * Lk8), 1);
+  Tensor kp = Tensor::zeros({s.B, Lk_padded, HD}, DType::F32), vp = Tensor::zeros({s.B, Lk_padded, HD}, DType::F32);
+  std::vector<uint8_t> padded_mask(static_cast<size_t>(s.B * Lk_padded), 1);
   const float* k = ptr<float>(x.ks) + x.k_off;
   const float* v = ptr<float>(x.vs) + x.v_off;
   float *kd = ptr<float>(kp), *vd = ptr<float>(vp);
   for (int64_t b = 0; b < s.B; ++b)
     for (int64_t i = 0; i < s.Lk; ++i) {
-      padded_mask[static_cast<size_t>(b * Lk8 + i)] = mask ? mask[b * s.Lk + i] : 0;
+      padded_mask[static_cast<size_t>(b * Lk_padded + i)] = mask ? mask[b * s.Lk + i] : 0;
       for (int64_t h = 0; h < s.H; ++h) {
-        std::memcpy(kd + (b * Lk8 + i) * HD + h * s.D, k + x.lk.at(b, h) + i * x.lk.row, sizeof(float) * s.D);
-        std::memcpy(vd + (b * Lk8 + i) * HD + h * s.D, v + x.lv.at(b, h) + i * x.lv.row, sizeof(float) * s.D);
+        std::memcpy(kd + (b * Lk_padded + i) * HD + h * s.D, k + x.lk.at(b, h) + i * x.lk.row, sizeof(float) * s.D);
+        std::memcpy(vd + (b * Lk_padded + i) * HD + h * s.D, v + x.lv.at(b, h) + i * x.lv.row, sizeof(float) * s.D);
       }
     }
-  const AttnShape s8{s.B, s.H, s.Lq, Lk8, s.D};
-  const Layout lk8{Lk8 * HD, s.D, HD};
-  attention::fused_forward(s8, ptr<float>(x.qs) + x.q_off, x.lq, kd, lk8, vd, lk8, ptr<float>(out), x.lo,
+  const AttnShape s_padded{s.B, s.H, s.Lq, Lk_padded, s.D};
+  const Layout lk_padded{Lk_padded * HD, s.D, HD};
+  attention::fused_forward(s_padded, ptr<float>(x.qs) + x.q_off, x.lq, kd, lk_padded, vd, lk_padded, ptr<float>(out), x.lo,
                            padded_mask.data(), static_cast<float>(scale), drop, nullptr, nullptr, nullptr);
   return true;
 }

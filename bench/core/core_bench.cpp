@@ -169,6 +169,18 @@ void BM_AttentionForward(benchmark::State& state) {
 }
 BENCHMARK(BM_AttentionForward)->Arg(32)->Arg(64)->UseRealTime()->Unit(benchmark::kMillisecond);
 
+// Inference of the edge model's patch encoder: one building's pair patches attend to each other, L = the
+// pairs scored (2,545 on average in base.json's validation), no mask, no dropout.
+void BM_AttentionOverPairs(benchmark::State& state) {
+  const int64_t L = state.range(0);
+  Tensor qkv = rand32({1, L, 3 * kWidth}, 5);
+  Rng rng(1);
+  NoGradGuard no_grad;
+  for (auto _ : state) benchmark::DoNotOptimize(packed_attention(qkv, 8, Tensor(), 0.0, false, rng).impl());
+  report_flops(state, attention_flops(1, L));
+}
+BENCHMARK(BM_AttentionOverPairs)->Arg(435)->Arg(2545)->ArgName("pairs")->UseRealTime()->Unit(benchmark::kMillisecond);
+
 void BM_AttentionForwardBackward(benchmark::State& state) {
   int64_t L = state.range(0), B = kTokens / L;
   Tensor qkv = rand32({B, L, 3 * kWidth}, 5, true);

@@ -113,11 +113,32 @@ TEST(FusedAttention, EveryRowGroupRemainderMatchesTheReferenceKernel) {
     expect_fused_matches_reference(3, 2, Lq, 16, 8, 0.5, static_cast<uint64_t>(200 + Lq), "Lq=" + std::to_string(Lq));
 }
 
+// Scores of more than 2^16 floats per head go in blocks of query rows (here 272 + 29: a remainder off the
+// row groups of four too), in the forward pass of training as in inference.
+TEST(FusedAttention, QueryBlocksMatchTheReferenceKernel) {
+  expect_fused_matches_reference(2, 2, 301, 240, 16, 0.3, 17, "Lq=301 Lk=240");
+}
+
+// A row's scores, softmax and output are the same arithmetic in any block of query rows: the first rows of
+// a long query (several blocks, two threads over the heads) have the bits of a short query alone.
+TEST(FusedAttention, QueryBlocksChangeNoBit) {
+  FusedSwitch use(true);
+  Rng init(19);
+  const int64_t B = 1, H = 8, Lq = 700, Lk = 400, D = 32;
+  Tensor q = rand32({B, H, Lq, D}, init), k = rand32({B, H, Lk, D}, init), v = rand32({B, H, Lk, D}, init);
+  NoGradGuard no_grad;
+  Rng rng(1);
+  const Tensor all = scaled_dot_product_attention(q, k, v, Tensor(), 0.0, false, rng);
+  const Tensor first = scaled_dot_product_attention(slice(q, 2, 0, 4), k, v, Tensor(), 0.0, false, rng);
+  EXPECT_EQ(slice(all, 2, 0, 4).to_vector(), first.to_vector());
+}
+
 // Inference with a key count off the fused kernel's multiple of 8 (the patch encoder over a building's
 // pairs): keys padded and masked inside the op, the real keys' result equals the reference kernel's, with
-// and without a key mask (item 2 has every key masked), packed and separate q/k/v.
+// and without a key mask (item 2 has every key masked), packed and separate q/k/v; 1,001 keys also go in
+// blocks of query rows.
 TEST(FusedAttention, InferenceWithAnyKeyCountMatchesTheReferenceKernel) {
-  for (int64_t L : {1, 13, 30, 61}) {
+  for (int64_t L : {1, 13, 30, 61, 1001}) {
     Rng init(static_cast<uint64_t>(300 + L));
     const int64_t B = 3, H = 4, E = 4 * 8;
     const Tensor qkv = rand32({B, L, 3 * E}, init);
