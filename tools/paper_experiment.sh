@@ -38,7 +38,7 @@
 #   tools/paper_experiment.sh edge-cheaper  evidence for a cheaper edge stage (issue: the schedule in 8 h):
 #                                       base.json's edge stage on a quarter of the 30-view training clouds,
 #                                       the paper's 512 pair patches (two seeds: the noise) against 256 patches
-#                                       and against 32 lines per pair patch, on models/base's hand-off ->
+#                                       and against 32 lines per pair patch (two seeds), on models/base's hand-off ->
 #                                       runs/edge-cheaper/table.md (best val sAP/vAP/WED and seconds per step)
 #   tools/paper_experiment.sh dense-eval [WEIGHTS [TAG FLAGS...]]  WEIGHTS (default models/edge-sound) on the
 #                                       30-view test clouds, 1 and 8 test-time views -> runs/dense-test/
@@ -405,7 +405,7 @@ step_edge_cheaper() {
   mkdir -p "$out"
   awk 'NR % 4 == 1' configs/splits/train.txt > "$out/train.txt"
   local variant
-  for variant in p512-s1 p256-s1 p512-s2 l32-s1; do  # the cheaper variant right after the first reference
+  for variant in p512-s1 p256-s1 p512-s2 l32-s1 l32-s2; do  # the cheaper variant right after the first reference
     local dir=$out/$variant
     mkdir -p "$dir"
     /usr/bin/python3 - configs/base.json "$dir/config.json" "$variant" "$out/train.txt" <<'PY'

@@ -96,6 +96,17 @@ TEST(TrainConfig, LocalLabelsIsBaseWithLocalPatchLabels) {
   EXPECT_EQ(local, read_json(kConfigs / "base.json"));
 }
 
+// The cheaper option (bench/README.md, "A cheaper edge stage") is base.json with 32 lines per pair patch and
+// nothing else changed: its evidence holds only for that one difference.
+TEST(TrainConfig, FastIsBaseWithHalfTheLinesPerPairPatch) {
+  nlohmann::json fast = read_json(kConfigs / "fast.json");
+  EXPECT_EQ(fast["edge"]["net"]["lpt"]["lines_per_patch"].get<int64_t>(), 32);
+  EXPECT_EQ(TrainConfig::from_file(kConfigs / "fast.json").edge.net.lpt.lines_per_patch, 32);
+  fast["edge"]["net"]["lpt"]["lines_per_patch"] = 64;
+  fast["out"] = "runs/base";
+  EXPECT_EQ(fast, read_json(kConfigs / "base.json"));
+}
+
 TEST(TrainConfig, RoundTripsThroughJson) {
   const TrainConfig c = TrainConfig::from_file(kConfigs / "small.json");
   EXPECT_EQ(TrainConfig::from_json(c.to_json()).to_json(), c.to_json());
