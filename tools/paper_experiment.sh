@@ -40,6 +40,9 @@
 #                                       the paper's 512 pair patches (two seeds: the noise) against 256 patches
 #                                       and against 32 lines per pair patch (two seeds), on models/base's hand-off ->
 #                                       runs/edge-cheaper/table.md (best val sAP/vAP/WED and seconds per step)
+#   tools/paper_experiment.sh fast-check  configs/fast.json's edge stage against base.json's at the full
+#                                       schedule, both on the 30-view clouds from models/base's junction model
+#                                       (fast first, ≈ 4 h; then the paper's, ≈ 8 h) -> runs/fast-check/table.md
 #   tools/paper_experiment.sh dense-eval [WEIGHTS [TAG FLAGS...]]  WEIGHTS (default models/edge-sound) on the
 #                                       30-view test clouds, 1 and 8 test-time views -> runs/dense-test/
 #                                       <name>-views{1,8}; with TAG, the one setting FLAGS -> <name>-TAG
@@ -397,6 +400,33 @@ step_merged_maps() {
   bench/robustness.sh "runs/$run" bench/reconstruct/robustness-buildings.txt "runs/$run/robustness"
 }
 
+# The edge stage of $1/config.json from models/base's junction model, resumed where it stopped.
+run_edge_stage() {
+  local resume=()
+  [[ -f $1/junction.safetensors ]] || cp models/base/junction.safetensors "$1/junction.safetensors"
+  [[ -d $1/checkpoints ]] && resume=(--resume)
+  "$build_dir/train/lc2wf-train" "$1/config.json" --stage edge --out "$1" -q "${resume[@]}"
+}
+
+# Best validation scores and step cost of every run folder under $1 (an edge stage each) -> $1/table.md.
+edge_runs_table() {
+  /usr/bin/python3 - "$1" <<'PY' | tee "$1/table.md"
+import json, statistics, sys
+from pathlib import Path
+print("| variant | best val sAP avg | its vAP avg | its WED | median s per step |")
+print("|---|---|---|---|---|")
+for run in sorted(p for p in Path(sys.argv[1]).iterdir() if (p / "log.jsonl").exists()):
+    records = [json.loads(line) for line in open(run / "log.jsonl")]
+    val = [r for r in records if r.get("type") == "val" and r.get("stage") == "edge"]
+    steps = [r["seconds"] for r in records if r.get("type") == "step" and r.get("stage") == "edge" and "seconds" in r]
+    if not val:
+        continue
+    best = max(val, key=lambda r: r["sAP_mean"])
+    step = f"{statistics.median(steps):.2f}" if steps else "-"
+    print(f"| {run.name} | {100 * best['sAP_mean']:.1f} | {100 * best['vAP_mean']:.1f} | {best['wed_total']:.2f} | {step} |")
+PY
+}
+
 # The edge stage is two thirds of base.json's wall time; is half of it as good? Each variant is base.json's
 # edge stage (milestones scaled to the shorter schedule) on models/base's junction model, trained on every
 # 4th training building of the 30-view clouds and validated on the whole validation split.
@@ -424,26 +454,29 @@ if variant.startswith("l32"):
 json.dump(config, open(sys.argv[2] + ".tmp", "w"), indent=2)
 PY
     mv "$dir/config.json.tmp" "$dir/config.json"
-    [[ -f $dir/junction.safetensors ]] || cp models/base/junction.safetensors "$dir/junction.safetensors"
-    local resume=()
-    [[ -d $dir/checkpoints ]] && resume=(--resume)
-    "$build_dir/train/lc2wf-train" "$dir/config.json" --stage edge --out "$dir" -q "${resume[@]}"
+    run_edge_stage "$dir"
   done
-  /usr/bin/python3 - "$out" <<'PY' | tee "$out/table.md"
-import json, statistics, sys
-from pathlib import Path
-print("| variant | best val sAP avg | its vAP avg | its WED | median s per step |")
-print("|---|---|---|---|---|")
-for run in sorted(p for p in Path(sys.argv[1]).iterdir() if (p / "log.jsonl").exists()):
-    records = [json.loads(line) for line in open(run / "log.jsonl")]
-    val = [r for r in records if r.get("type") == "val" and r.get("stage") == "edge"]
-    steps = [r["seconds"] for r in records if r.get("type") == "step" and r.get("stage") == "edge" and "seconds" in r]
-    if not val:
-        continue
-    best = max(val, key=lambda r: r["sAP_mean"])
-    step = f"{statistics.median(steps):.2f}" if steps else "-"
-    print(f"| {run.name} | {100 * best['sAP_mean']:.1f} | {100 * best['vAP_mean']:.1f} | {best['wed_total']:.2f} | {step} |")
+  edge_runs_table "$out"
+}
+
+# Does configs/fast.json (32 lines per pair patch) keep the paper's edge quality at the full schedule? Each
+# run is the edge stage of its config on the 30-view clouds from models/base's junction model; only
+# edge.net.lpt.lines_per_patch differs.
+step_fast_check() {
+  local out=runs/fast-check run
+  for run in fast base; do
+    local dir=$out/$run
+    mkdir -p "$dir"
+    /usr/bin/python3 - "configs/$run.json" "$dir/config.json" <<'PY'
+import json, sys
+config = json.load(open(sys.argv[1]))
+config["data"]["dir"] = "runs/dataset-30v/clouds"
+json.dump(config, open(sys.argv[2] + ".tmp", "w"), indent=2)
 PY
+    mv "$dir/config.json.tmp" "$dir/config.json"
+    run_edge_stage "$dir"
+  done
+  edge_runs_table "$out"
 }
 
 case "${1:-}" in
@@ -468,6 +501,7 @@ case "${1:-}" in
   dense-eval) shift; step_dense_eval "$@" ;;
   dense-train) step_dense_train ;;
   edge-cheaper) step_edge_cheaper ;;
+  fast-check) step_fast_check ;;
   all) step_dataset && step_train && step_eval && step_ship ;;
   *) sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; exit 2 ;;
 esac
