@@ -130,6 +130,11 @@ class StorageCache {
     slack_ = factor;
   }
 
+  double slack() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return slack_;
+  }
+
   void set_budget(size_t bytes) {
     std::lock_guard<std::mutex> lock(mutex_);
     budget_ = bytes;
@@ -227,6 +232,8 @@ void storage_release(const StorageBlock& block) {
 void set_storage_cache_budget(size_t bytes) { cache().set_budget(bytes); }
 
 void set_storage_cache_slack(double factor) { cache().set_slack(factor); }
+
+double storage_cache_slack() { return cache().slack(); }
 
 void storage_cache_clear() { cache().clear(); }
 

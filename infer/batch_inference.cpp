@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "core/parallel.h"
+#include "core/storage_cache.h"
 #include "core/util/cli.h"
 #include "core/util/progress.h"
 #include "infer/prediction_io.h"
@@ -24,6 +25,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
                                    const std::filesystem::path& out_dir, const BatchInferenceOptions& o) {
   o.post.Check();
   const MatmulPrecisionGuard precision(o.precision);
+  const StorageCacheSlackGuard slack(kBatchInferenceSlack);
   BatchInferenceSummary s;
   s.threads = num_threads();
   s.precision = to_string(o.precision);

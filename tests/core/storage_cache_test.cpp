@@ -241,6 +241,16 @@ TEST_F(StorageCacheTest, SlackKeepsBlocksThatAreNotLiveAtThePeak) {
   EXPECT_LE(static_cast<double>(loose.cached_bytes + loose.live_bytes), 1.5 * static_cast<double>(loose.high_water));
   EXPECT_THROW(set_storage_cache_slack(0.5), std::invalid_argument);
   EXPECT_THROW(set_storage_cache_slack(std::nan("")), std::invalid_argument);
+  EXPECT_EQ(storage_cache_slack(), 1.5);  // a refused factor changes nothing
+}
+
+TEST_F(StorageCacheTest, SlackGuardRestoresThePreviousFactor) {
+  set_storage_cache_slack(1.5);
+  {
+    const StorageCacheSlackGuard batch(kBatchInferenceSlack);
+    EXPECT_EQ(storage_cache_slack(), kBatchInferenceSlack);
+  }
+  EXPECT_EQ(storage_cache_slack(), 1.5);
 }
 
 TEST_F(StorageCacheTest, ThousandStepsOfShiftingSizesStayBounded) {
