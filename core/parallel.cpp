@@ -41,12 +41,17 @@ class ThreadPool {
   void run(int64_t chunks, const std::function<void(int64_t)>& chunk_fn) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      // The last job's claim word is closed before this job's count is written: a worker that read the
+      // word earlier and then this job's count can no longer claim with it (its compare-exchange fails),
+      // so it never runs an index of the old job with this job's function. The claim and count accesses
+      // are sequentially consistent, which makes that argument hold.
+      claim_.store((generation_ << 32) | kClaimClosed);
       job_ = &chunk_fn;
-      chunks_.store(chunks, std::memory_order_relaxed);
+      chunks_.store(chunks);
       done_.store(0, std::memory_order_relaxed);
       error_ = nullptr;
       ++generation_;
-      claim_.store(generation_ << 32, std::memory_order_release);
+      claim_.store(generation_ << 32);
     }
     wake_.notify_all();
     work(generation_);
@@ -66,13 +71,14 @@ class ThreadPool {
 
  private:
   static constexpr int kSpins = 4000;
+  static constexpr uint64_t kClaimClosed = 0xffffffffu;  // an index no job reaches (chunks < 2^32)
 
   // Claims and runs chunks of job `gen` until none are left.
   void work(uint64_t gen) {
     for (;;) {
-      uint64_t v = claim_.load(std::memory_order_acquire);
-      if ((v >> 32) != gen || static_cast<int64_t>(v & 0xffffffffu) >= chunks_.load(std::memory_order_relaxed)) return;
-      if (!claim_.compare_exchange_weak(v, v + 1, std::memory_order_acq_rel)) continue;
+      uint64_t v = claim_.load();
+      if ((v >> 32) != gen || static_cast<int64_t>(v & 0xffffffffu) >= chunks_.load()) return;
+      if (!claim_.compare_exchange_weak(v, v + 1)) continue;
       int64_t chunk = static_cast<int64_t>(v & 0xffffffffu);
       try {
         (*job_)(chunk);
