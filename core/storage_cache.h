@@ -55,8 +55,8 @@ double storage_cache_slack();
 
 // Inference over a batch of buildings asks for blocks whose sizes follow each building's pair count: at 2x
 // the cache returned blocks of one size to map others, and 7 % of lc2wf-eval's time went to the kernel
-// zeroing fresh pages (392 page faults per building); at 4x, 28 per building, 0.072 instead of
-// 0.077-0.082 s per building, peak RSS 426 instead of 281 MB (bench/README.md).
+// zeroing fresh pages (392 page faults per building); at 4x, 2 per building, 0.071-0.075 instead of
+// 0.077-0.081 s per building, peak RSS 427 instead of 281 MB (bench/README.md).
 constexpr double kBatchInferenceSlack = 4.0;
 
 // Sets the slack while alive and restores the previous one.
