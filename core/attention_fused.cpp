@@ -242,10 +242,15 @@ constexpr RowKernels row_kernels_of() {
   return {forward_rows<T, kRowGroup>, forward_rows<T, 1>, backward_rows<T, kRowGroup>, backward_rows<T, 1>};
 }
 
-RowKernels row_kernels(int64_t n) {
+// The widest rows this build has: the lane width padded inference key counts round up to as well.
 #ifdef __AVX512F__
-  if (n % 16 == 0) return row_kernels_of<Lanes16>();
+using WidestLanes = Lanes16;
+#else
+using WidestLanes = Lanes8;
 #endif
+
+RowKernels row_kernels(int64_t n) {
+  if (n % WidestLanes::kN == 0) return row_kernels_of<WidestLanes>();
   return row_kernels_of<Lanes8>();
 }
 
@@ -253,13 +258,7 @@ RowKernels row_kernels(int64_t n) {
 
 bool fused_supported(int64_t Lk, int64_t D) { return Lk > 0 && D > 0 && Lk % 8 == 0 && D % 8 == 0; }
 
-int64_t padded_key_count(int64_t Lk) {
-#ifdef __AVX512F__
-  return (Lk + 15) / 16 * 16;
-#else
-  return (Lk + 7) / 8 * 8;
-#endif
-}
+int64_t padded_key_count(int64_t Lk) { return (Lk + WidestLanes::kN - 1) / WidestLanes::kN * WidestLanes::kN; }
 
 // Query rows per pass of one head: the scores of a block stay in L2 next to k^T and v. Short patches (training's
 // 32 and 64 lines) are one block; a building's thousands of pair patches at inference go in blocks. Each

@@ -52,7 +52,7 @@ config_path, out, steps, val_buildings = sys.argv[1], Path(sys.argv[2]), int(sys
 try:
     config = json.loads(Path(config_path).read_text())
     data = config["data"]
-    batches = [config[stage].get("batch_size", 16) for stage in ("junction", "edge")]
+    batches = [config[stage]["batch_size"] for stage in ("junction", "edge")]
 except (json.JSONDecodeError, KeyError, TypeError) as e:
     sys.exit(f"measure_schedule: {config_path}: not an lc2wf-train config ({e})")
 
