@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/matmul_precision.h"
-#include "dataset/cloud_input.h"
-#include "infer/inference.h"
+#include "dataset/formats/cloud_input.h"
+#include "model/inference.h"
 #include "infer/inference_timing.h"
 
 namespace lc2wf {

@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "dataset/geometry.h"
-#include "infer/scored_wireframe.h"
+#include "dataset/geometry/geometry.h"
+#include "model/scored_wireframe.h"
 
 namespace lc2wf {
 

@@ -2,10 +2,10 @@
 
 #include <set>
 
-#include "dataset/building.h"
-#include "dataset/cloud_input.h"
-#include "dataset/errors.h"
-#include "dataset/mesh_io.h"
+#include "dataset/geometry/building.h"
+#include "dataset/formats/cloud_input.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/mesh_io.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "dataset/geometry.h"
-#include "dataset/splits.h"  // read_name_list
-#include "infer/scored_wireframe.h"
+#include "dataset/geometry/geometry.h"
+#include "dataset/splits/splits.h"  // read_name_list
+#include "model/scored_wireframe.h"
 
 namespace lc2wf {
 

@@ -16,10 +16,10 @@
 #include "infer/eval_inputs.h"
 #include "infer/eval_report_io.h"
 #include "infer/building3d_io.h"
-#include "infer/evaluator.h"
+#include "model/evaluator.h"
 #include "infer/html_report.h"
 #include "infer/prediction_io.h"
-#include "dataset/cloud_input.h"
+#include "dataset/formats/cloud_input.h"
 #if LC2WF_EVAL_WITH_WEIGHTS
 #include "core/parallel.h"
 #include "infer/batch_inference.h"

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "infer/building3d_io.h"
-#include "infer/evaluator.h"
+#include "model/evaluator.h"
 #include "infer/inference_timing.h"
 
 namespace lc2wf {

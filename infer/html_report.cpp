@@ -8,8 +8,8 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/json_text.h"
-#include "dataset/atomic_file.h"
-#include "dataset/errors.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/errors.h"
 #include "infer/eval_report_io.h"
 #include "infer/match_status.h"
 #include "infer/report_geometry.h"

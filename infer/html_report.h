@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "infer/building3d_io.h"
-#include "infer/evaluator.h"
+#include "model/evaluator.h"
 
 namespace lc2wf {
 

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "infer/post_process_options.h"
+#include "model/post_process_options.h"
 
 namespace lc2wf {
 

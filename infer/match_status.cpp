@@ -6,7 +6,7 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "infer/ap_metric.h"
+#include "model/ap_metric.h"
 
 namespace lc2wf {
 namespace {

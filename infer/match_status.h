@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "infer/scored_wireframe.h"
+#include "model/scored_wireframe.h"
 
 namespace lc2wf {
 
@@ -16,7 +16,7 @@ struct MatchStatus {
   std::vector<uint8_t> gt;
 };
 
-// The rule of infer/ap_metric.h (greedy, nearest GT only, descending score, ties by index; scores <=
+// The rule of model/ap_metric.h (greedy, nearest GT only, descending score, ties by index; scores <=
 // min_score are not predictions), applied to junctions and to edges.
 MatchStatus junction_match_status(const ScoredWireframe& pred, const Wireframe& gt, const std::vector<double>& thresholds,
                                   double min_score);

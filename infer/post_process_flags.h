@@ -9,7 +9,7 @@
 #include <string>
 
 #include "core/util/cli.h"
-#include "infer/post_process_options.h"
+#include "model/post_process_options.h"
 
 namespace lc2wf {
 

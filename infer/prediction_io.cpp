@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "dataset/atomic_file.h"
-#include "dataset/errors.h"
-#include "dataset/mesh_io.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/mesh_io.h"
 
 namespace lc2wf {
 namespace {

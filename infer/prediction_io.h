@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "infer/scored_wireframe.h"
+#include "model/scored_wireframe.h"
 
 namespace lc2wf {
 

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "dataset/geometry.h"
-#include "dataset/line_cloud.h"
+#include "dataset/geometry/geometry.h"
+#include "dataset/geometry/line_cloud.h"
 
 namespace lc2wf {
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "infer/match_status.h"
-#include "infer/scored_wireframe.h"
+#include "model/scored_wireframe.h"
 
 namespace lc2wf {
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "dataset/atomic_file.h"
-#include "dataset/camera_json.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/camera_json.h"
 #include "reconstruct/stage_error.h"
 
 namespace lc2wf {

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 #include "tools/colmap/colmap_poses.h"
 
 namespace lc2wf {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/util/cli.h"
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 #include "infer/post_process_flags.h"
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"

@@ -1,5 +1,5 @@
 // Everything lc2wf-reconstruct needs: inputs, the COLMAP and line-extraction settings, how the frame's
-// scale and up axis are fixed (dataset/metric_frame.h), post-processing, and the workspace policy.
+// scale and up axis are fixed (dataset/photo/metric_frame.h), post-processing, and the workspace policy.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "dataset/line_confirmation.h"
-#include "dataset/metric_frame.h"
-#include "infer/post_process_options.h"
+#include "dataset/photo/line_confirmation.h"
+#include "dataset/photo/metric_frame.h"
+#include "model/post_process_options.h"
 #include "tools/colmap/colmap_poses.h"
 #include "tools/lines/lsd_detector.h"
 #include "tools/triangulation/line_triangulator.h"
@@ -40,7 +40,7 @@ struct ReconstructOptions {
 
   LsdOptions lsd;
   TriangulatorOptions triangulator;
-  // Lines no other source view confirms are dropped before inference (dataset/line_confirmation.h): in
+  // Lines no other source view confirms are dropped before inference (dataset/photo/line_confirmation.h): in
   // photo clouds most of them are chance matches among texture lines, floating above the roof.
   LineConfirmationOptions confirmation;
 

@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "core/util/progress.h"
-#include "dataset/errors.h"
-#include "dataset/cloud_input.h"
-#include "dataset/splits.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/cloud_input.h"
+#include "dataset/splits/splits.h"
 
 namespace lc2wf {
 

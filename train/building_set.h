@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "dataset/line_cloud.h"
+#include "dataset/geometry/line_cloud.h"
 #include "train/train_config.h"
 
 namespace lc2wf {

@@ -2,10 +2,10 @@
 #include <vector>
 
 #include "core/tensor.h"
-#include "infer/evaluator.h"
-#include "infer/inference.h"
-#include "infer/patch_tensors.h"
-#include "infer/post_process_options.h"
+#include "model/evaluator.h"
+#include "model/inference.h"
+#include "model/patch_tensors.h"
+#include "model/post_process_options.h"
 #include "nn/edge_net.h"
 #include "nn/losses.h"
 #include "train/data_parallel.h"

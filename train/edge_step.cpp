@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "infer/inference.h"
-#include "infer/patch_tensors.h"
+#include "model/inference.h"
+#include "model/patch_tensors.h"
 #include "nn/losses.h"
 #include "train/stage_loop.h"
 

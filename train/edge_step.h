@@ -5,10 +5,10 @@
 
 #include <cstdint>
 
-#include "dataset/junction_selection.h"
-#include "dataset/patches.h"
-#include "dataset/samples.h"
-#include "infer/post_process_options.h"
+#include "dataset/selection/junction_selection.h"
+#include "dataset/sampling/patches.h"
+#include "dataset/sampling/network_input.h"
+#include "model/post_process_options.h"
 #include "nn/edge_net.h"
 #include "train/data_parallel.h"
 #include "train/patch_stream.h"

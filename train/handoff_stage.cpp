@@ -8,7 +8,7 @@
 #include "core/util/fnv1a.h"
 #include "core/util/json_text.h"
 #include "core/util/progress.h"
-#include "infer/inference.h"
+#include "model/inference.h"
 #include "nn/checkpoint.h"
 #include "train/batch_share.h"
 #include "train/junction_handoff.h"

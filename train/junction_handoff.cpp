@@ -8,7 +8,7 @@
 
 #include "core/util/atomic_file.h"
 #include "core/util/json_text.h"
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 
 namespace lc2wf {
 

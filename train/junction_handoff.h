@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <string>
 
-#include "dataset/pair_sampling.h"
+#include "dataset/sampling/pair_sampling.h"
 
 namespace lc2wf {
 

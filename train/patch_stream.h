@@ -1,4 +1,4 @@
-// Batches of stacked building patches in lc2wf-train's order: dataset/batch_loader.h shuffles the buildings
+// Batches of stacked building patches in lc2wf-train's order: dataset/sampling/batch_loader.h shuffles the buildings
 // per (seed, epoch) and seeds each batch from (seed, epoch, batch index); building k of a batch gets
 // mix_seed(batch seed, k). An epoch can start at any batch (exact resume mid-epoch), and the sequence is the
 // same for any number of workers. In a data-parallel job each rank builds only its share of every batch
@@ -11,8 +11,8 @@
 #include <optional>
 #include <vector>
 
-#include "dataset/batch_loader.h"
-#include "dataset/patches.h"
+#include "dataset/sampling/batch_loader.h"
+#include "dataset/sampling/patches.h"
 #include "train/batch_share.h"
 #include "train/train_config.h"
 

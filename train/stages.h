@@ -48,7 +48,7 @@ void train_junction_stage(const TrainConfig& config, const BuildingSet& train, c
 
 // `<out>/predicted_junctions/<name>.json` for every train and validation building, plus manifest.json:
 // the junction model's raw candidates, which the edge stage selects and refines with inference's rule
-// (dataset/junction_selection.h), run as `selection` says (predict_junction_candidates). With run.resume a
+// (dataset/selection/junction_selection.h), run as `selection` says (predict_junction_candidates). With run.resume a
 // complete hand-off of the same junction checkpoint is kept, unless the selection screens offsets
 // (edge.max_offset_m) and its files predate them, or it was sampled in another number of passes
 // (edge.sampling_passes), views (edge.test_time_views) or with other seeds (edge.density_seeds).

@@ -9,9 +9,9 @@
 #include "core/util/atomic_file.h"
 #include "core/util/cli.h"
 #include "core/util/progress.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace {
 

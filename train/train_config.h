@@ -9,9 +9,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/cloud_augmentation.h"
-#include "dataset/geometry.h"
-#include "dataset/junction_selection.h"
+#include "dataset/sampling/cloud_augmentation.h"
+#include "dataset/geometry/geometry.h"
+#include "dataset/selection/junction_selection.h"
 #include "nn/config.h"
 
 namespace lc2wf {
@@ -37,7 +37,7 @@ struct DataConfig {
   static DataConfig from_json(const nlohmann::json& j, const std::string& where, DataConfig base);
 };
 
-// Training-time augmentation of the clouds' statistics (dataset/cloud_augmentation.h). Off by default:
+// Training-time augmentation of the clouds' statistics (dataset/sampling/cloud_augmentation.h). Off by default:
 // the paper's configs do not use it; configs/robust.json does.
 struct CloudAugmentConfig {
   bool enabled = false;
@@ -146,7 +146,7 @@ struct EdgeStageConfig {
   // pairs take the top_k instead). The selection keys default to lc2wf-infer's (JunctionSelectionOptions).
   double min_confidence = JunctionSelectionOptions{}.min_confidence;
   // Validation classifies only pairs with at least this line support, as lc2wf-infer --pair-support
-  // (dataset/pair_support.h); 0 = every pair, as the release.
+  // (dataset/selection/pair_support.h); 0 = every pair, as the release.
   double pair_support = 0.0;
   // Candidate junctions within this of a more confident one are dropped before the cut, in the training
   // pairs, validation and lc2wf-infer --nms-radius alike (the release: 0.25, its 5 raw units).

@@ -9,14 +9,14 @@
 #include <vector>
 
 #include "core/util/cli.h"
-#include "dataset/line3dpp_io.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/long_fragment_cloud.h"
-#include "dataset/mesh_io.h"
-#include "dataset/rng.h"
-#include "dataset/segment_split.h"
-#include "dataset/splits.h"
-#include "dataset/surface_clutter.h"
+#include "dataset/formats/line3dpp_io.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/long_fragment_cloud.h"
+#include "dataset/formats/mesh_io.h"
+#include "dataset/sampling/rng.h"
+#include "dataset/geometry/segment_split.h"
+#include "dataset/splits/splits.h"
+#include "dataset/synthetic/surface_clutter.h"
 
 namespace {
 
@@ -29,15 +29,15 @@ For every building of FILE, reads DIR/<name>.lcloud (a labelled cloud of lc2wf-d
   OUT/own/<name>.lcloud       the cloud as it is
   OUT/line3dpp/<name>.txt     the same segments through the Line3D++ .txt writer and reader path
   OUT/long/<name>.lcloud      every GT edge as 2-5 long fragments with 2 cm noise, plus half of the
-                              cloud's non-edge lines (dataset/long_fragment_cloud.h)
+                              cloud's non-edge lines (dataset/synthetic/long_fragment_cloud.h)
   OUT/long-line3dpp/<name>.txt  the same as a Line3D++ .txt, as such a map would come
   OUT/edges/<name>.lcloud     only the cloud's lines on a GT edge (f = 1): what the other lines cost
   OUT/photo/<name>.lcloud     the cloud plus texture lines as a textured-photo reconstruction has them:
                               2.5 per segment on the faces, 3.5 on the ground around the building
-                              (dataset/surface_clutter.h)
+                              (dataset/synthetic/surface_clutter.h)
   OUT/gt/<name>.obj           the ground truth in metres, for lc2wf-eval --gt
 Prints on stdout, per kind, the share of long segments another segment overlaps and how many clouds the
-rule of --max-segment-length auto (dataset/segment_split.h) would cut were they read from a line map.
+rule of --max-segment-length auto (dataset/geometry/segment_split.h) would cut were they read from a line map.
 Deterministic for a seed and the split's order.
 
   --data DIR     labelled line clouds

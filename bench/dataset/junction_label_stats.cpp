@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "core/util/cli.h"
-#include "dataset/cloud_input.h"
-#include "dataset/samples.h"
-#include "dataset/splits.h"
+#include "dataset/formats/cloud_input.h"
+#include "dataset/sampling/network_input.h"
+#include "dataset/splits/splits.h"
 
 namespace fs = std::filesystem;
 using namespace lc2wf;

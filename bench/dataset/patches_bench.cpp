@@ -1,12 +1,12 @@
 // Patch building for one building: 1,500 segments, 256 junction patches and 512 pair patches, one core.
 #include <benchmark/benchmark.h>
 
-#include "dataset/pair_sampling.h"
-#include "dataset/patches.h"
-#include "dataset/samples.h"
-#include "dataset/sampling.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/sampling/pair_sampling.h"
+#include "dataset/sampling/patches.h"
+#include "dataset/sampling/network_input.h"
+#include "dataset/sampling/sampling.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace lc2wf {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "infer/evaluator.h"
-#include "infer/post_process.h"
+#include "model/evaluator.h"
+#include "model/post_process.h"
 
 namespace lc2wf {
 namespace {

@@ -2,7 +2,7 @@
 // junction, whether some junction candidate lies within η of it (any confidence, any offset), one above the
 // confidence cut, one that also passes the offset screen, a selected (NMS'd, refined) junction, and a junction
 // of the final wireframe. Each stage's share of the GT junctions the metric's matching would count within η
-// (infer/ap_metric.h, points in confidence order), at its three vertex η: the recall each stage would allow.
+// (model/ap_metric.h, points in confidence order), at its three vertex η: the recall each stage would allow.
 //   lc2wf_junction_funnel --weights DIR --data CLOUDS --split FILE [--precision fp32|bf16|auto] [selection flags]
 // Selection flags as lc2wf-eval's (infer/post_process_flags.h). Prints a Markdown table.
 #include <array>
@@ -15,11 +15,11 @@
 
 #include "core/matmul_precision.h"
 #include "core/util/cli.h"
-#include "dataset/cloud_input.h"
-#include "dataset/splits.h"
-#include "infer/ap_metric.h"
+#include "dataset/formats/cloud_input.h"
+#include "dataset/splits/splits.h"
+#include "model/ap_metric.h"
 #include "infer/batch_inference.h"
-#include "infer/inference.h"
+#include "model/inference.h"
 #include "infer/post_process_flags.h"
 
 namespace fs = std::filesystem;
@@ -46,7 +46,7 @@ struct StagePoints {
   void add(const Vec3& p, double score) { positions.push_back(p), scores.push_back(score); }
 };
 
-// GT junctions the metric's matching (infer/ap_metric.h) would count as found if these points were the output.
+// GT junctions the metric's matching (model/ap_metric.h) would count as found if these points were the output.
 int64_t matched(const std::vector<Vec3>& gt, const StagePoints& points, double eta) {
   int64_t n = 0;
   for (const RankedHit& hit : match_junctions(points.positions, points.scores, gt, eta, -1.0)) n += hit.true_positive;

@@ -20,13 +20,13 @@
 
 #include "core/matmul_precision.h"
 #include "core/util/cli.h"
-#include "dataset/cloud_input.h"
-#include "dataset/pair_sampling.h"
-#include "dataset/splits.h"
+#include "dataset/formats/cloud_input.h"
+#include "dataset/sampling/pair_sampling.h"
+#include "dataset/splits/splits.h"
 #include "infer/batch_inference.h"
 #include "infer/eval_report_io.h"
-#include "infer/evaluator.h"
-#include "infer/inference.h"
+#include "model/evaluator.h"
+#include "model/inference.h"
 #include "infer/post_process_flags.h"
 
 namespace fs = std::filesystem;

@@ -2,8 +2,8 @@
 // render one view, LSD on one view, triangulation of 20 views, labelling, and the whole building.
 #include <benchmark/benchmark.h>
 
-#include "dataset/labelling.h"
-#include "dataset/synthetic_building.h"
+#include "dataset/labels/labelling.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/render/camera_ring.h"
 #include "tools/render/raster_renderer.h"

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "core/parallel.h"
-#include "dataset/samples.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
-#include "infer/inference.h"
-#include "infer/patch_tensors.h"
+#include "dataset/sampling/network_input.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
+#include "model/inference.h"
+#include "model/patch_tensors.h"
 #include "nn/losses.h"
 #include "nn/optimizer.h"
 

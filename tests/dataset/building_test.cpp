@@ -6,10 +6,10 @@
 #include <set>
 #include <sstream>
 
-#include "dataset/building.h"
-#include "dataset/errors.h"
-#include "dataset/mesh_io.h"
-#include "dataset/synthetic_building.h"
+#include "dataset/geometry/building.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/mesh_io.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "test_util.h"
 
 using ::testing::HasSubstr;

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "core/util/cli.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 #include "tests/common/run_cli.h"
 #include "test_util.h"
 

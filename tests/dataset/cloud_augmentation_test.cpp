@@ -1,15 +1,15 @@
-#include "dataset/cloud_augmentation.h"
+#include "dataset/sampling/cloud_augmentation.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
 
-#include "dataset/errors.h"
-#include "dataset/samples.h"
-#include "dataset/segment_split.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/errors.h"
+#include "dataset/sampling/network_input.h"
+#include "dataset/geometry/segment_split.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace lc2wf {
 namespace {

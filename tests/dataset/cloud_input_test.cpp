@@ -5,13 +5,13 @@
 
 #include <fstream>
 
-#include "dataset/errors.h"
-#include "dataset/line3dpp_io.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/line_obj_io.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
-#include "dataset/cloud_input.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/line3dpp_io.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/formats/line_obj_io.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
+#include "dataset/formats/cloud_input.h"
 
 namespace lc2wf {
 namespace {

@@ -5,14 +5,14 @@
 
 #include <fstream>
 
-#include "dataset/atomic_file.h"
-#include "dataset/errors.h"
-#include "dataset/limap_io.h"
-#include "dataset/line3dpp_io.h"
-#include "dataset/line_obj_io.h"
-#include "dataset/rng.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/limap_io.h"
+#include "dataset/formats/line3dpp_io.h"
+#include "dataset/formats/line_obj_io.h"
+#include "dataset/sampling/rng.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 #include "test_util.h"
 
 using ::testing::HasSubstr;

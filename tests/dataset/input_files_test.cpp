@@ -13,10 +13,10 @@
 #include <fstream>
 #include <string>
 
-#include "dataset/atomic_file.h"
-#include "dataset/errors.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/mesh_io.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/formats/mesh_io.h"
 #include "test_util.h"
 
 using ::testing::HasSubstr;

@@ -5,7 +5,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "dataset/junction_refine.h"
+#include "dataset/selection/junction_refine.h"
 
 namespace lc2wf {
 namespace {

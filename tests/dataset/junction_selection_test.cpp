@@ -1,5 +1,5 @@
 // The one junction-selection rule: point NMS, the confidence or top-k cut, refinement, and the pairs.
-#include "dataset/junction_selection.h"
+#include "dataset/selection/junction_selection.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "dataset/pair_sampling.h"
+#include "dataset/sampling/pair_sampling.h"
 
 namespace lc2wf {
 namespace {

@@ -5,13 +5,13 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "dataset/atomic_file.h"
-#include "dataset/errors.h"
-#include "dataset/labelling.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
-#include "dataset/visibility.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/errors.h"
+#include "dataset/labels/labelling.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
+#include "dataset/labels/visibility.h"
 #include "test_util.h"
 
 using ::testing::HasSubstr;

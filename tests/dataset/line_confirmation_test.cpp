@@ -1,10 +1,10 @@
-#include "dataset/line_confirmation.h"
+#include "dataset/photo/line_confirmation.h"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 
-#include "dataset/segment_overlap.h"
+#include "dataset/geometry/segment_overlap.h"
 
 namespace lc2wf {
 namespace {

@@ -6,9 +6,9 @@
 #include <set>
 #include <thread>
 
-#include "dataset/batch_loader.h"
-#include "dataset/errors.h"
-#include "dataset/release_json.h"
+#include "dataset/sampling/batch_loader.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/release_json.h"
 
 using ::testing::HasSubstr;
 

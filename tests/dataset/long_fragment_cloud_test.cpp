@@ -1,12 +1,12 @@
-#include "dataset/long_fragment_cloud.h"
+#include "dataset/synthetic/long_fragment_cloud.h"
 
 #include <gtest/gtest.h>
 
 #include <map>
 
-#include "dataset/errors.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/errors.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace lc2wf {
 namespace {

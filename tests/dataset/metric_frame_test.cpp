@@ -1,10 +1,10 @@
-// Fixing an SfM frame's scale, up axis and ground (dataset/metric_frame.h): a synthetic building seen by
+// Fixing an SfM frame's scale, up axis and ground (dataset/photo/metric_frame.h): a synthetic building seen by
 // a ring of upright cameras is moved into a random similarity frame and brought back.
 #include <gtest/gtest.h>
 
-#include "dataset/metric_frame.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/photo/metric_frame.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace lc2wf {
 namespace {

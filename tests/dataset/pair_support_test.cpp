@@ -1,5 +1,5 @@
-// Line support of junction pairs and the pair screen built on it (dataset/pair_support.h).
-#include "dataset/pair_support.h"
+// Line support of junction pairs and the pair screen built on it (dataset/selection/pair_support.h).
+#include "dataset/selection/pair_support.h"
 
 #include <gtest/gtest.h>
 

@@ -6,10 +6,10 @@
 #include <map>
 #include <numeric>
 
-#include "dataset/building.h"
-#include "dataset/errors.h"
-#include "dataset/mesh_io.h"
-#include "dataset/splits.h"
+#include "dataset/geometry/building.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/mesh_io.h"
+#include "dataset/splits/splits.h"
 #include "test_util.h"
 
 namespace lc2wf {

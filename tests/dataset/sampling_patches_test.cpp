@@ -3,18 +3,18 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dataset/augmentation.h"
-#include "dataset/batch_loader.h"
-#include "dataset/errors.h"
-#include "dataset/pair_sampling.h"
-#include "dataset/patches.h"
-#include "dataset/point_nms.h"
-#include "dataset/rng.h"
-#include "dataset/samples.h"
-#include "dataset/sampling.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/spatial_grid.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/sampling/augmentation.h"
+#include "dataset/sampling/batch_loader.h"
+#include "dataset/formats/errors.h"
+#include "dataset/sampling/pair_sampling.h"
+#include "dataset/sampling/patches.h"
+#include "dataset/selection/point_nms.h"
+#include "dataset/sampling/rng.h"
+#include "dataset/sampling/network_input.h"
+#include "dataset/sampling/sampling.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/geometry/spatial_grid.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace lc2wf {
 namespace {

@@ -1,4 +1,4 @@
-#include "dataset/segment_split.h"
+#include "dataset/geometry/segment_split.h"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
-#include "dataset/errors.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/errors.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 
 namespace lc2wf {
 namespace {

@@ -5,9 +5,9 @@
 #include <fstream>
 #include <set>
 
-#include "dataset/building.h"
-#include "dataset/errors.h"
-#include "dataset/splits.h"
+#include "dataset/geometry/building.h"
+#include "dataset/formats/errors.h"
+#include "dataset/splits/splits.h"
 #include "test_util.h"
 
 using ::testing::HasSubstr;

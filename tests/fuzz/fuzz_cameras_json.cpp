@@ -1,7 +1,7 @@
 // Cameras JSON (views/cameras.json, the cameras inside a line cloud): one camera or an array of them.
 #include <nlohmann/json.hpp>
 
-#include "dataset/camera_json.h"
+#include "dataset/formats/camera_json.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,5 +1,5 @@
 // Our line-cloud format, binary and JSON variants; an accepted cloud must also write back.
-#include "dataset/line_cloud_io.h"
+#include "dataset/formats/line_cloud_io.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,5 +1,5 @@
 // One LIMAP `finaltracks/track_<i>.txt` file, converted to our cloud.
-#include "dataset/limap_io.h"
+#include "dataset/formats/limap_io.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,5 +1,5 @@
 // Line3D++ `.txt` line maps (lc2wf-infer --format line3dpp, auto-detection), converted to our cloud.
-#include "dataset/line3dpp_io.h"
+#include "dataset/formats/line3dpp_io.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

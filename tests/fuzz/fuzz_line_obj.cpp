@@ -1,7 +1,7 @@
 // Line clouds as OBJ ('v' and 'l'): Line3D++'s and LIMAP's `.obj` exports and ours, converted to our cloud.
 #include <sstream>
 
-#include "dataset/line_obj_io.h"
+#include "dataset/formats/line_obj_io.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,7 +1,7 @@
 // .obj wireframes and meshes (predictions and GT for lc2wf-eval), Z-up and Y-up.
 #include <sstream>
 
-#include "dataset/mesh_io.h"
+#include "dataset/formats/mesh_io.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

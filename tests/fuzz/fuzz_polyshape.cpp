@@ -1,8 +1,8 @@
 // .polyshape (Roof-Image meshes) through the same parser and building import lc2wf-dataset uses.
 #include <sstream>
 
-#include "dataset/building.h"
-#include "dataset/mesh_io.h"
+#include "dataset/geometry/building.h"
+#include "dataset/formats/mesh_io.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

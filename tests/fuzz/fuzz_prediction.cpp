@@ -1,7 +1,7 @@
 // Prediction files lc2wf-eval reads: the .obj wireframe and its scores sidecar (.json).
 #include <sstream>
 
-#include "dataset/mesh_io.h"
+#include "dataset/formats/mesh_io.h"
 #include "fuzz_common.h"
 #include "infer/prediction_io.h"
 

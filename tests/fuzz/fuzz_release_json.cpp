@@ -1,5 +1,5 @@
 // The paper release's LineCloud JSON (junc3DList / label / objGTJunc3D / line_idx).
-#include "dataset/release_json.h"
+#include "dataset/formats/release_json.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

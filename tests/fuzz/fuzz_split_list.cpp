@@ -1,5 +1,5 @@
 // Split lists (configs/splits/*.txt, --split): one building name per line.
-#include "dataset/splits.h"
+#include "dataset/splits/splits.h"
 #include "fuzz_common.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
-#include "dataset/building.h"
-#include "dataset/line_cloud_io.h"
+#include "dataset/geometry/building.h"
+#include "dataset/formats/line_cloud_io.h"
 #include "infer/prediction_io.h"
 #include "test_files.h"
 #include "tests/common/run_cli.h"

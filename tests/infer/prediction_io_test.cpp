@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 #include "infer/eval_inputs.h"
 #include "test_files.h"
 

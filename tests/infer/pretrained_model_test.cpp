@@ -7,9 +7,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
-#include "infer/inference.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
+#include "model/inference.h"
 
 namespace lc2wf {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <bit>
 
-#include "infer/ap_metric.h"
+#include "model/ap_metric.h"
 #include "infer/html_report.h"
 #include "infer/match_status.h"
 #include "infer/report_geometry.h"

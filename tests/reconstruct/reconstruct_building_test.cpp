@@ -7,9 +7,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/atomic_file.h"
-#include "dataset/camera_json.h"
-#include "dataset/line_cloud_io.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/camera_json.h"
+#include "dataset/formats/line_cloud_io.h"
 #include "reconstruct/reconstruct_pipeline.h"
 #include "test_scene.h"
 #include "tools/process/run_process.h"

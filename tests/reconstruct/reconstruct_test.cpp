@@ -9,8 +9,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/util/version.h"
-#include "dataset/atomic_file.h"
-#include "dataset/line_cloud_io.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/line_cloud_io.h"
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"
 #include "test_scene.h"

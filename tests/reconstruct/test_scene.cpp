@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "dataset/atomic_file.h"
-#include "dataset/camera_json.h"
-#include "dataset/synthetic_building.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/camera_json.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "nn/checkpoint.h"
 #include "nn/edge_net.h"
 #include "nn/junction_net.h"

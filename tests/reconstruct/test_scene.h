@@ -7,8 +7,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/building.h"
-#include "dataset/metric_frame.h"
+#include "dataset/geometry/building.h"
+#include "dataset/photo/metric_frame.h"
 #include "tests/common/tiny_weights.h"  // write_tiny_weights
 
 namespace lc2wf::test {

@@ -67,7 +67,7 @@ TEST(ModuleDocs, EveryReadmeListsItsFilesAndLibraries) {
   const fs::path root = LC2WF_SOURCE_DIR;
   expect_listed(root / "core", false, {});
   expect_listed(root / "core" / "util", false, {});
-  for (const char* module : {"nn", "dataset", "tools", "infer", "reconstruct", "train"}) expect_listed(root / module, true, {});
+  for (const char* module : {"nn", "dataset", "model", "tools", "infer", "reconstruct", "train"}) expect_listed(root / module, true, {});
 }
 
 }  // namespace

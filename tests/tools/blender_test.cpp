@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "dataset/synthetic_building.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"

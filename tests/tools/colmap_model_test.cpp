@@ -13,7 +13,7 @@
 #include <functional>
 #include <string>
 
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 #include "tools/colmap/colmap_model.h"
 
 namespace lc2wf {

@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "dataset/synthetic_building.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tools/colmap/colmap_poses.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 #include "tools/colmap/colmap_poses.h"
 #include "tools/render/camera_ring.h"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "dataset/synthetic_building.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tests/tools/synthetic_views.h"
 #include "tools/render/camera_ring.h"
 #include "tools/triangulation/line_triangulator.h"

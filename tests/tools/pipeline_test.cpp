@@ -11,9 +11,9 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/version.h"
-#include "dataset/atomic_file.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/synthetic_building.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/pipeline/dataset_run.h"
 

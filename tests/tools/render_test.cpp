@@ -3,7 +3,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "dataset/synthetic_building.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tools/render/camera_ring.h"
 #include "tools/render/raster_renderer.h"
 

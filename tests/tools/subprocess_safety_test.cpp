@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "dataset/synthetic_building.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "tools/colmap/colmap_poses.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <random>
 
-#include "dataset/labelling.h"
-#include "dataset/visibility.h"
+#include "dataset/labels/labelling.h"
+#include "dataset/labels/visibility.h"
 
 namespace lc2wf::test {
 

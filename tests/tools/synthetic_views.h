@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "dataset/building.h"
+#include "dataset/geometry/building.h"
 #include "tools/triangulation/line_triangulator.h"
 
 namespace lc2wf::test {

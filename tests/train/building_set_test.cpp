@@ -8,10 +8,10 @@
 #include <fstream>
 #include <string>
 
-#include "dataset/errors.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 #include "train/building_set.h"
 
 namespace lc2wf {

@@ -1,6 +1,6 @@
 // The training batch order is part of a run's resumable state: a run resumed with --resume must continue
 // the same sequence of (building, seed) it started with. These values were recorded with the trainer's
-// order before its loader was shared with dataset/batch_loader.h and must never change.
+// order before its loader was shared with dataset/sampling/batch_loader.h and must never change.
 #include <gtest/gtest.h>
 
 #include <cstdint>

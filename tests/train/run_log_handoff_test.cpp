@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 #include "train/junction_handoff.h"
 #include "train/run_log.h"
 #include "train/stages.h"

@@ -19,13 +19,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "dataset/line3dpp_io.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/mesh_io.h"
-#include "dataset/splits.h"
-#include "dataset/synthetic_building.h"
-#include "dataset/synthetic_line_cloud.h"
-#include "infer/post_process_options.h"
+#include "dataset/formats/line3dpp_io.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/formats/mesh_io.h"
+#include "dataset/splits/splits.h"
+#include "dataset/synthetic/synthetic_building.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
+#include "model/post_process_options.h"
 #include "infer/prediction_io.h"
 #include "core/util/version.h"
 #include "tests/common/run_cli.h"

@@ -13,8 +13,8 @@
 #include "core/util/cli.h"
 #include "core/util/version_json.h"
 #include "core/util/workspace.h"
-#include "dataset/atomic_file.h"
-#include "dataset/camera_json.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/camera_json.h"
 #include "tools/colmap/colmap_poses.h"
 
 namespace fs = std::filesystem;

@@ -6,9 +6,9 @@
 #include <cstring>
 #include <set>
 
-#include "dataset/atomic_file.h"
-#include "dataset/errors.h"
-#include "dataset/text_parse.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/errors.h"
+#include "dataset/formats/text_parse.h"
 
 namespace lc2wf {
 

@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 
 namespace lc2wf {
 

@@ -15,8 +15,8 @@
 
 #include "core/util/median.h"
 #include "core/util/seconds_since.h"
-#include "dataset/errors.h"
-#include "dataset/line_meeting_point.h"
+#include "dataset/formats/errors.h"
+#include "dataset/geometry/line_meeting_point.h"
 #include "tools/colmap/colmap_database.h"
 #include "tools/colmap/sift_matching.h"
 #include "tools/process/run_process.h"

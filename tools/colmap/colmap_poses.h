@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 #include "tools/colmap/colmap_model.h"  // ColmapImage, read_colmap_model, quaternions
 
 namespace lc2wf {

@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 
 namespace lc2wf {
 

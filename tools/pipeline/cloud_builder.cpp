@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "core/util/seconds_since.h"
-#include "dataset/errors.h"
+#include "dataset/formats/errors.h"
 
 namespace lc2wf {
 

@@ -5,9 +5,9 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
-#include "dataset/building.h"
-#include "dataset/labelling.h"
-#include "dataset/line_cloud.h"
+#include "dataset/geometry/building.h"
+#include "dataset/labels/labelling.h"
+#include "dataset/geometry/line_cloud.h"
 #include "tools/lines/lsd_detector.h"
 #include "tools/triangulation/line_triangulator.h"
 

@@ -17,12 +17,12 @@
 #include "core/util/median.h"
 #include "core/util/progress.h"
 #include "core/util/version_json.h"
-#include "dataset/atomic_file.h"
-#include "dataset/camera_json.h"
-#include "dataset/errors.h"
-#include "dataset/labelling.h"
-#include "dataset/line_cloud_io.h"
-#include "dataset/visibility.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/camera_json.h"
+#include "dataset/formats/errors.h"
+#include "dataset/labels/labelling.h"
+#include "dataset/formats/line_cloud_io.h"
+#include "dataset/labels/visibility.h"
 
 #include "core/util/seconds_since.h"
 

@@ -6,9 +6,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <stdexcept>
 
-#include "dataset/atomic_file.h"
-#include "dataset/camera_json.h"
-#include "dataset/errors.h"
+#include "dataset/formats/read_file.h"
+#include "dataset/formats/camera_json.h"
+#include "dataset/formats/errors.h"
 #include "tools/process/run_process.h"
 
 namespace lc2wf {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "dataset/building.h"
+#include "dataset/geometry/building.h"
 #include "tools/pipeline/cloud_builder.h"
 
 namespace lc2wf {

@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 
 namespace lc2wf {
 

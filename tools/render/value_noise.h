@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "dataset/rng.h"
+#include "dataset/sampling/rng.h"
 
 namespace lc2wf {
 

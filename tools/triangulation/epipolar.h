@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 
 namespace lc2wf {
 

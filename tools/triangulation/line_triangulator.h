@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 #include "tools/triangulation/view_neighbours.h"
 
 namespace lc2wf {

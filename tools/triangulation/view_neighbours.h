@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "dataset/geometry.h"
+#include "dataset/geometry/geometry.h"
 
 namespace lc2wf {
 

@@ -1,0 +1,132 @@
+#include "dataset/photo/metric_frame.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace lc2wf {
+
+Camera Similarity::apply(const Camera& c) const {
+  // x_cam is unchanged up to the factor `scale`, which the projection divides out.
+  Camera out = c;
+  out.R = c.R * R.transpose();
+  out.t = scale * c.t - out.R * t;
+  return out;
+}
+
+Similarity Similarity::inverse() const {
+  Similarity inv;
+  inv.scale = 1.0 / scale;
+  inv.R = R.transpose();
+  inv.t = -inv.scale * inv.R * t;
+  return inv;
+}
+
+void MetricFrameOptions::Check() const {
+  if (!(vertical_line_max_deg > 0 && vertical_line_max_deg < 90)) throw std::invalid_argument("MetricFrameOptions.vertical_line_max_deg must be in (0, 90)");
+  if (min_vertical_lines < 1) throw std::invalid_argument("MetricFrameOptions.min_vertical_lines must be >= 1");
+  if (!(scale >= 0) || !std::isfinite(scale)) throw std::invalid_argument("MetricFrameOptions.scale must be >= 0");
+  if (known_distance_m < 0 || !std::isfinite(known_distance_m)) throw std::invalid_argument("MetricFrameOptions.known_distance_m must be >= 0");
+  if (known_distance_m > 0 && (known_view_a < 0 || known_view_b < 0 || known_view_a == known_view_b))
+    throw std::invalid_argument("MetricFrameOptions: a known distance needs two different views");
+  if (!(typical_height_m > 0)) throw std::invalid_argument("MetricFrameOptions.typical_height_m must be > 0");
+  if (!(ground_quantile >= 0 && ground_quantile < top_quantile && top_quantile <= 1))
+    throw std::invalid_argument("MetricFrameOptions: need 0 <= ground_quantile < top_quantile <= 1");
+  if (up == UpSource::kGiven && !(given_up.norm() > 0)) throw std::invalid_argument("MetricFrameOptions.given_up is zero");
+}
+
+namespace {
+
+double quantile(std::vector<double> v, double q) {
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+// OpenCV cameras: image y points down, so the camera's up in the world is -(second row of R).
+Vec3 mean_camera_up(const std::vector<Camera>& cameras) {
+  Vec3 sum = Vec3::Zero();
+  for (const Camera& c : cameras) sum -= c.R.row(1).transpose();
+  if (sum.norm() < 1e-9) throw std::invalid_argument("the cameras' up vectors cancel out: no up direction");
+  return sum.normalized();
+}
+
+// Length-weighted principal direction of the lines within max_deg of `up`; count = lines used.
+Vec3 refine_with_vertical_lines(const Vec3& up, const std::vector<Segment3>& segments, double max_deg, int* count) {
+  const double cos_max = std::cos(max_deg * M_PI / 180.0);
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  *count = 0;
+  for (const Segment3& s : segments) {
+    const double len = s.length();
+    if (len <= 0) continue;
+    const Vec3 d = (s.b - s.a) / len;
+    if (std::abs(d.dot(up)) < cos_max) continue;
+    scatter += len * d * d.transpose();
+    ++*count;
+  }
+  if (*count == 0) return up;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  Vec3 v = eig.eigenvectors().col(2);
+  return v.dot(up) < 0 ? Vec3(-v) : v;
+}
+
+}  // namespace
+
+MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std::vector<Segment3>& segments,
+                                  const MetricFrameOptions& o) {
+  o.Check();
+  if (segments.empty()) throw std::invalid_argument("estimate_metric_frame: no 3D line");
+  MetricFrame f;
+  switch (o.up) {
+    case UpSource::kInputZ:
+      f.up_input = Vec3::UnitZ(), f.up_source = "input z";
+      break;
+    case UpSource::kGiven:
+      f.up_input = o.given_up.normalized(), f.up_source = "given";
+      break;
+    case UpSource::kCameras:
+    case UpSource::kAuto: {
+      if (cameras.empty()) throw std::invalid_argument("estimate_metric_frame: no camera to take the up direction from");
+      f.up_input = mean_camera_up(cameras), f.up_source = "cameras";
+      if (o.up == UpSource::kAuto) {
+        int count = 0;
+        const Vec3 refined = refine_with_vertical_lines(f.up_input, segments, o.vertical_line_max_deg, &count);
+        if (count >= o.min_vertical_lines) f.up_input = refined, f.up_source = "cameras+lines", f.vertical_lines = count;
+      }
+      break;
+    }
+  }
+  const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(f.up_input, Vec3::UnitZ()).toRotationMatrix();
+
+  std::vector<double> heights, mid_x, mid_y;
+  for (const Segment3& s : segments) {
+    const Vec3 a = R * s.a, b = R * s.b;
+    heights.push_back(a.z());
+    heights.push_back(b.z());
+    mid_x.push_back(0.5 * (a.x() + b.x()));
+    mid_y.push_back(0.5 * (a.y() + b.y()));
+  }
+  const double ground = quantile(heights, o.ground_quantile);
+  f.height_input = quantile(heights, o.top_quantile) - ground;
+
+  double scale = o.scale;
+  f.scale_source = "given";
+  if (scale == 0 && o.known_distance_m > 0) {
+    if (o.known_view_a >= static_cast<int>(cameras.size()) || o.known_view_b >= static_cast<int>(cameras.size()))
+      throw std::invalid_argument("estimate_metric_frame: known-distance view out of range");
+    const double d = (cameras[o.known_view_a].center() - cameras[o.known_view_b].center()).norm();
+    if (!(d > 0)) throw std::invalid_argument("estimate_metric_frame: the two known-distance cameras coincide");
+    scale = o.known_distance_m / d, f.scale_source = "known distance";
+  }
+  if (scale == 0) {
+    if (!(f.height_input > 0)) throw std::invalid_argument("estimate_metric_frame: the cloud has no height to estimate a scale from");
+    scale = o.typical_height_m / f.height_input, f.scale_source = "estimate (typical height)";
+  }
+  f.to_metric.scale = scale;
+  f.to_metric.R = R;
+  f.to_metric.t = -scale * Vec3(quantile(mid_x, 0.5), quantile(mid_y, 0.5), ground);
+  return f;
+}
+
+}  // namespace lc2wf

@@ -1,0 +1,71 @@
+#include "dataset/selection/pair_support.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace lc2wf {
+
+void PairSupportOptions::Check() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("PairSupportOptions." + what); };
+  if (!(min_support >= 0 && min_support <= 1)) fail("min_support must be in [0, 1]");
+  if (!(radius_m > 0) || !std::isfinite(radius_m)) fail("radius_m must be a positive distance in metres");
+  if (!(max_angle_deg > 0 && max_angle_deg <= 90)) fail("max_angle_deg must be in (0, 90]");
+  if (!(keep_shorter_than_m >= 0) || !std::isfinite(keep_shorter_than_m))
+    fail("keep_shorter_than_m must be a distance >= 0 in metres");
+}
+
+SegmentSupport::SegmentSupport(const std::vector<Segment3>& segments) {
+  for (const Segment3& s : segments) {
+    const double length = s.length();
+    if (!(length > 1e-9) || !std::isfinite(length)) continue;  // no direction to compare
+    a_.push_back(s.a);
+    dir_.push_back((s.b - s.a) / length);
+    length_.push_back(length);
+  }
+}
+
+double SegmentSupport::support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const {
+  const double length = (v - u).norm();
+  if (!(length > 1e-9)) return 1.0;
+  const Vec3 d = (v - u) / length;
+  const double min_cos = std::cos(max_angle_deg * M_PI / 180.0), r2 = radius_m * radius_m;
+  std::vector<std::pair<double, double>> spans;  // covered parameter ranges along u-v, in metres
+  for (size_t k = 0; k < a_.size(); ++k) {
+    if (std::abs(dir_[k].dot(d)) < min_cos) continue;
+    const Vec3 a = a_[k] - u, b = a + dir_[k] * length_[k];
+    const double ta = a.dot(d), tb = b.dot(d);
+    if ((a - ta * d).squaredNorm() > r2 || (b - tb * d).squaredNorm() > r2) continue;
+    const double lo = std::max(std::min(ta, tb), 0.0), hi = std::min(std::max(ta, tb), length);
+    if (hi > lo) spans.emplace_back(lo, hi);
+  }
+  std::sort(spans.begin(), spans.end());
+  double covered = 0, lo = 0, hi = -1;
+  for (const auto& [s0, s1] : spans) {
+    if (s0 > hi) {
+      if (hi > lo) covered += hi - lo;
+      lo = s0;
+      hi = s1;
+    } else {
+      hi = std::max(hi, s1);
+    }
+  }
+  if (hi > lo) covered += hi - lo;
+  return std::min(1.0, covered / length);
+}
+
+std::vector<JunctionPair> supported_pairs(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
+                                          const PairSupportOptions& options) {
+  if (!options.enabled()) return pairs;
+  const SegmentSupport support(segments);
+  std::vector<JunctionPair> out;
+  for (const JunctionPair& p : pairs)
+    if ((p.v - p.u).norm() < options.keep_shorter_than_m ||
+        support.support(p.u, p.v, options.radius_m, options.max_angle_deg) >= options.min_support)
+      out.push_back(p);
+  return out;
+}
+
+}  // namespace lc2wf

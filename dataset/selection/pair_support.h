@@ -1,0 +1,41 @@
+// Line support of a junction pair: the share of the straight line between the two junctions that the
+// cloud's segments run along. Inference can skip pairs without support before the edge model sees them
+// (PairSupportOptions::min_support > 0): the model's cost grows with the pairs, while a true edge almost
+// always has segments along it. Off by default (the release classifies every pair).
+#pragma once
+
+#include <vector>
+
+#include "dataset/geometry/geometry.h"
+#include "dataset/sampling/patches.h"
+
+namespace lc2wf {
+
+struct PairSupportOptions {
+  double min_support = 0.0;          // keep pairs whose support is >= this share of their length; 0 keeps all
+  double radius_m = 0.35;            // a segment counts when both endpoints lie this close to the pair's line
+  double max_angle_deg = 20.0;       // and its direction is within this angle of the pair's
+  double keep_shorter_than_m = 1.0;  // always keep shorter pairs (two detections of one junction are close)
+
+  bool enabled() const { return min_support > 0; }
+  void Check() const;  // throws std::invalid_argument naming the bad field
+};
+
+// The segments of one cloud, prepared for many support queries.
+class SegmentSupport {
+ public:
+  explicit SegmentSupport(const std::vector<Segment3>& segments);
+  // Share in [0, 1] of the segment u-v covered by the union of the counted segments' projections onto it
+  // (u == v: 1).
+  double support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const;
+
+ private:
+  std::vector<Vec3> a_, dir_;     // first endpoint and unit direction of each non-degenerate segment
+  std::vector<double> length_;
+};
+
+// The pairs that pass the option's test, in their order (all of them when the option is off).
+std::vector<JunctionPair> supported_pairs(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
+                                          const PairSupportOptions& options);
+
+}  // namespace lc2wf
