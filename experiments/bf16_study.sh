@@ -3,10 +3,10 @@
 # subset — every 9th building of the train split (292) and every 2nd of the val split (100) — for 10 epochs
 # (lr 1e-3, 1e-4 from epoch 8), three runs: fp32 and bf16 from the same seed, and fp32 from another seed
 # (the run-to-run noise to compare the bf16 difference with). Runs one after the other and resumes
-# (lc2wf-train --resume), so a killed study continues where it stopped. bench/README.md has the results.
-#   bench/train/bf16_study.sh [OUT_DIR=runs/bf16-study] [BUILD_DIR=build]
+# (lc2wf-train --resume), so a killed study continues where it stopped. train/README.md has the results.
+#   experiments/bf16_study.sh [OUT_DIR=runs/bf16-study] [BUILD_DIR=build]
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
+root=$(cd "$(dirname "$0")/.." && pwd)
 out=${1:-runs/bf16-study}
 build=${2:-build}
 mkdir -p "$out"

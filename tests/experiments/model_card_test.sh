@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# tools/model_card.py on fixtures: a training log with kept epochs, the resolved base config and a test
+# experiments/model_card.py on fixtures: a training log with kept epochs, the resolved base config and a test
 # evaluation; the card must carry the licence, the test metrics as read from metrics.json, the inference
 # time, the training time summed from the log and each stage's matrix-product precision (or that it was
 # not recorded), and a missing metrics file must be named.
@@ -19,7 +19,7 @@ cat > "$out/run/log.jsonl" <<'LOG'
 {"stage":"edge","type":"val","epoch":1,"step":1,"score":0.25,"best":true,"seconds":0.0}
 {"stage":"edge","type":"epoch","epoch":1,"step":1,"train_loss":1.0,"seconds":7200.0,"precision":"bf16","gemm":"openblas (SkylakeX)"}
 LOG
-/usr/bin/python3 - "$here/plots/metrics.json" "$out/test/metrics.json" <<'PY'
+/usr/bin/python3 - "$root/tests/tools/plots/metrics.json" "$out/test/metrics.json" <<'PY'
 import json, sys
 m = json.load(open(sys.argv[1]))
 m["inference"] = {"buildings": m["buildings"], "threads": 2, "seconds_per_building": 0.5, "junction_seconds_per_building": 0.1,
@@ -28,7 +28,7 @@ m["inference"] = {"buildings": m["buildings"], "threads": 2, "seconds_per_buildi
                   "max_offset_m": 0.75}
 json.dump(m, open(sys.argv[2], "w"))
 PY
-/usr/bin/python3 "$root/tools/model_card.py" --run "$out/run" --eval "$out/test" -o "$out/model/README.md"
+/usr/bin/python3 "$root/experiments/model_card.py" --run "$out/run" --eval "$out/test" -o "$out/model/README.md"
 card="$out/model/README.md"
 vap=$(/usr/bin/python3 -c "import json; m = json.load(open('$out/test/metrics.json')); print(f\"{100 * m['vertex_avg']['ap']:.1f}\")")
 for want in "CC BY-NC 4.0" "non-commercial use only" "Roof-Image" "| LC2WF paper, Table 2 | 93.0 | 80.4 | 5.301 / 27.33 |" \
@@ -47,10 +47,10 @@ c = json.load(open(sys.argv[1]))
 c["junction"]["epochs"] = c["edge"]["epochs"] = 1
 json.dump(c, open(sys.argv[1], "w"))
 PY
-/usr/bin/python3 "$root/tools/model_card.py" --run "$out/run" --eval "$out/test" -o "$out/done/README.md"
+/usr/bin/python3 "$root/experiments/model_card.py" --run "$out/run" --eval "$out/test" -o "$out/done/README.md"
 if grep -q "unfinished" "$out/done/README.md"; then echo "a finished run was called unfinished"; exit 1; fi
 # A missing evaluation is named, and nothing is written.
-if /usr/bin/python3 "$root/tools/model_card.py" --run "$out/run" --eval "$out/nowhere" -o "$out/bad/README.md" 2>"$out/err"; then
+if /usr/bin/python3 "$root/experiments/model_card.py" --run "$out/run" --eval "$out/nowhere" -o "$out/bad/README.md" 2>"$out/err"; then
   echo "a missing metrics.json was accepted"; exit 1
 fi
 grep -q "nowhere/metrics.json" "$out/err" || { echo "error does not name the file:"; cat "$out/err"; exit 1; }

@@ -6,7 +6,7 @@
 # texture lines on faces and ground), scores WEIGHTS on each with lc2wf-eval and prints Markdown tables
 # (vAP/sAP avg, WED, mean junctions/edges; which clouds the default would cut if read from a line map).
 #
-#   bench/robustness.sh WEIGHTS SPLIT OUT [CLOUDS] [-- LC2WF_EVAL_FLAGS...]
+#   experiments/robustness.sh WEIGHTS SPLIT OUT [CLOUDS] [-- LC2WF_EVAL_FLAGS...]
 #   CLOUDS: labelled clouds (default runs/dataset/clouds); flags after -- go to every lc2wf-eval (e.g.
 #   --test-time-views 8)
 #
@@ -21,7 +21,7 @@ if [[ $# -gt 0 && $1 != -- ]]; then clouds=$1; shift; fi
 [[ ${1:-} == -- ]] && shift
 eval_flags=("$@")
 
-"$build/bench/dataset/lc2wf-cloud-styles" --data "$clouds" --split "$split" -o "$out/clouds"
+"$build/experiments/lc2wf-cloud-styles" --data "$clouds" --split "$split" -o "$out/clouds"
 eval_as() {  # eval_as ROW STYLE [extra lc2wf-eval flags]
   local row=$1 style=$2
   shift 2

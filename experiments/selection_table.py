@@ -6,7 +6,7 @@ prints a Markdown table best first (sAP avg, then vAP avg, then fewer pairs) and
 best row. The selection of each row is read from the metrics file itself (its "inference" block), so a
 row always says what produced it.
 
-    tools/selection_table.py runs/base/selection > runs/base/selection/table.md
+    experiments/selection_table.py runs/base/selection > runs/base/selection/table.md
 """
 import argparse
 import glob

@@ -1,5 +1,5 @@
 // lc2wf-cloud-styles: the same held-out buildings as clouds of several kinds, to measure how a model
-// trained on one extractor's clouds serves others (bench/robustness.sh scores a model on each).
+// trained on one extractor's clouds serves others (experiments/robustness.sh scores a model on each).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the model card (README.md) of a published model folder from the records of its run.
 
-    tools/model_card.py --run runs/base --eval runs/base/test [--eval-release runs/base/test-release]
+    experiments/model_card.py --run runs/base --eval runs/base/test [--eval-release runs/base/test-release]
                         [--eval-raster runs/base/test-raster] [--dataset runs/dataset] -o models/base/README.md
 
 Everything in the card is read from files the run wrote (config.json, log.jsonl and README.md of
@@ -162,11 +162,11 @@ def main():
                      f"`{dataset.get('textures')}`, commit {dataset.get('commit')}), "
                      f"{dataset['segments_per_building']['mean']:.0f} 3D segments per building on average.")
     lines += ["", "## Reproduce", "", "```sh",
-              "tools/paper_experiment.sh dataset   # Blender line clouds of all 3,583 buildings",
-              "tools/paper_experiment.sh train     # lc2wf-train configs/base.json (resumable)",
-              "tools/paper_experiment.sh select    # junction selections scored on the validation split",
-              "tools/paper_experiment.sh eval      # Table 2 on the 757 test buildings",
-              "tools/paper_experiment.sh ship      # this folder", "```", ""]
+              "experiments/run.sh dataset   # Blender line clouds of all 3,583 buildings",
+              "experiments/run.sh train     # lc2wf-train configs/base.json (resumable)",
+              "experiments/run.sh select    # junction selections scored on the validation split",
+              "experiments/run.sh eval      # Table 2 on the 757 test buildings",
+              "experiments/run.sh ship      # this folder", "```", ""]
 
     tmp = a.out + ".tmp"
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)

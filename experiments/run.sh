@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# The paper's experiment (LC2WF Table 2) and the experiments after it, on Roof-Image, one resumable step at a
+# time: experiments/run.sh STEP [ARGS]. Each step lives in experiments/steps/<family>.sh.
+#
+# The paper's run (steps/clouds.sh, steps/paper.sh):
+#   dataset       Blender line clouds of all 3,583 buildings -> runs/dataset (train + val first: `train` can
+#                 run while the test clouds are made)
+#   train         lc2wf-train configs/base.json -> runs/base (continues with --resume)
+#   select        junction selections scored on the validation split with the trained models, best first
+#                 -> runs/base/selection/table.md (before eval)
+#   eval          Table 2 on the 757 test buildings (sound, sound with the release's junction selection,
+#                 --release-quirks), plots, HTML report -> runs/base/test*
+#   raster        the same model on raster-rendered test clouds (how much the renderer matters)
+#   ship          the trained model -> models/base/ (weights, config, model card with the test metrics;
+#                 each file <= 20 MB), after eval (and raster)
+#   all           dataset, train, eval, ship
+# Junction stages, scored beside models/base's edge model on the validation split (steps/junction.sh):
+#   local         junction stage with local labels (configs/local-labels.json)
+#   rotate        configs/rotate.json: models/base's junction stage fine-tuned with turns about the vertical
+#                 (1 and 8 test-time views) -> runs/rotate
+#   rotate-edge   then the edge stage of configs/rotate.json on that junction model's hand-off, scored the
+#                 same way -> runs/rotate/val-both-views*
+#   loose-seeds   configs/loose-seeds.json: as rotate, with the junction stage's patches sampled from loose
+#                 density seeds -> runs/loose-seeds
+#   junction-turns  configs/junction-turns.json: base.json's whole junction schedule with turns and loose
+#                 seeds, scored the same way
+# Fine-tuned models (steps/finetune.sh):
+#   robust        configs/robust.json: models/base fine-tuned with the cloud augmentation (fused and split
+#                 fragments, drops, jitter, photo-like texture clutter), then experiments/robustness.sh on
+#                 held-out buildings -> runs/robust
+#   edge-sound    configs/edge-sound.json: models/base's edge model fine-tuned on the junctions inference
+#                 selects (offset screen, NMS 0.5 m, loose seeds) beside models/rotate-loose's junction
+#                 model -> runs/edge-sound
+#   merged-maps   configs/merged-maps.json: models/edge-sound fine-tuned (both stages) with half the training
+#                 buildings made merged line maps and cut as inference cuts them, scored on validation and
+#                 with experiments/robustness.sh on held-out buildings -> runs/merged-maps
+# Denser clouds (steps/clouds.sh, steps/dense.sh):
+#   dense         the Blender clouds again from 30 views instead of 20 (≈ 1.2K lines per building, the
+#                 paper's ≈ 1.4K) -> runs/dataset-30v: test split first, then validation, then training
+#   dense-eval [WEIGHTS [TAG FLAGS...]]  WEIGHTS (default models/edge-sound) on the 30-view test clouds,
+#                 1 and 8 test-time views -> runs/dense-test/<name>-views{1,8}; with TAG, the one setting
+#                 FLAGS -> <name>-TAG
+#   dense-select [WEIGHTS]  test-time settings of WEIGHTS (default models/edge-sound) on the 30-view
+#                 validation clouds, best first -> runs/dense-select/<name>/table.md
+#   dense-train   configs/dense.json: models/edge-sound fine-tuned (both stages) on the 30-view clouds,
+#                 scored on their validation split -> runs/dense
+# A cheaper edge stage (steps/edge_cost.sh):
+#   edge-cheaper  base.json's edge stage on a quarter of the 30-view training clouds, the paper's 512 pair
+#                 patches (two seeds: the noise) against 256 patches and against 32 lines per pair patch
+#                 (two seeds), on models/base's hand-off -> runs/edge-cheaper/table.md (best val
+#                 sAP/vAP/WED and seconds per step)
+#   fast-check    configs/fast.json's edge stage against base.json's at the full schedule, both on the
+#                 30-view clouds from models/base's junction model (fast first, ≈ 4 h; then the paper's,
+#                 ≈ 8 h) -> runs/fast-check/table.md
+# Training state (steps/snapshots.sh):
+#   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
+#                 best weights, log) to models/RUN-training/
+#   restore [RUN]   put that state back into runs/RUN (the training steps do it by themselves when their
+#                 run is missing), so a lost machine costs one session
+#
+# Every step can be killed and started again: the dataset skips finished buildings, training resumes from
+# its last checkpoint, evaluation is redone. A model folder that left the tree (models/edge-sound,
+# models/rotate-loose, models/*-training) is restored from the git history when a step needs it
+# (experiments/README.md). LC2WF_DATA_DIR (default ../shared/data) holds roof-image/; LC2WF_BUILD_DIR
+# (default build/) the binaries. -h / --help prints this text.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+
+usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
+
+# Every step and the function that runs it (step_<name>, dashes as underscores).
+steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
+       edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check snapshot restore)
+
+step=${1:-}
+case $step in
+  -h|--help) usage; exit 0 ;;
+  '') usage; exit 2 ;;
+esac
+if [[ " ${steps[*]} " != *" $step "* ]]; then
+  echo "experiments/run.sh: unknown step '$step'; the steps are: ${steps[*]} (experiments/run.sh --help)" >&2
+  exit 2
+fi
+shift
+
+source "$here/common.sh"
+for family in "$here"/steps/*.sh; do source "$family"; done
+
+step_all() { step_dataset && step_train && step_eval && step_ship; }
+
+cd "$root"
+[[ -x "$build_dir/train/lc2wf-train" ]] || LC2WF_WITH_RENDER_TOOLS=1 LC2WF_BUILD_TESTS=OFF LC2WF_BUILD_BENCH=OFF "$root/tools/build.sh"
+"step_${step//-/_}" "$@"
