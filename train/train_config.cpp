@@ -1,19 +1,15 @@
 #include "train/train_config.h"
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include "core/matmul_precision.h"
-#include "core/util/input_file.h"
 #include "nn/json_fields.h"
+#include "train/config_extends.h"
 
 namespace lc2wf {
 namespace {
-
-constexpr std::uintmax_t kMaxConfigBytes = std::uintmax_t{64} << 20;  // configs are a few KB
 
 void require(bool ok, const std::string& field, const std::string& rule) {
   if (!ok) throw std::invalid_argument(field + " " + rule);
@@ -154,18 +150,7 @@ TrainConfig TrainConfig::from_json(const nlohmann::json& j) {
 }
 
 TrainConfig TrainConfig::from_file(const std::filesystem::path& path) {
-  if (const std::string problem = input_file_problem(path, kMaxConfigBytes); !problem.empty())
-    throw std::runtime_error(path.string() + ": " + problem);
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open config");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(ss.str());
-  } catch (const nlohmann::json::exception& e) {  // a syntax error, or a number that overflows a double (1e309)
-    throw std::runtime_error(path.string() + ": not valid JSON: " + e.what());
-  }
+  const nlohmann::json j = resolve_config_json(path);  // its "extends" chain merged; errors name the file
   try {
     return from_json(j);
   } catch (const std::exception& e) {  // any field error, named with the file

@@ -1,6 +1,7 @@
 // The training configuration read by lc2wf-train (documented in train/README.md). Defaults are the
-// settings of the LC2WF paper and its released training scripts; configs/*.json differ only in values. Unknown keys
-// and bad values are rejected with the key's dotted name ("junction.optim.lr must be > 0").
+// settings of the LC2WF paper and its released training scripts; configs/*.json differ only in values (every one
+// but base.json "extends" another: train/config_extends.h). Unknown keys and bad values are rejected with the key's
+// dotted name ("junction.optim.lr must be > 0").
 #pragma once
 
 #include <cstdint>
@@ -218,7 +219,7 @@ struct TrainConfig {
   void Check() const;
   nlohmann::json to_json() const;
   static TrainConfig from_json(const nlohmann::json& j);
-  // Parses and checks; errors name the file and the key.
+  // Parses (resolving "extends") and checks; errors name the file and the key.
   static TrainConfig from_file(const std::filesystem::path& path);
 };
 

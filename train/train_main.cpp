@@ -45,6 +45,11 @@ the model card (lc2wf version and commit, data, kept epochs and their validation
   -q, --quiet        no progress output
   --comm-timeout S   MPI jobs: a rank that waits S seconds for the others ends the job with a message
                      (default 1800)
+  --print-config     print the config as training would use it (its "extends" chain merged, every key
+                     spelled out, -o and -j applied) as JSON on stdout, check it, and exit; trains nothing
+
+A config may hold "extends": "OTHER.json" (a path relative to the config) and only the keys that differ:
+objects merge key by key, any other value replaces the one of OTHER.json; chains are allowed.
 
 Started by mpirun or srun, every rank computes its share of each global batch (the config's batch_size
 stays the global batch) and the gradients are summed over the ranks every step; rank 0 writes the log,
@@ -58,7 +63,7 @@ error (exit 3) naming the file and the key.
 struct Args {
   fs::path config;
   std::string stage = "all";
-  bool resume = false, quiet = false;
+  bool resume = false, quiet = false, print_config = false;
   std::string out;
   std::optional<int> threads;
   CommunicatorOptions comm;
@@ -73,6 +78,8 @@ Args parse_args(int argc, char** argv) {
       a.stage = value();
       if (a.stage != "junction" && a.stage != "edge" && a.stage != "all")
         throw UsageError("--stage must be junction, edge or all, got '" + a.stage + "'");
+    } else if (f == "--print-config") {
+      a.print_config = true;
     } else if (f == "--resume") {
       a.resume = true;
     } else if (f == "-q" || f == "--quiet") {
@@ -132,7 +139,21 @@ int train(const Args& a, Communicator& comm) {
   return kExitDone;
 }
 
+// The resolved, checked config with the command line's overrides, as train() would use it.
+int print_config(const Args& a) {
+  TrainConfig config = TrainConfig::from_file(a.config);
+  if (!a.out.empty()) config.out = a.out;
+  if (a.threads) {  // as train() resolves it: -j 0 = every core
+    set_num_threads(*a.threads);
+    config.threads = num_threads();
+  }
+  config.Check();
+  std::fputs((config.to_json().dump(2) + "\n").c_str(), stdout);
+  return kExitDone;
+}
+
 int run(const Args& a) {
+  if (a.print_config) return print_config(a);
   const std::unique_ptr<Communicator> comm = open_communicator(nullptr, nullptr, a.comm);
   try {
     return train(a, *comm);

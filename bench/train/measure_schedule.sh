@@ -42,6 +42,8 @@ train_exe=$build/train/lc2wf-train
 [[ -x $train_exe ]] || die "--build $build: no train/lc2wf-train in it (tools/build.sh builds it)"
 out=${out:-runs/measure-$(basename "$config" .json)}
 mkdir -p "$out"
+# The config as lc2wf-train reads it ("extends" merged, every key present); a bad config stops here.
+"$train_exe" "$config" --print-config > "$out/resolved.json" || die "CONFIG $config: not an lc2wf-train config"
 
 # The short run: the config itself with one epoch per stage, as many training buildings as steps + 1
 # batches need and the first val_buildings validation names, every other key (sizes, batches, precision) as is.
@@ -50,7 +52,7 @@ import json, sys
 from pathlib import Path
 config_path, out, steps, val_buildings = sys.argv[1], Path(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
 try:
-    config = json.loads(Path(config_path).read_text())
+    config = json.loads((out / "resolved.json").read_text())
     data = config["data"]
     batches = [config[stage]["batch_size"] for stage in ("junction", "edge")]
 except (json.JSONDecodeError, KeyError, TypeError) as e:
@@ -81,6 +83,6 @@ mkdir -p "$out/edge"
 cp "${junction_weights:-$out/junction/junction.safetensors}" "$out/edge/junction.safetensors"
 "$train_exe" "$out/config.json" --stage edge --out "$out/edge" -q "${threads[@]}"
 cat "$out/junction/log.jsonl" "$out/edge/log.jsonl" > "$out/log.jsonl"
-/usr/bin/python3 "$root/bench/train/project_schedule.py" "$config" "$out/log.jsonl" --skip-first 1 \
+/usr/bin/python3 "$root/bench/train/project_schedule.py" "$out/resolved.json" "$out/log.jsonl" --config-name "$config" --skip-first 1 \
   | tee "$out/projection.md.tmp"
 mv "$out/projection.md.tmp" "$out/projection.md"

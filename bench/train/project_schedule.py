@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Projects the wall time of a full lc2wf-train schedule from a short measured run.
 
-Usage: project_schedule.py CONFIG.json LOG.jsonl [--train N] [--val M] [--skip-first K] [--cpu-threads T]
+Usage: project_schedule.py CONFIG.json LOG.jsonl [--config-name NAME] [--train N] [--val M] [--skip-first K] [--cpu-threads T]
 
-CONFIG is the schedule to project (e.g. configs/base.json): epochs, batch sizes, val_every, drop_last.
+CONFIG is the schedule to project, as lc2wf-train CONFIG --print-config resolves it (a config that
+"extends" another holds only its differences): epochs, batch sizes, val_every, drop_last.
 LOG is the log.jsonl of a short run at the same network sizes and batch sizes on the same kind of data
 (e.g. the config with max_steps_per_epoch: 3). Split sizes default to the config's split files.
 Measured per stage: the median seconds of an optimiser step (the first K steps are skipped: warm-up),
@@ -57,6 +58,7 @@ def stage_numbers(log, stage, skip_first, cpu_threads=None):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("config")
+    ap.add_argument("--config-name", help="the config's name in the table's title (default: CONFIG)")
     ap.add_argument("log")
     ap.add_argument("--train", type=int, help="training buildings (default: the config's train split)")
     ap.add_argument("--val", type=int, help="validation buildings (default: the config's val split)")
@@ -90,7 +92,7 @@ def main():
                 rows.append(("hand-off", f"{n_train + n_val} buildings at {rate:.2f}/s", h))
                 total += h
 
-    print(f"Projection of {args.config} from {args.log} ({n_train} train / {n_val} val buildings)\n")
+    print(f"Projection of {args.config_name or args.config} from {args.log} ({n_train} train / {n_val} val buildings)\n")
     print("| part | from | hours |\n|---|---|---|")
     for name, how, hours in rows:
         print(f"| {name} | {how} | {hours:.2f} |")

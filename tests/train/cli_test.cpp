@@ -1,5 +1,5 @@
-// Command-line contracts of lc2wf-synthetic-data and lc2wf-infer: --help, usage errors (exit 2, naming the
-// flag), data errors (exit 1, naming the file), and a deterministic synthetic dataset.
+// Command-line contracts of lc2wf-synthetic-data, lc2wf-infer and lc2wf-train --print-config: --help, usage
+// errors (exit 2, naming the flag), data errors (exit 1, naming the file), and a deterministic synthetic dataset.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "tests/common/run_cli.h"
 
@@ -22,6 +24,8 @@ using testing::run_cli;
 
 const std::string kSynthetic = LC2WF_SYNTHETIC_DATA_BIN;
 const std::string kInfer = LC2WF_INFER_BIN;
+const std::string kTrain = LC2WF_TRAIN_BIN;
+const fs::path kConfigs = fs::path(LC2WF_SOURCE_DIR) / "configs";
 
 std::string file_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
@@ -108,6 +112,29 @@ TEST_F(CliContract, InferUsageAndDataErrors) {
   EXPECT_EQ(r.code, 3);
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   EXPECT_THAT(r.err, HasSubstr((weights / "junction.safetensors").string())) << r.err;
+}
+
+// --print-config prints the resolved config (its "extends" merged, -o applied) and trains nothing.
+TEST_F(CliContract, TrainPrintsTheResolvedConfig) {
+  auto r = run_cli(kTrain + " " + (kConfigs / "fast.json").string() + " --print-config -o " + (dir_ / "run").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json fast = nlohmann::json::parse(r.out);
+  EXPECT_FALSE(fast.contains("extends"));
+  EXPECT_EQ(fast["edge"]["net"]["lpt"]["lines_per_patch"], 32);
+  EXPECT_EQ(fast["junction"]["net"]["lpt"]["lines_per_patch"], 32);  // base.json's
+  EXPECT_EQ(fast["out"], (dir_ / "run").string());
+  EXPECT_FALSE(fs::exists(dir_ / "run"));
+  r = run_cli(kTrain + " " + (kConfigs / "base.json").string() + " --print-config");
+  ASSERT_EQ(r.code, 0) << r.err;
+  nlohmann::json base = nlohmann::json::parse(r.out);
+  base["edge"]["net"]["lpt"]["lines_per_patch"] = 32;
+  base["out"] = fast["out"];
+  EXPECT_EQ(base, fast);  // fast.json is base.json with 32 lines per pair patch and its own folder
+  std::ofstream(dir_ / "a.json") << R"({"extends": "b.json"})";
+  std::ofstream(dir_ / "b.json") << R"({"extends": "a.json"})";
+  r = run_cli(kTrain + " " + (dir_ / "a.json").string() + " --print-config");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.err, HasSubstr((dir_ / "a.json").string() + ": \"extends\" cycle")) << r.err;
 }
 
 }  // namespace

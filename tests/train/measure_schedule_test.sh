@@ -12,8 +12,10 @@ trap 'rm -rf "$out"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 
 "$build/train/lc2wf-synthetic-data" -o "$out/data" --count 30 --val 4 --test 2 -q
-# The demo's sizes; 24 training buildings, a validation every 5th epoch over 4 buildings.
-/usr/bin/python3 - "$root/configs/demo.json" "$out" <<'PY'
+# The demo's sizes (configs/demo.json as lc2wf-train resolves it); 24 training buildings, a validation every
+# 5th epoch over 4 buildings.
+"$build/train/lc2wf-train" "$root/configs/demo.json" --print-config > "$out/demo.json"
+/usr/bin/python3 - "$out/demo.json" "$out" <<'PY'
 import json, sys
 config = json.load(open(sys.argv[1]))
 out = sys.argv[2]

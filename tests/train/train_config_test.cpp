@@ -1,4 +1,5 @@
-// The configs in configs/ parse, share one key set, and bad keys/values are rejected by name.
+// The configs in configs/ resolve ("extends") and parse, share one key set, and bad keys/values are rejected by
+// name; the weights' stored configs keep loading.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -9,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "train/config_extends.h"
 #include "train/edge_step.h"
 #include "train/stage_loop.h"
 #include "train/train_config.h"
@@ -20,6 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 const fs::path kConfigs = fs::path(LC2WF_SOURCE_DIR) / "configs";
+const fs::path kModels = fs::path(LC2WF_SOURCE_DIR) / "models";
 
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream in(p);
@@ -43,8 +46,13 @@ std::string error_of(const nlohmann::json& j) {
   return "";
 }
 
+// The constants of ../shared/spec/reference-lc2wf.md (sections 2 and 3): G = 256 junction samples of 32 lines,
+// 512 pairs of 2 x 32 lines, AdamW lr 1e-3, 41 / 31 epochs at milestones [15, 30, 41] / [15, 25, 31], seed 1555.
 TEST(TrainConfig, BaseHoldsThePaperSettings) {
+  EXPECT_FALSE(read_json(kConfigs / "base.json").contains("extends"));  // the root every other config extends
   const TrainConfig c = TrainConfig::from_file(kConfigs / "base.json");
+  EXPECT_DOUBLE_EQ(c.edge.optim.lr, 1e-3);
+  EXPECT_TRUE(c.junction.schedule.drop_last);
   EXPECT_EQ(c.seed, 1555u);
   EXPECT_EQ(c.junction.net.lpt.patches, 256);
   EXPECT_EQ(c.junction.net.lpt.lines_per_patch, 32);
@@ -71,7 +79,9 @@ TEST(TrainConfig, BaseHoldsThePaperSettings) {
   EXPECT_EQ(c.edge.net.to_json(), EdgeNetConfig().to_json());
 }
 
-TEST(TrainConfig, EveryConfigHasTheSameKeys) {
+// Every other config extends another and holds only what differs; resolved, each has base.json's keys and
+// reads back as the same config.
+TEST(TrainConfig, EveryConfigResolvesToTheSameKeys) {
   std::set<std::string> base_keys;
   collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
   int others = 0;
@@ -79,17 +89,33 @@ TEST(TrainConfig, EveryConfigHasTheSameKeys) {
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".json" || name == "base.json") continue;
     ++others;
+    EXPECT_TRUE(read_json(entry.path()).contains("extends")) << name;
+    const nlohmann::json resolved = resolve_config_json(entry.path());
     std::set<std::string> keys;
-    collect_keys(read_json(entry.path()), "", keys);
+    collect_keys(resolved, "", keys);
     EXPECT_EQ(keys, base_keys) << name;
     EXPECT_NO_THROW(TrainConfig::from_file(entry.path())) << name;
+    EXPECT_EQ(TrainConfig::from_file(entry.path()).to_json(), resolved) << name;  // nothing left to defaults
   }
-  EXPECT_GE(others, 5);  // small, demo, reconstruct-quick, robust, local-labels
+  EXPECT_GE(others, 12);
+}
+
+// The configs stored with the weights are whole configs written by lc2wf-train; they must keep loading.
+TEST(TrainConfig, StoredWeightsConfigsLoad) {
+  int stored = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kModels)) {
+    const fs::path config = entry.path() / "config.json";
+    if (!fs::is_regular_file(config)) continue;
+    ++stored;
+    EXPECT_FALSE(read_json(config).contains("extends")) << config;
+    EXPECT_NO_THROW(TrainConfig::from_file(config)) << config;
+  }
+  EXPECT_GE(stored, 1);
 }
 
 // The next experiment is base.json with local junction labels and nothing else changed.
 TEST(TrainConfig, LocalLabelsIsBaseWithLocalPatchLabels) {
-  nlohmann::json local = read_json(kConfigs / "local-labels.json");
+  nlohmann::json local = resolve_config_json(kConfigs / "local-labels.json");
   EXPECT_EQ(local["junction"]["positive_radius_m"].get<double>(), 1.0);
   local["junction"]["positive_radius_m"] = -1.0;
   local["out"] = "runs/base";
@@ -99,12 +125,105 @@ TEST(TrainConfig, LocalLabelsIsBaseWithLocalPatchLabels) {
 // The cheaper option (bench/README.md, "A cheaper edge stage") is base.json with 32 lines per pair patch and
 // nothing else changed: its evidence holds only for that one difference.
 TEST(TrainConfig, FastIsBaseWithHalfTheLinesPerPairPatch) {
-  nlohmann::json fast = read_json(kConfigs / "fast.json");
+  nlohmann::json fast = resolve_config_json(kConfigs / "fast.json");
   EXPECT_EQ(fast["edge"]["net"]["lpt"]["lines_per_patch"].get<int64_t>(), 32);
   EXPECT_EQ(TrainConfig::from_file(kConfigs / "fast.json").edge.net.lpt.lines_per_patch, 32);
   fast["edge"]["net"]["lpt"]["lines_per_patch"] = 64;
   fast["out"] = "runs/base";
   EXPECT_EQ(fast, read_json(kConfigs / "base.json"));
+}
+
+// A folder of small configs for the "extends" tests, removed afterwards.
+class ExtendsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("lc2wf_extends_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "sub");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const nlohmann::json& j) {
+    std::ofstream(dir_ / name) << j.dump(2);
+    return dir_ / name;
+  }
+  // The message of the error reading `path`, or "" when it reads.
+  static std::string error_reading(const fs::path& path) {
+    try {
+      TrainConfig::from_file(path);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST(ConfigMerge, ObjectsMergeKeyByKeyAndEverythingElseReplaces) {
+  const nlohmann::json base = {{"a", {{"x", 1}, {"y", {1, 2, 3}}, {"z", {{"deep", "kept"}}}}}, {"b", "base"}};
+  const nlohmann::json over = {{"a", {{"y", {9}}, {"z", {{"new", true}}}}}, {"c", 3}};
+  const nlohmann::json merged = merge_config_json(base, over);
+  EXPECT_EQ(merged, nlohmann::json::parse(
+                        R"({"a": {"x": 1, "y": [9], "z": {"deep": "kept", "new": true}}, "b": "base", "c": 3})"));
+  // An object over a number (and the reverse) replaces it whole.
+  EXPECT_EQ(merge_config_json({{"a", 1}}, {{"a", {{"x", 1}}}}), nlohmann::json({{"a", {{"x", 1}}}}));
+  EXPECT_EQ(merge_config_json({{"a", {{"x", 1}}}}, {{"a", 2}}), nlohmann::json({{"a", 2}}));
+}
+
+// A chain over two folders: paths are relative to the extending file; the nearest file wins.
+TEST_F(ExtendsTest, ChainsResolveRelativeToEachFile) {
+  nlohmann::json base = read_json(kConfigs / "base.json");
+  base["data"]["dir"] = "clouds";
+  write("sub/root.json", base);
+  write("sub/middle.json", {{"extends", "root.json"}, {"seed", 7}, {"junction", {{"optim", {{"lr", 0.01}}}}}});
+  const fs::path top = write("top.json", {{"extends", "sub/middle.json"}, {"junction", {{"epochs", 3}, {"optim", {{"milestones", {2}}}}}}});
+  const TrainConfig c = TrainConfig::from_file(top);
+  EXPECT_EQ(c.seed, 7u);
+  EXPECT_EQ(c.data.dir, "clouds");
+  EXPECT_EQ(c.junction.schedule.epochs, 3);
+  EXPECT_DOUBLE_EQ(c.junction.optim.lr, 0.01);                            // from the middle file
+  EXPECT_EQ(c.junction.optim.milestones, (std::vector<int64_t>{2}));      // an array replaces the base's
+  EXPECT_DOUBLE_EQ(c.junction.optim.weight_decay, 1e-5);                  // the rest of the object is the root's
+  EXPECT_EQ(c.edge.to_json(), TrainConfig::from_file(kConfigs / "base.json").edge.to_json());
+  EXPECT_FALSE(resolve_config_json(top).contains("extends"));
+}
+
+TEST_F(ExtendsTest, ACycleIsAnErrorNamingTheFiles) {
+  write("a.json", {{"extends", "b.json"}, {"seed", 1}});
+  write("b.json", {{"extends", "a.json"}});
+  const std::string err = error_reading(dir_ / "a.json");
+  EXPECT_THAT(err, HasSubstr((dir_ / "a.json").string())) << err;
+  EXPECT_THAT(err, HasSubstr("cycle")) << err;
+  EXPECT_THAT(err, HasSubstr("b.json")) << err;
+  write("self.json", {{"extends", "./self.json"}});
+  EXPECT_THAT(error_reading(dir_ / "self.json"), HasSubstr("cycle"));
+}
+
+TEST_F(ExtendsTest, AMissingBaseIsAnErrorNamingBothFiles) {
+  write("lost.json", {{"extends", "nowhere.json"}, {"seed", 1}});
+  const std::string err = error_reading(dir_ / "lost.json");
+  EXPECT_THAT(err, HasSubstr((dir_ / "lost.json").string() + ": \"extends\" names")) << err;
+  EXPECT_THAT(err, HasSubstr("nowhere.json")) << err;
+  EXPECT_THAT(err, HasSubstr("does not exist")) << err;
+  write("number.json", {{"extends", 3}});
+  EXPECT_THAT(error_reading(dir_ / "number.json"), HasSubstr("\"extends\" must name a config file"));
+  EXPECT_THAT(error_reading(dir_ / "absent.json"), HasSubstr((dir_ / "absent.json").string() + ": no such config file"));
+}
+
+// Validation runs on the merged config, so an error still names the key the user wrote (and the file).
+TEST_F(ExtendsTest, ErrorsStillNameTheUsersKey) {
+  write("base.json", read_json(kConfigs / "base.json"));
+  write("typo.json", {{"extends", "base.json"}, {"junction", {{"optim", {{"learning_rate", 0.1}}}}}});
+  std::string err = error_reading(dir_ / "typo.json");
+  EXPECT_THAT(err, HasSubstr((dir_ / "typo.json").string())) << err;
+  EXPECT_THAT(err, HasSubstr("junction.optim")) << err;
+  EXPECT_THAT(err, HasSubstr("learning_rate")) << err;
+  write("bad.json", {{"extends", "base.json"}, {"edge", {{"batch_size", 0}}}});
+  err = error_reading(dir_ / "bad.json");
+  EXPECT_THAT(err, HasSubstr("edge.batch_size")) << err;
+  write("broken.json", "not json");
+  std::ofstream(dir_ / "broken.json") << "{\"seed\": ";
+  write("on_broken.json", {{"extends", "broken.json"}});
+  EXPECT_THAT(error_reading(dir_ / "on_broken.json"), HasSubstr((dir_ / "broken.json").string() + ": not valid JSON"));
 }
 
 TEST(TrainConfig, RoundTripsThroughJson) {
