@@ -27,7 +27,7 @@ struct PatchOptions {
   // Not in the release: a patch whose majority junction lies farther than this from its sample point is
   // negative too, so the junction model learns to find nearby junctions instead of voting for ones metres
   // away (with the plain labels of our fragment clouds, 58 % of the patches are positive and most offsets
-  // exceed 1 m: bench/README.md). Infinity = the release's rule.
+  // exceed 1 m: experiments/README.md). Infinity = the release's rule.
   double positive_radius_m = std::numeric_limits<double>::infinity();
   PaddingMode padding = PaddingMode::Release;
   NetworkFrame frame;

@@ -21,7 +21,7 @@ struct DensitySeedRule {
   double nms_m = 0.075;   // release raw 1.5
   static DensitySeedRule release() { return {}; }
   // Not in the release: with its rule our clouds get ≈ 25 seeds and the 256 points cover 85 % of the GT
-  // junctions within 0.35 m; these get ≈ 80 and cover 96 % (bench/README.md, "Density seeds").
+  // junctions within 0.35 m; these get ≈ 80 and cover 96 % (experiments/README.md, "Density seeds").
   static DensitySeedRule loose() { return {4, 0.5, 0.3}; }
   bool operator==(const DensitySeedRule&) const = default;
   void Check() const;  // throws std::invalid_argument naming the bad field

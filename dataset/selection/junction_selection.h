@@ -26,7 +26,7 @@ struct PredictedJunctions {
 };
 
 // The defaults are the sound selection, chosen on the validation split with the paper run's final models
-// (bench/README.md, "Choosing the junction selection"); release() is the paper's.
+// (experiments/README.md, "Choosing the junction selection"); release() is the paper's.
 struct JunctionSelectionOptions {
   PointNmsRule nms = PointNmsRule::kGreedy;  // release: kSuppressor
   double nms_radius_m = 0.5;                 // release: 0.25 (5 raw)
@@ -42,7 +42,7 @@ struct JunctionSelectionOptions {
   // Not in the release (one pass): the junction model runs on passes x its G sample points, G at a time
   // (the first G are the release's; farthest-point sampling goes on from them), so that junctions the
   // first G points leave uncovered get a patch too: with G = 256, 87 % of the GT junctions have a sample
-  // point within 0.35 m, 97 % with 512 (bench/README.md, "Sampling passes").
+  // point within 0.35 m, 97 % with 512 (experiments/README.md, "Sampling passes").
   int sampling_passes = 1;
   // Not in the release (one view): each candidate is the junction model's mean answer over this many views
   // of its patch, rotated by 90° steps or mirrored about the vertical axis (1, 2, 4 or 8; see
@@ -50,12 +50,12 @@ struct JunctionSelectionOptions {
   int test_time_views = 1;
   // Not in the release (DensitySeedRule::release()): which endpoints seed the junction model's sample points
   // at inference. The model was trained on the release's seeds; seeding the small endpoint clusters too puts
-  // more of its 256 patches where junctions are (bench/README.md, "Density seeds").
+  // more of its 256 patches where junctions are (experiments/README.md, "Density seeds").
   DensitySeedRule density_seeds = DensitySeedRule::loose();
   // The view counts there are (every one a group of turns and mirrors): 1, 2, 4 or 8.
   static bool valid_view_count(int64_t views) { return views == 1 || views == 2 || views == 4 || views == 8; }
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h. The robust
-  // scale was chosen on the validation split (bench/README.md, "Robust junction refinement").
+  // scale was chosen on the validation split (experiments/README.md, "Robust junction refinement").
   JunctionRefineOptions refine{.radius = 0.5, .robust_scale = 0.05};
 
   void Check() const;  // throws std::invalid_argument naming the bad field

@@ -262,7 +262,7 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
     EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.5);
     EXPECT_FALSE(o.transfer_edges_on_merge);  // the release's rule
   }
-  // Without flags: the selection chosen on the validation split (bench/README.md), not the release's.
+  // Without flags: the selection chosen on the validation split (experiments/README.md), not the release's.
   const PostProcessOptions none = PostProcessFlags{}.options();
   EXPECT_DOUBLE_EQ(none.selection.min_confidence, 0.05);
   EXPECT_DOUBLE_EQ(none.pair_support.min_support, 0.0);
