@@ -71,7 +71,7 @@ struct StageSchedule {
   int64_t checkpoint_every_steps = 0;  // also save "last" mid-epoch every k steps (0 = per epoch only)
   bool augment = true;              // the release's per-building scale + shift
   // Not in the release: with augment, also a uniform turn about the vertical (the networks' answers depend
-  // on the building's orientation; bench/README.md, "Test-time views").
+  // on the building's orientation; experiments/README.md, "Test-time views").
   bool augment_rotate_z = false;
   bool drop_last = true;
   // Buildings per forward/backward pass; the gradients of a batch's micro-batches are summed before the

@@ -122,7 +122,7 @@ TEST(TrainConfig, LocalLabelsIsBaseWithLocalPatchLabels) {
   EXPECT_EQ(local, read_json(kConfigs / "base.json"));
 }
 
-// The cheaper option (bench/README.md, "A cheaper edge stage") is base.json with 32 lines per pair patch and
+// The cheaper option (experiments/README.md, "A cheaper edge stage") is base.json with 32 lines per pair patch and
 // nothing else changed: its evidence holds only for that one difference.
 TEST(TrainConfig, FastIsBaseWithHalfTheLinesPerPairPatch) {
   nlohmann::json fast = resolve_config_json(kConfigs / "fast.json");
