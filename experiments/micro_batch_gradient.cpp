@@ -6,8 +6,8 @@
 // statistics differ), whole with other dropout masks (dropout noise) and whole on the next batch
 // (sampling noise). With --bf16 it also takes the micro-batched gradient with bf16 GEMM operands
 // (core/matmul_precision.h) next to other dropout masks at the same passes; --no-whole skips the three
-// whole-batch passes (≈ 14 GB at the paper's batch). Writes a JSON report; bench/README.md ("Edge
-// micro-batches", "bf16 mixed precision") has runs.
+// whole-batch passes (≈ 14 GB at the paper's batch). Writes a JSON report; train/README.md ("How far
+// micro-batches move the gradient") has runs.
 //   micro_batch_gradient CONFIG --junction-weights FILE [--buildings 96] [--measure-at 0,8] [--bf16] [--no-whole] [-o OUT.json]
 #include <sys/resource.h>
 
