@@ -21,6 +21,8 @@ if [[ $# -gt 0 && $1 != -- ]]; then clouds=$1; shift; fi
 [[ ${1:-} == -- ]] && shift
 eval_flags=("$@")
 
+[[ -x $build/experiments/lc2wf-cloud-styles ]] ||
+  { echo "robustness.sh: $build/experiments/lc2wf-cloud-styles is missing: cmake --build $build --target lc2wf-cloud-styles" >&2; exit 3; }
 "$build/experiments/lc2wf-cloud-styles" --data "$clouds" --split "$split" -o "$out/clouds"
 eval_as() {  # eval_as ROW STYLE [extra lc2wf-eval flags]
   local row=$1 style=$2
