@@ -54,12 +54,17 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
     ObjReadOptions o;
     o.y_up = source.obj_y_up;
     gt.wireframe = read_obj_wireframe(path, o);
+    gt.has_own_frame = source.obj_units == CoordinateUnits::kRaw;
     if (source.obj_units == CoordinateUnits::kRaw) {
       gt.units.raw_per_metre = source.raw_per_metre;
       for (Vec3& p : gt.wireframe.junctions) p = gt.units.to_metres(p);
     }
   }
   return gt;
+}
+
+Vec3 cloud_to_ground_truth_frame(const Vec3& p, const UnitTransform& cloud_units, const GroundTruth& gt) {
+  return gt.has_own_frame ? gt.units.to_metres(cloud_units.to_raw(p)) : p;
 }
 
 std::vector<std::string> list_ground_truth_names(const GroundTruthSource& source) {

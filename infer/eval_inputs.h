@@ -28,6 +28,8 @@ struct GroundTruth {
   std::filesystem::path path;
   Wireframe wireframe;  // metres
   UnitTransform units;  // how this building's raw coordinates map to metres (used for raw predictions)
+  // False for .obj files in metres: no transform of their own, so they are taken to be in the cloud's frame.
+  bool has_own_frame = true;
   std::vector<Segment3> cloud_segments;  // line-cloud sources only: the cloud (metres), for reports and frames
 };
 
@@ -39,6 +41,11 @@ std::optional<std::filesystem::path> find_ground_truth(const GroundTruthSource& 
 // (metres, footprint recentred); line clouds (ours, or the release's LineCloud JSON with `objGTJunc3D` /
 // `line_idx`) carry their own wireframe and transform. Throws DataError.
 GroundTruth load_ground_truth(const GroundTruthSource& source, const std::filesystem::path& path);
+
+// A point in the metric frame of a line cloud with `cloud_units` (a prediction made on it, or its segments), in
+// the GT's metric frame: each frame maps to the building's raw source coordinates, the one frame they share
+// (a cloud's origin need not be the GT's bounding-box centre). Unchanged when the GT has no frame of its own.
+Vec3 cloud_to_ground_truth_frame(const Vec3& p, const UnitTransform& cloud_units, const GroundTruth& gt);
 
 // Names of every GT building in the source folder (sorted); used when no split file is given.
 std::vector<std::string> list_ground_truth_names(const GroundTruthSource& source);

@@ -277,12 +277,18 @@ int run(const Args& a) {
     const GroundTruth gt = load_ground_truth(source, *gt_path);
     const fs::path pred_path = a.pred / (name + ".obj");
     const bool missing = !fs::exists(pred_path);
-    const ScoredWireframe pred =
+    ScoredWireframe pred =
         missing ? ScoredWireframe{}
                 : read_prediction(pred_path, a.units == CoordinateUnits::kRaw ? &gt.units : nullptr);
+    std::vector<Segment3> cloud_segments = gt.cloud_segments;
+    if (clouds_beside_gt) {
+      // --weights predicted in the metric frame of the cloud, the GT is in its own: compare both in the GT's.
+      LineCloud cloud = load_line_cloud(find_cloud_file(a.data, name), cloud_format);
+      for (Vec3& p : pred.wireframe.junctions) p = cloud_to_ground_truth_frame(p, cloud.units, gt);
+      for (Segment3& s : cloud.segments) s = {cloud_to_ground_truth_frame(s.a, cloud.units, gt), cloud_to_ground_truth_frame(s.b, cloud.units, gt)};
+      cloud_segments = std::move(cloud.segments);
+    }
     evaluator.add(name, pred, gt.wireframe, missing);
-    const std::vector<Segment3> cloud_segments =
-        clouds_beside_gt ? load_line_cloud(find_cloud_file(a.data, name), cloud_format).segments : gt.cloud_segments;
     const NormalisationFrame frame =
         cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(cloud_segments);
     building3d.push_back(building3d_counts(pred, gt.wireframe, frame));
