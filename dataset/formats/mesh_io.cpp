@@ -6,6 +6,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "dataset/formats/read_file.h"
@@ -197,6 +198,27 @@ std::string obj_mesh_string(const PolyMesh& mesh, const UnitTransform* units) {
     s += "\n";
   }
   return s;
+}
+
+std::string polyshape_string(const PolyMesh& mesh, const UnitTransform* units) {
+  if (mesh.labels.size() != mesh.faces.size()) throw std::invalid_argument("polyshape_string: every face needs a label");
+  std::string s = "# Number of verts: " + std::to_string(mesh.vertices.size()) + "\n# Number of faces: " +
+                  std::to_string(mesh.faces.size()) + "\n";
+  for (const auto& v : mesh.vertices) {
+    const Vec3 p = units ? units->to_raw(v) : v;
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g\n", p.x(), p.y(), p.z());
+    s += buf;
+  }
+  for (size_t f = 0; f < mesh.faces.size(); ++f) {
+    for (int id : mesh.faces[f]) s += std::to_string(id + 1) + ",";
+    s += std::to_string(static_cast<int>(mesh.labels[f])) + "\n";
+  }
+  return s;
+}
+
+void write_polyshape(const std::filesystem::path& path, const PolyMesh& mesh, const UnitTransform* units) {
+  write_file_atomic(path, polyshape_string(mesh, units));
 }
 
 void write_obj_wireframe(const std::filesystem::path& path, const Wireframe& wf, const UnitTransform* units) {

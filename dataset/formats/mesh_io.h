@@ -42,5 +42,9 @@ void write_obj_wireframe(const std::filesystem::path& path, const Wireframe& wir
 void write_obj_mesh(const std::filesystem::path& path, const PolyMesh& mesh, const UnitTransform* units = nullptr);
 std::string obj_wireframe_string(const Wireframe& wireframe, const UnitTransform* units = nullptr);
 std::string obj_mesh_string(const PolyMesh& mesh, const UnitTransform* units = nullptr);
+// Roof-Image polyshape of a labelled mesh (what parse_polyshape reads); throws std::invalid_argument
+// when a face has no label.
+std::string polyshape_string(const PolyMesh& mesh, const UnitTransform* units = nullptr);
+void write_polyshape(const std::filesystem::path& path, const PolyMesh& mesh, const UnitTransform* units = nullptr);
 
 }  // namespace lc2wf
