@@ -9,6 +9,7 @@ packages=(
   libopencv-dev libopencv-contrib-dev
   libsqlite3-dev                   # tools/ reads the SIFT descriptors from COLMAP's database
   python3-numpy
+  python3-jsonschema               # tests: the CityJSON output against the official CityJSON 2.0 schema
   libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
   libopenmpi-dev openmpi-bin       # mpirun -np N lc2wf-train (data-parallel); its tests run 2 local ranks
   time                             # GNU time: peak memory of each command in tests/fuzz/adversarial

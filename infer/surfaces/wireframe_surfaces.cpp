@@ -1,0 +1,175 @@
+#include "infer/surfaces/wireframe_surfaces.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "infer/surfaces/face_labels.h"
+#include "infer/surfaces/plane_faces.h"
+#include "infer/surfaces/shell_assembly.h"
+#include "infer/surfaces/wireframe_cleanup.h"
+
+namespace lc2wf {
+namespace {
+
+using EdgeKey = std::pair<int, int>;
+
+struct Attempt {
+  SurfaceModel model;
+  ShellCheck check;
+  std::vector<int> source;  // model vertex -> junction id of the wireframe it was built from
+  int defects() const { return check.open_edges + check.overused_edges + check.intersecting_face_pairs + check.self_intersecting_faces; }
+};
+
+double tiny(const SurfaceOptions& o) { return std::max(1e-6, 0.25 * o.merge_distance_m); }
+
+// Adds the sides that close open chains: those two planes ask for, or one plane whose two chain ends are each
+// other's nearest and at least three edges apart. Two rounds, so a plane made only of closed sides (the ground under completed walls) closes too.
+void close_gaps(Wireframe& wf, std::set<EdgeKey>& added, const SurfaceOptions& o) {
+  for (int round = 0; round < 2; ++round) {
+    std::set<EdgeKey> existing;
+    for (const auto& e : wf.edges) existing.insert({e[0], e[1]});
+    std::map<EdgeKey, std::pair<int, bool>> votes;
+    for (const CandidatePlane& p : candidate_planes(wf, o))
+      for (const ClosingEdge& c : closing_edges(wf, p, tiny(o))) {
+        auto& v = votes[{c.ends[0], c.ends[1]}];
+        ++v.first;
+        // One plane alone closes only a chain of three or more edges: any two edges at a corner span a plane.
+        v.second = v.second || (c.mutual_nearest && c.chain_edges >= 3);
+      }
+    int fresh = 0;
+    for (const auto& [k, v] : votes)
+      if (!existing.count(k) && (v.first >= 2 || v.second)) {
+        wf.edges.push_back({k.first, k.second});
+        added.insert(k);
+        ++fresh;
+      }
+    if (fresh == 0) break;
+  }
+}
+
+Attempt build(const Wireframe& cleaned, const SurfaceOptions& o) {
+  Wireframe wf = cleaned;
+  std::set<EdgeKey> added;
+  close_gaps(wf, added, o);
+  const std::vector<CandidatePlane> planes = candidate_planes(wf, o);
+  std::vector<CandidateFace> candidates;
+  std::set<std::vector<int>> seen;
+  for (size_t p = 0; p < planes.size(); ++p)
+    for (std::vector<int>& ring : plane_cycles(wf, planes[p], tiny(o))) {
+      std::vector<int> sorted = ring;
+      std::sort(sorted.begin(), sorted.end());
+      if (seen.insert(sorted).second) candidates.push_back({std::move(ring), static_cast<int>(p)});
+    }
+  std::vector<CandidateFace> kept;
+  for (int f : select_shell_faces(candidates, added)) kept.push_back(candidates[f]);
+  const std::vector<CandidateFace> merged = merge_coplanar_faces(kept, wf.junctions, o.plane_angle_deg);
+
+  Attempt a;
+  std::vector<std::vector<int>> rings;
+  std::map<int, int> local;
+  for (const CandidateFace& f : merged) {
+    std::vector<int> r;
+    for (int j : f.ring) {
+      const auto [it, fresh] = local.emplace(j, static_cast<int>(a.source.size()));
+      if (fresh) a.source.push_back(j);
+      r.push_back(it->second);
+    }
+    rings.push_back(std::move(r));
+  }
+  for (int j : a.source) a.model.vertices.push_back(wf.junctions[j]);
+  std::vector<std::string> reasons;
+  orient_faces(rings, a.model.vertices, &reasons);
+  snap_vertices_to_planes(a.model.vertices, rings, 2 * o.plane_distance_m);
+  for (auto& r : rings) a.model.faces.push_back({std::move(r), SurfaceLabel::kRoof});
+  label_faces(a.model, o.wall_tilt_deg, o.plane_distance_m);
+  a.check = check_shell(a.model, o.planarity_tolerance_m);
+  if (a.model.faces.empty()) {
+    a.model.status = ShellStatus::kNoFaces;
+    a.model.reasons = {"no planar cycle of edges bounds a face"};
+  } else if (a.check.valid_solid() && reasons.empty()) {
+    a.model.status = ShellStatus::kClosedSolid;
+  } else {
+    a.model.status = ShellStatus::kOpenSurfaces;
+    a.model.reasons = reasons;
+    for (std::string& p : a.check.problems())
+      if (std::find(a.model.reasons.begin(), a.model.reasons.end(), p) == a.model.reasons.end()) a.model.reasons.push_back(std::move(p));
+  }
+  return a;
+}
+
+// Walls down from the eaves: every end of a horizontal open side of a roof face gets a vertical edge to the
+// ground level, the lowest end of the wireframe's vertical edges. Nothing when there is no vertical edge
+// (the ground's height is unknown) or nothing to add.
+bool complete_walls(Wireframe& wf, const Attempt& a, const SurfaceOptions& o) {
+  const double cos_vertical = std::cos(o.wall_tilt_deg * M_PI / 180);
+  const auto vertical = [&](const std::array<int, 2>& e) {
+    const Vec3 d = wf.junctions[e[1]] - wf.junctions[e[0]];
+    return d.norm() > 0 && std::abs(d.z()) >= cos_vertical * d.norm();
+  };
+  double ground = INFINITY;
+  std::vector<bool> has_down(wf.junctions.size(), false);
+  for (const auto& e : wf.edges) {
+    if (!vertical(e)) continue;
+    const int lo = wf.junctions[e[0]].z() < wf.junctions[e[1]].z() ? e[0] : e[1];
+    ground = std::min(ground, wf.junctions[lo].z());
+    has_down[lo == e[0] ? e[1] : e[0]] = true;
+  }
+  if (!std::isfinite(ground)) return false;
+  std::map<EdgeKey, int> uses;
+  for (const SurfaceFace& f : a.model.faces)
+    for (size_t i = 0; i < f.ring.size(); ++i) {
+      const int p = a.source[f.ring[i]], q = a.source[f.ring[(i + 1) % f.ring.size()]];
+      ++uses[{std::min(p, q), std::max(p, q)}];
+    }
+  std::set<int> eave_corners;
+  for (const SurfaceFace& f : a.model.faces) {
+    if (f.label != SurfaceLabel::kRoof) continue;
+    for (size_t i = 0; i < f.ring.size(); ++i) {
+      const int p = a.source[f.ring[i]], q = a.source[f.ring[(i + 1) % f.ring.size()]];
+      if (uses[{std::min(p, q), std::max(p, q)}] != 1) continue;
+      const Vec3 &pp = wf.junctions[p], &pq = wf.junctions[q];
+      if (std::abs(pp.z() - pq.z()) > o.plane_distance_m) continue;
+      if (std::min(pp.z(), pq.z()) <= ground + o.plane_distance_m) continue;
+      for (int j : {p, q})
+        if (!has_down[j]) eave_corners.insert(j);
+    }
+  }
+  if (eave_corners.empty()) return false;
+  for (int j : eave_corners) {
+    const Vec3 foot(wf.junctions[j].x(), wf.junctions[j].y(), ground);
+    int id = -1;
+    for (size_t k = 0; k < wf.junctions.size() && id < 0; ++k)
+      if ((wf.junctions[k] - foot).norm() <= std::max(o.merge_distance_m, 1e-9)) id = static_cast<int>(k);
+    if (id < 0) {
+      id = static_cast<int>(wf.junctions.size());
+      wf.junctions.push_back(foot);
+    }
+    wf.edges.push_back({std::min(j, id), std::max(j, id)});
+  }
+  return true;
+}
+
+}  // namespace
+
+SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& o) {
+  o.Check();
+  if (static_cast<int>(wireframe.edges.size()) > o.max_edges) {
+    SurfaceModel m;
+    m.reasons = {std::to_string(wireframe.edges.size()) + " edges: more than surfaces.max_edges (" + std::to_string(o.max_edges) +
+                 "), not searched"};
+    return m;
+  }
+  const Wireframe cleaned = clean_wireframe(wireframe, o.merge_distance_m);
+  Attempt first = build(cleaned, o);
+  if (first.model.closed_solid() || !o.complete_walls) return std::move(first.model);
+  Wireframe extended = cleaned;
+  if (!complete_walls(extended, first, o)) return std::move(first.model);
+  Attempt second = build(clean_wireframe(extended, o.merge_distance_m), o);
+  const bool take_second = second.model.closed_solid() ||
+                           (!second.model.faces.empty() && second.defects() < first.defects());
+  return std::move(take_second ? second.model : first.model);
+}
+
+}  // namespace lc2wf

@@ -1,0 +1,19 @@
+// Faces from a wireframe: the planar cycles of its graph that bound the building (roof facets, walls, the
+// ground), found when edges are missing or spurious, made into a closed, consistently oriented shell where
+// the evidence allows, with the reasons when it does not. The steps (infer/README.md, "Surfaces"):
+// clean_wireframe -> candidate_planes -> closing_edges (gaps) -> plane_cycles -> select_shell_faces ->
+// merge_coplanar_faces -> orient_faces -> snap_vertices_to_planes -> label_faces -> check_shell, and once
+// more with walls completed down to the ground when the first shell is open.
+#pragma once
+
+#include "infer/surfaces/surface_model.h"
+#include "infer/surfaces/surface_options.h"
+#include "infer/surfaces/shell_checks.h"
+
+namespace lc2wf {
+
+// Deterministic; time grows with the edges of the graph and is bounded by options.max_edges (larger graphs
+// give a model without faces whose reason says so). Throws std::invalid_argument on bad options.
+SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& options = {});
+
+}  // namespace lc2wf
