@@ -1,5 +1,6 @@
 #include "infer/batch_inference.h"
 
+#include <chrono>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -10,6 +11,8 @@
 #include "core/util/progress.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
+#include "infer/surfaces/surface_writers.h"
+#include "infer/surfaces/wireframe_surfaces.h"
 
 namespace lc2wf {
 
@@ -65,6 +68,16 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     if (r.segments_cut) ++s.cut;
     s.names.push_back(name);
     write_prediction(out_dir, name, r.wireframe, r.notes, o.raw_units ? &cloud.units : nullptr);
+    if (o.write_surfaces) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const SurfaceModel surfaces = surfaces_from_wireframe(r.wireframe.wireframe, o.surfaces);
+      s.surface_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      s.closed_solids += surfaces.closed_solid() ? 1 : 0;
+      SurfaceOutputOptions so;
+      so.raw_units = o.raw_units;
+      so.source_units = cloud.units;
+      write_surface_outputs(out_dir, name, surfaces, so);
+    }
     if (o.preview_path)
       write_preview(o.preview_path(name), cloud, r.wireframe.wireframe,
                     cloud.wireframe.junctions.empty() ? nullptr : &cloud.wireframe);

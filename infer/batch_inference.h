@@ -12,6 +12,7 @@
 #include "dataset/formats/cloud_input.h"
 #include "model/inference.h"
 #include "infer/inference_timing.h"
+#include "infer/surfaces/surface_options.h"
 
 namespace lc2wf {
 
@@ -25,6 +26,9 @@ struct BatchInferenceOptions {
   bool quiet = false;
   // fp32 gives the same numbers on every CPU; bf16 operands are faster where the CPU has AVX512-BF16.
   MatmulPrecision precision = MatmulPrecision::kFp32;
+  // Also write the LoD2 surfaces beside each wireframe (<name>.city.json, <name>.faces.obj; infer/surfaces/).
+  bool write_surfaces = false;
+  SurfaceOptions surfaces;
 };
 
 // The --precision flag of the inference commands: fp32, bf16 or auto; a bad value is a usage error.
@@ -32,6 +36,8 @@ MatmulPrecision precision_flag(const std::string& value);
 
 struct BatchInferenceSummary : InferenceTiming {
   int failed = 0;           // unreadable clouds (reported on stderr)
+  int closed_solids = 0;    // with write_surfaces: buildings whose surfaces close into a valid solid
+  double surface_seconds = 0;  // with write_surfaces: finding the faces, summed over buildings (file I/O excluded)
   std::vector<std::string> names;  // predicted buildings, input order
 };
 

@@ -50,6 +50,7 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
     Building b = load_roof_image_building(path);
     gt.wireframe = std::move(b.wireframe);
     gt.units = b.units;
+    gt.mesh = std::move(b.mesh);
   } else {
     ObjReadOptions o;
     o.y_up = source.obj_y_up;

@@ -31,6 +31,7 @@ struct GroundTruth {
   // False for .obj files in metres: no transform of their own, so they are taken to be in the cloud's frame.
   bool has_own_frame = true;
   std::vector<Segment3> cloud_segments;  // line-cloud sources only: the cloud (metres), for reports and frames
+  PolyMesh mesh;  // Roof-Image polyshapes only: the labelled faces (metres), for the face metrics
 };
 
 // The file of `name` in the source folder: `<name>.obj` or `<name>.polyshape` (mesh folder; both present is

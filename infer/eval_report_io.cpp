@@ -261,12 +261,16 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
 }
 
 void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method,
-                        const Building3dReport* building3d, const InferenceTiming* inference) {
+                        const Building3dReport* building3d, const InferenceTiming* inference, const FaceReport* faces) {
   std::string md = eval_markdown(report, method);
   nlohmann::json j = eval_json(report, method);
   if (building3d) {
     md += building3d_markdown(*building3d, method);
     j["building3d"] = building3d_json(*building3d);
+  }
+  if (faces) {
+    md += faces_markdown(*faces, method);
+    j["faces"] = faces_json(*faces);
   }
   if (inference) {
     md += inference_markdown(*inference);

@@ -10,6 +10,7 @@
 #include "infer/building3d_io.h"
 #include "model/evaluator.h"
 #include "infer/inference_timing.h"
+#include "infer/surfaces/face_metrics_io.h"
 
 namespace lc2wf {
 
@@ -27,7 +28,9 @@ InferenceTiming inference_from_json(const nlohmann::json& j);
 // Writes `<dir>/metrics.md`, `<dir>/metrics.json` and `<dir>/per_building.csv`, each atomically; with
 // `building3d`, its section is appended to metrics.md and stored under "building3d" in metrics.json, and
 // likewise `inference` (the timing of the predictions just made) under "inference".
+// `faces` (the LoD2 surfaces of the predictions, infer/surfaces/face_metrics_io.h) likewise under "faces".
 void write_eval_outputs(const std::filesystem::path& dir, const EvalReport& report, const std::string& method,
-                        const Building3dReport* building3d = nullptr, const InferenceTiming* inference = nullptr);
+                        const Building3dReport* building3d = nullptr, const InferenceTiming* inference = nullptr,
+                        const FaceReport* faces = nullptr);
 
 }  // namespace lc2wf

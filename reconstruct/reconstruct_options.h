@@ -56,6 +56,7 @@ struct ReconstructOptions {
   std::string known_image_a, known_image_b;  // file names for frame.known_distance_m
 
   PostProcessOptions post;
+  bool surfaces = true;  // also write wireframe.city.json + wireframe.faces.obj (infer/surfaces/); --no-surfaces
   void Check() const;  // throws std::invalid_argument naming the field
 };
 

@@ -17,6 +17,8 @@
 #include "model/inference.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
+#include "infer/surfaces/surface_writers.h"
+#include "infer/surfaces/wireframe_surfaces.h"
 #include "reconstruct/camera_sources.h"
 #include "reconstruct/image_folder.h"
 #include "reconstruct/stage_error.h"
@@ -235,6 +237,11 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   write_line_cloud(stage / "cloud.lcloud", cloud);
   write_line_obj(stage / "cloud.obj", cloud);
   write_prediction(stage, "wireframe", r.wireframe, r.notes);
+  if (o.surfaces) {
+    const SurfaceModel surfaces = surfaces_from_wireframe(r.wireframe.wireframe);
+    write_surface_outputs(stage, "wireframe", surfaces);
+    report["surfaces"] = {{"status", to_string(surfaces.status)}, {"faces", surfaces.faces.size()}, {"reasons", surfaces.reasons}};
+  }
   write_preview(stage / "preview.png", cloud, r.wireframe.wireframe, nullptr);
   Json cameras_out = Json::array();
   for (size_t i = 0, v = 0; i < cams.cameras.size(); ++i)

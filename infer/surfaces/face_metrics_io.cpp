@@ -1,9 +1,11 @@
 #include "infer/surfaces/face_metrics_io.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "core/util/number_format.h"
+#include "infer/surfaces/wireframe_surfaces.h"
 
 namespace lc2wf {
 namespace {
@@ -41,6 +43,21 @@ FaceSummary summarize_faces(const FaceReport& r) {
   s.roof_area_error_m2 = ratio(s.roof_area_error_m2, with_area);
   s.mean_ms = ratio(s.mean_ms, s.buildings);
   return s;
+}
+
+FaceBuilding evaluate_faces(const std::string& name, const Wireframe& prediction, const PolyMesh& gt_mesh, SurfaceModel* surfaces,
+                            const SurfaceOptions& surface_options, const FaceMatchOptions& match_options) {
+  FaceBuilding b;
+  b.name = name;
+  const auto t0 = std::chrono::steady_clock::now();
+  SurfaceModel m = surfaces_from_wireframe(prediction, surface_options);
+  b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  b.status = to_string(m.status);
+  b.reasons = m.reasons;
+  b.scores = gt_mesh.faces.empty() ? FaceScores{} : score_faces(m, surfaces_from_mesh(gt_mesh, match_options.wall_tilt_deg), match_options);
+  b.scores.closed_solid = m.closed_solid();
+  if (surfaces) *surfaces = std::move(m);
+  return b;
 }
 
 std::string faces_markdown(const FaceReport& r, const std::string& method) {

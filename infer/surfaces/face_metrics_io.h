@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "infer/surfaces/face_metrics.h"
+#include "infer/surfaces/surface_options.h"
 
 namespace lc2wf {
 
@@ -34,6 +35,12 @@ struct FaceSummary {
   double mean_ms = 0, max_ms = 0;    // surfaces_from_wireframe per building
 };
 FaceSummary summarize_faces(const FaceReport& report);
+
+// One building for the report: the surfaces of `prediction` (timed; returned in `surfaces` when given), checked,
+// and scored against the faces of `gt_mesh` when it has any.
+FaceBuilding evaluate_faces(const std::string& name, const Wireframe& prediction, const PolyMesh& gt_mesh,
+                            SurfaceModel* surfaces = nullptr, const SurfaceOptions& surface_options = {},
+                            const FaceMatchOptions& match_options = {});
 
 std::string faces_markdown(const FaceReport& report, const std::string& method);
 nlohmann::json faces_json(const FaceReport& report);
