@@ -52,7 +52,9 @@ const char* kUsage = R"(Usage: lc2wf-eval --pred DIR (--gt DIR | --data DIR) -o 
 Scores predicted wireframes against the ground truth with the LC2WF paper's metrics (Table 2):
 vAP/vRecall at eta = 0.15/0.25/0.35 m, sAP/sRecall at eta = 0.25/0.35/0.50 m (one ranked list pooled
 over all buildings) and WED (mean per building), plus Building3D-style CP/CR/CF1, EP/ER/EF1, ACO and
-B3D-nWED in a separate section. See infer/README.md for the exact definitions.
+B3D-nWED in a separate section, and the LoD2 surfaces found in each prediction (lc2wf-infer's .city.json)
+scored against the GT mesh faces: roof-facet precision / recall, labels, valid closed solids, roof area
+(Roof-Image polyshape GT only). See infer/README.md for the exact definitions.
 
   --pred DIR      predicted wireframes <name>.obj ('v' + 'l') with optional <name>.json scores
                   (junction_scores / edge_scores); without scores every score is 1
@@ -260,6 +262,7 @@ int run(const Args& a) {
   const bool clouds_beside_gt = !a.gt.empty() && !a.data.empty();
   const CloudFormat cloud_format = parse_cloud_format(a.format, "--format");
   std::vector<Building3dCounts> building3d;
+  FaceReport faces;
   std::unique_ptr<HtmlReport> html;
   if (a.html) html = std::make_unique<HtmlReport>(HtmlReportOptions{default_three_js_dir()});
   std::unique_ptr<Progress> progress;
@@ -289,6 +292,8 @@ int run(const Args& a) {
       cloud_segments = std::move(cloud.segments);
     }
     evaluator.add(name, pred, gt.wireframe, missing);
+    faces.buildings.push_back(evaluate_faces(name, pred.wireframe, gt.mesh));  // LoD2 surfaces (infer/surfaces/)
+    faces.gt_has_faces = faces.gt_has_faces && !gt.mesh.faces.empty();
     const NormalisationFrame frame =
         cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(cloud_segments);
     building3d.push_back(building3d_counts(pred, gt.wireframe, frame));
@@ -300,14 +305,14 @@ int run(const Args& a) {
   const EvalReport report = evaluator.report();
   const Building3dReport b3d{summarize_building3d(building3d, {}, a.gt.empty() || clouds_beside_gt ? "line-cloud segment endpoints" : "GT corners"),
                              names, building3d};
-  write_eval_outputs(a.out, report, a.method, &b3d, inference_summary ? &*inference_summary : nullptr);
+  write_eval_outputs(a.out, report, a.method, &b3d, inference_summary ? &*inference_summary : nullptr, &faces);
   const auto missing = report.missing_predictions();
   if (!missing.empty()) {
     // Exit 1 names what was skipped (metrics.json lists them all).
     std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings%s have no prediction in %s (scored as empty): %s\n",
                  missing.size(), names.size(), listed.c_str(), a.pred.string().c_str(), quoted_names(missing).c_str());
   }
-  std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method)).c_str(), stdout);
+  std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method) + faces_markdown(faces, a.method)).c_str(), stdout);
   std::fprintf(stderr, "lc2wf-eval: wrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),
                (a.out / "metrics.json").string().c_str(), (a.out / "per_building.csv").string().c_str());
   if (html)

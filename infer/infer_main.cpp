@@ -81,6 +81,10 @@ wireframe and a note, never a failure.
   --precision P       fp32 (default: the same numbers on every CPU), bf16 (operands rounded to bf16,
                       fp32 sums: 1.3-2x faster model passes where the CPU has AVX512-BF16) or auto
                       (bf16 where it has, else fp32)
+  --no-surfaces       do not write the LoD2 surfaces: by default OUT/<name>.city.json (CityJSON 2.0, one
+                      Building: a Solid when the faces close, else a MultiSurface; roof / wall / ground
+                      semantics; same frame and units as OUT/<name>.obj) and OUT/<name>.faces.obj (one
+                      polygon per face, groups roof, wall, ground) are written beside each wireframe
   -j, --threads N     compute threads (default: all cores)
   -q, --quiet         no progress output
 Each written OUT/<name>.obj is printed on stdout. Exit code 1: some clouds could not be read or predicted
@@ -94,6 +98,7 @@ struct Args {
   BatchInferenceOptions options;
   PostProcessFlags post;
   int threads = 0;
+  bool surfaces = true;  // --no-surfaces
 };
 
 Args parse_args(int argc, char** argv) {
@@ -106,6 +111,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--preview") a.preview = value();
     else if (a.post.parse(f, argc, argv, i)) continue;
     else if (f == "-q" || f == "--quiet") a.options.quiet = true;
+    else if (f == "--no-surfaces") a.surfaces = false;
     else if (f == "--precision") a.options.precision = precision_flag(value());
     else if (f == "--format") {
       try {
@@ -129,6 +135,7 @@ Args parse_args(int argc, char** argv) {
   if (a.out.empty()) throw UsageError("-o OUT is required");
   if (a.clouds.empty()) throw UsageError("no line cloud given");
   a.options.post = a.post.options();
+  a.options.write_surfaces = a.surfaces;
   if (!a.preview.empty()) {
     const fs::path p = a.preview;
     if (a.clouds.size() == 1) a.options.preview_path = [p](const std::string&) { return p; };
@@ -142,6 +149,9 @@ int run(const Args& a) {
   const WireframePredictor predictor(a.weights);
   const BatchInferenceSummary s = infer_clouds(predictor, a.clouds, a.out, a.options);
   for (const std::string& name : s.names) std::printf("%s\n", (a.out / (name + ".obj")).string().c_str());
+  if (!a.options.quiet && a.surfaces && s.buildings > 0)
+    std::fprintf(stderr, "lc2wf-infer: surfaces: %d of %d closed solid(s); %.2f ms per building\n", s.closed_solids, s.buildings,
+                 1000 * s.surface_seconds / s.buildings);
   if (!a.options.quiet && s.buildings > 0)
     std::fprintf(stderr,
                  "lc2wf-infer: %d building(s) -> %s (%d empty); %.3f s per building on average (junction %.3f, "

@@ -86,6 +86,8 @@ Options:
                          Line3D++/LIMAP maps only; our triangulation's clouds are not cut; see lc2wf-infer --help)
   --workspace DIR        intermediate files there (must be new or empty; never deleted)
   --keep                 keep the private temporary workspace (its path is printed)
+  --no-surfaces          do not write the LoD2 surfaces wireframe.city.json (CityJSON 2.0) and
+                         wireframe.faces.obj (polygons grouped roof / wall / ground) beside wireframe.obj
   -j, --threads N        threads for COLMAP, triangulation and the networks (default: all cores)
   -q, --quiet            no progress output
 Exit code 1: done, but some images were unreadable or not registered, or the wireframe is empty (see
@@ -114,6 +116,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--reference-cameras") o.reference_cameras = value();
     else if (f == "--workspace") o.workspace = value();
     else if (f == "--keep") o.keep = true;
+    else if (f == "--no-surfaces") o.surfaces = false;
     else if (f == "-q" || f == "--quiet") o.quiet = true;
     else if (f == "-j" || f == "--threads") o.threads = threads_flag(f, value());
     else if (post.parse(f, argc, argv, i)) continue;
