@@ -441,7 +441,6 @@ int conform_t_junctions(Lod2Mesh& m, double tol) {
       }
       std::sort(on.begin(), on.end());
       for (const auto& [t, v] : on) {
-        if (std::find(f.begin(), f.end(), v) != f.end()) continue;  // the face already has it elsewhere
         out.push_back(v);
         ++inserted;
       }
@@ -485,7 +484,29 @@ int remove_collinear_vertices(Lod2Mesh& m, double tol) {
   return removed_total;
 }
 
-std::string closure_problem(const Lod2Mesh& m, std::string* reason) {
+namespace {
+
+// Whether point p lies on face f: within `tol` of its plane and inside its outline (even-odd rule in the
+// plane of the two axes the face is least steep to).
+bool on_face(const Lod2Mesh& m, const std::vector<int>& f, const Vec3& p, double tol) {
+  const Vec3 nv = newell(m.vertices, f);
+  if (nv.norm() <= 0) return false;
+  const Vec3 n = nv.normalized();
+  if (std::abs(n.dot(p - centroid(m.vertices, f))) > tol) return false;
+  int drop = 0;
+  n.cwiseAbs().maxCoeff(&drop);
+  const int u = (drop + 1) % 3, w = (drop + 2) % 3;
+  bool inside = false;
+  for (size_t i = 0, j = f.size() - 1; i < f.size(); j = i++) {
+    const Vec3 &a = m.vertices[f[i]], &b = m.vertices[f[j]];
+    if ((a[w] > p[w]) != (b[w] > p[w]) && p[u] < (b[u] - a[u]) * (p[w] - a[w]) / (b[w] - a[w]) + a[u]) inside = !inside;
+  }
+  return inside;
+}
+
+}  // namespace
+
+std::string closure_problem(const Lod2Mesh& m, std::string* reason, double on_face_tol) {
   auto fail = [&](const char* key, const std::string& text) {
     if (reason) *reason = key;
     return text;
@@ -498,6 +519,15 @@ std::string closure_problem(const Lod2Mesh& m, std::string* reason) {
   double open_length = 0;
   for (const auto& [e, n] : uses)
     if (n == 1) {
+      // An edge on another face (the outline of a dropped inner ring, e.g. a courtyard's walls meeting the
+      // ground or a dormer in a roof opening) is closed by that face.
+      const Vec3 mid = 0.5 * (m.vertices[e.first] + m.vertices[e.second]);
+      bool covered = false;
+      for (const auto& f : m.faces) {
+        const bool has_edge = std::find(f.begin(), f.end(), e.first) != f.end() && std::find(f.begin(), f.end(), e.second) != f.end();
+        if (!covered && !has_edge && on_face(m, f, mid, on_face_tol)) covered = true;
+      }
+      if (covered) continue;
       ++open;
       open_length += (m.vertices[e.first] - m.vertices[e.second]).norm();
     }
@@ -576,7 +606,7 @@ Lod2CleanupResult cleanup_lod2(std::vector<CityPolygon> polygons, const Lod2Clea
   rep.edges_after = static_cast<int>(unique_edges(m).size());
   rep.faces_after = static_cast<int>(m.faces.size());
   rep.roof_faces_after = static_cast<int>(std::count(m.kinds.begin(), m.kinds.end(), SurfaceKind::kRoof));
-  res.skip_detail = closure_problem(m, &res.skip_reason);
+  res.skip_detail = closure_problem(m, &res.skip_reason, o.coplanar_distance_m);
   if (res.skip_reason.empty()) res.mesh = to_poly_mesh(m);
   return res;
 }

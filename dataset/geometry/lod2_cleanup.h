@@ -73,9 +73,10 @@ int conform_t_junctions(Lod2Mesh& mesh, double tol);
 // Step 6: vertices with exactly two neighbours in the edge graph that lie within `tol` of the segment
 // between them are removed from every face (repeated until none is left). Returns how many.
 int remove_collinear_vertices(Lod2Mesh& mesh, double tol);
-// Why the mesh is not a usable closed building, empty when it is. `reason` gets a short key
-// (not_closed, no_roof, too_few_faces, flat) for counting.
-std::string closure_problem(const Lod2Mesh& mesh, std::string* reason = nullptr);
+// Why the mesh is not a usable closed building, empty when it is: every edge must belong to two faces or
+// lie on a face (within on_face_tol of its plane, inside its outline: where an inner ring was dropped).
+// `reason` gets a short key (not_closed, no_roof, too_few_faces, flat) for counting.
+std::string closure_problem(const Lod2Mesh& mesh, std::string* reason = nullptr, double on_face_tol = 0.03);
 
 // Unused vertices dropped; labels Roof / Wall / Base (ground).
 PolyMesh to_poly_mesh(const Lod2Mesh& mesh);
