@@ -42,6 +42,7 @@ const std::map<std::string, Expectation> kExpectations = {
     {"lc2wf-dataset", {true, {"OMP_NUM_THREADS", "LC2WF_BLENDER_SCRIPT"}, {"--meshes", kMissing, "-o", kOut}}},
     {"lc2wf-colmap-poses", {true, {}, {kMissing, "--intrinsics", "500,500,319.5,239.5", "-o", kOut}}},
     {"lc2wf-make-splits", {false, {}, {"--meshes", kMissing, "-o", kOut}}},
+    {"lc2wf-make-buildings", {false, {}, {"--augment", kMissing, "-o", kOut}}},
     {"lc2wf-cloud-convert", {false, {}, {kMissing, "-o", kOut}}},
     {"lc2wf-cloud-styles", {false, {}, {"--data", kMissing, "--split", kMissing, "-o", kOut}}},
     {"lc2wf-synthetic-data", {false, {}, {"--count", "3", "--val", "1", "--test", "1", "-o", kOut}}},
