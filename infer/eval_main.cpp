@@ -103,9 +103,10 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
   --html-compare DIR  with --html: add the Table-2 rows of another lc2wf-eval --out folder (its metrics.json,
                   e.g. the --release-quirks run) to the report; may be repeated
 
-The Markdown tables go to stdout. A building listed in the split without a prediction file is scored as
-an empty wireframe, listed in the outputs and named on stderr, and the exit code is 1 (also when
-inference failed on some clouds); with no prediction at all nothing is evaluated: exit 3.
+The Markdown tables go to stdout. A building listed in the split without a prediction file (with
+--weights: whose cloud could not be read) is scored as an empty wireframe, listed in the outputs and
+named on stderr, also with -q, and the exit code is 1; with no prediction at all nothing is evaluated:
+exit 3.
 )";
 
 struct Args {
@@ -244,8 +245,12 @@ int run(const Args& a) {
     const BatchInferenceSummary s = infer_clouds(predictor, clouds, a.pred, inference);
     inference_summary = s;
     if (s.failed > 0) {
-      std::fprintf(stderr, "lc2wf-eval: error: %d line cloud(s) could not be read\n", s.failed);
-      return s.buildings > 0 ? kExitPartly : kExitDataError;
+      std::fprintf(stderr, "lc2wf-eval: %d line cloud(s) could not be read (named above): scored as empty wireframes\n", s.failed);
+      if (s.buildings == 0) return kExitDataError;
+      // A prediction left in OUT by an earlier run must not stand in for the one that failed now.
+      for (const std::string& name : names)
+        if (std::find(s.names.begin(), s.names.end(), name) == s.names.end())
+          for (const char* ext : {".obj", ".json"}) fs::remove(a.pred / (name + ext));
     }
     std::fprintf(stderr, "lc2wf-eval: inference %.3f s per building on average (max %.3f s), %d empty wireframe(s)\n",
                  s.buildings ? s.total_seconds / s.buildings : 0.0, s.max_seconds, s.empty);
@@ -284,7 +289,7 @@ int run(const Args& a) {
         missing ? ScoredWireframe{}
                 : read_prediction(pred_path, a.units == CoordinateUnits::kRaw ? &gt.units : nullptr);
     std::vector<Segment3> cloud_segments = gt.cloud_segments;
-    if (clouds_beside_gt) {
+    if (clouds_beside_gt && !missing) {  // (a cloud that could not be read has no prediction)
       // --weights predicted in the metric frame of the cloud, the GT is in its own: compare both in the GT's.
       LineCloud cloud = load_line_cloud(find_cloud_file(a.data, name), cloud_format);
       for (Vec3& p : pred.wireframe.junctions) p = cloud_to_ground_truth_frame(p, cloud.units, gt);
@@ -310,7 +315,7 @@ int run(const Args& a) {
   if (!missing.empty()) {
     // Exit 1 names what was skipped (metrics.json lists them all).
     std::fprintf(stderr, "lc2wf-eval: warning: %zu of %zu buildings%s have no prediction in %s (scored as empty): %s\n",
-                 missing.size(), names.size(), listed.c_str(), a.pred.string().c_str(), quoted_names(missing).c_str());
+                 missing.size(), names.size(), listed.c_str(), a.pred.string().c_str(), quoted_names(missing, missing.size()).c_str());
   }
   std::fputs((eval_markdown(report, a.method) + building3d_markdown(b3d, a.method) + faces_markdown(faces, a.method)).c_str(), stdout);
   std::fprintf(stderr, "lc2wf-eval: wrote %s, %s and %s\n", (a.out / "metrics.md").string().c_str(),

@@ -34,52 +34,41 @@ wireframe and a note, never a failure.
                       refinement); default: sound rules
   --no-junction-refine  keep the regressed junction positions (default: each selected junction moves
                       to the meeting point of the cloud's segments ending within 0.5 m of it)
-  --min-confidence C  junctions paired by the edge model: confidence > C (default 0.05; the release's
-                      0.85 finds fewer true junctions, not fewer false ones, once --max-offset screens
-                      the far votes: bench/README.md, "choosing the junction selection")
+  --min-confidence C  junctions paired by the edge model: confidence > C (default 0.05; the release: 0.85)
   --pair-support S    classify only pairs of junctions whose straight line is covered by the cloud's
                       segments for at least S of its length (0-1; segments within 0.35 m and 20 degrees
-                      of it; pairs shorter than 1 m always): 3x faster edge model, about 3 sAP points less
-                      on our validation buildings (infer/README.md); default 0 = every pair, as the
-                      release
+                      of it; pairs shorter than 1 m always); default 0 = every pair, as the release
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
-                      before the cut (default 0.5; the release's 0.25; how the radius trades pairs
-                      for scores: bench/README.md, "choosing the junction selection")
+                      before the cut (default 0.5; the release: 0.25)
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample
-                      point (default 0.75; 0 = every candidate, as the release): most false junctions
-                      of a model trained on fragment clouds are such far votes (bench/README.md)
-                      The three defaults were chosen on the validation split with models/base;
-                      --release-quirks selects as the release (0.85, 0.25, every candidate)
+                      point (default 0.75; 0 = every candidate, as the release)
+                      --release-quirks selects as the release (0.85, 0.25, every candidate); how the
+                      defaults were chosen and what they score: infer/README.md
   --sampling-passes N run the junction model on N x 256 sample points, 256 at a time (default 1, the
-                      release): more GT junctions get a patch near them (sampling covers 87 % of them
-                      within 0.35 m at 1 pass, 97 % at 2), at the cost of more candidates to pair
-                      (2 passes, models/base, test split: sAP +0.9, vAP -1.5; bench/README.md)
+                      release): more GT junctions get a sample point near them, and more candidates
+                      are paired
   --density-seeds S   which segment endpoints seed the sample points before the farthest-point
                       sampling: loose (default: more than 4 endpoints within 0.3 m, one seed per 0.3 m),
                       release (more than 12, one per 0.075 m; --release-quirks) or MIN_COUNT,MIN_RATIO,
-                      NMS_M. Loose seeds leave 4 % of the GT junctions without a sample point within
-                      0.35 m instead of 15 % (models/base, test split: vAP +1.1, sAP +2.0, WED -0.73;
-                      bench/README.md, "Density seeds")
+                      NMS_M
   --test-time-views N each junction candidate is the model's mean answer over N views of its patch (1, 2,
                       4 or 8: turned by quarter turns or mirrored about the vertical; default 1, the
-                      release), at N x the junction model's time (models/base, validation split, 8 views:
-                      vAP +4.1, sAP unchanged; infer/README.md)
+                      release); the junction model runs N times
   --edge-test-time-views N  the same for the edge model: each pair's class probabilities are the mean over
-                      N views (default 1; 4 views with 8 junction views: sAP +1.4), at N x its time
+                      N views (1, 2, 4 or 8; default 1); the edge model runs N times
   --max-segment-length M|auto  cut segments longer than M metres into two staggered chains of pieces
                       before inference, as the per-view fragments the model was trained on (0 = never,
                       0.05-100: every cloud). Default auto: 1.5 m, only clouds read from Line3D++, LIMAP or
-                      OBJ files whose lines merge the views' fragments (fewer than 70 % of the lines
-                      longer than 1.5 m overlapped by another line); our files are never cut
-                      (long-fragment clouds as Line3D++ .txt: sAP 9.8 -> 51, reconstruct/README.md).
+                      OBJ files whose lines merge the views' fragments (under 0.7 of their lines longer
+                      than 1.5 m overlapped by another line); our files are never cut.
                       A cut cloud is sampled in at least 3 passes (--sampling-passes), since its corners
-                      hold fewer endpoints (models/merged-maps, such clouds: sAP 67.0 -> 76.1)
+                      hold fewer endpoints
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
                       the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in
                       their own frame as metres, z up (dataset/README.md)
   --precision P       fp32 (default: the same numbers on every CPU), bf16 (operands rounded to bf16,
-                      fp32 sums: 1.3-2x faster model passes where the CPU has AVX512-BF16) or auto
+                      fp32 sums; fast where the CPU has AVX512-BF16, emulated elsewhere) or auto
                       (bf16 where it has, else fp32)
   --no-surfaces       do not write the LoD2 surfaces: by default OUT/<name>.city.json (CityJSON 2.0, one
                       Building: a Solid when the faces close, else a MultiSurface; roof / wall / ground

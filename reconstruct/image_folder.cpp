@@ -43,7 +43,7 @@ ImageFolder read_image_folder(const fs::path& dir, int min_images) {
     }
     cv::Mat image = cv::imread(p.string(), cv::IMREAD_GRAYSCALE);
     if (image.empty()) {
-      f.unreadable.push_back(p.filename().string());
+      f.unreadable.push_back(p.filename().string() + " (not a decodable image)");
       continue;
     }
     if (f.images.empty()) f.width = image.cols, f.height = image.rows;

@@ -57,7 +57,7 @@ Options:
   --focal-35mm F         else fx = fy = F / 36 x width (EXIF FocalLengthIn35mmFilm; default 35)
   --max-features N       SIFT features per image (default 2000)
   --first-octave N       SIFT's first octave: -1 (default) the image doubled first, 0 at its own size
-                         (4x faster extraction, fewer small features: enough for 20 overlapping views)
+                         (fewer, larger features found in less time)
   --matcher M            exhaustive (default) or sequential (photos taken in order)
   --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
                          the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two

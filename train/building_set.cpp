@@ -27,9 +27,16 @@ BuildingSet load_building_set(const DataConfig& data, const std::filesystem::pat
     } catch (const DataError& e) {  // a typo in the split is found through the split file
       throw DataError(split_file.string(), "lists '" + name + "', but " + e.what());
     }
-    LineCloud cloud = load_line_cloud(file, format, data.raw_per_metre);
+    LineCloud cloud;
+    try {
+      cloud = load_line_cloud(file, format, data.raw_per_metre);
+      if (cloud.segments.empty()) throw DataError(file.string(), "line cloud has no segments (cannot be trained on)");
+    } catch (const std::exception& e) {  // the reader's message names the file and the problem
+      set.skipped.push_back(name + ": " + e.what());
+      if (progress) progress->step();
+      continue;
+    }
     cloud.name = name;
-    if (cloud.segments.empty()) throw DataError(file.string(), "line cloud has no segments (cannot be trained on)");
     // Training reads segments, labels and the wireframe only; a rendered cloud's 2D observations and cameras
     // are most of its memory (1.1 of 1.4 GB for the 2,626 training clouds rendered from 30 views).
     cloud.support = std::vector<std::vector<Observation>>();
@@ -37,6 +44,8 @@ BuildingSet load_building_set(const DataConfig& data, const std::filesystem::pat
     set.clouds.push_back(std::move(cloud));
     if (progress) progress->step();
   }
+  if (set.clouds.empty())
+    throw DataError(split_file.string(), "none of its " + std::to_string(names.size()) + " buildings could be read; the first: " + set.skipped.front());
   return set;
 }
 

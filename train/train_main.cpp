@@ -56,8 +56,10 @@ stays the global batch) and the gradients are summed over the ranks every step; 
 the checkpoints and the model card. OUT and the data must be visible to every rank. --resume works with
 any number of ranks. See train/README.md, "Data-parallel training".
 
-Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR. A bad config or line cloud is a data
-error (exit 3) naming the file and the key.
+Inference afterwards: lc2wf-infer --weights OUT cloud... -o DIR. A bad config, a split naming a building
+with no cloud file, or a split none of whose clouds can be read is a data error (exit 3) naming the file and
+the key. A cloud that cannot be read (or has no segments) is skipped and named on stderr, also with -q; the
+run trains without it and exits 1.
 )";
 
 struct Args {
@@ -115,6 +117,11 @@ int train(const Args& a, Communicator& comm) {
   // Every input is read before OUT is touched: a bad split or cloud leaves no half-made run folder.
   const BuildingSet train = load_building_set(config.data, config.data.train_split, "data.train_split of " + a.config.string(), run.quiet);
   const BuildingSet val = load_building_set(config.data, config.data.val_split, "data.val_split of " + a.config.string(), run.quiet);
+  // Named also with -q: quiet silences progress, not what was left out (exit 1 at the end).
+  if (writer)
+    for (const BuildingSet* set : {&train, &val})
+      for (const std::string& s : set->skipped) std::fprintf(stderr, "lc2wf-train: skipped building %s (listed in %s)\n", s.c_str(), set->split.c_str());
+  const bool partly = !train.skipped.empty() || !val.skipped.empty();
   fs::create_directories(run.out);
   if (writer) write_text_atomically(run.out / "config.json", config.to_json().dump(2) + "\n");
   RunLog log(run.out / "log.jsonl");
@@ -136,7 +143,10 @@ int train(const Args& a, Communicator& comm) {
       std::fprintf(stderr, "Weights: %s (junction.safetensors, edge.safetensors, model card README.md); run lc2wf-infer --weights %s ...\n",
                    run.out.string().c_str(), run.out.string().c_str());
   }
-  return kExitDone;
+  if (partly && writer)
+    std::fprintf(stderr, "lc2wf-train: %zu building(s) skipped (named above): trained and validated without them\n",
+                 train.skipped.size() + val.skipped.size());
+  return partly ? kExitPartly : kExitDone;
 }
 
 // The resolved, checked config with the command line's overrides, as train() would use it.

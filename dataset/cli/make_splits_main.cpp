@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/util/cli.h"
 #include "dataset/geometry/building.h"
@@ -26,7 +27,8 @@ One thread.
   --test N            test buildings (default 757)
   --val N             validation buildings (default 200)
   -q, --quiet         do not print the counts
-A folder without any .polyshape file is a data error (exit 3).
+An entry named *.polyshape that is not a regular file (a folder, a FIFO) is left out of the splits and
+named on stderr, also with -q (exit 1). A folder without any .polyshape file is a data error (exit 3).
 )";
 
 struct Args {
@@ -59,7 +61,18 @@ Args parse_args(int argc, char** argv) {
 }
 
 int run(const Args& a) {
-  const auto names = list_polyshape_names(a.meshes);
+  std::vector<std::string> names;
+  int skipped = 0;
+  for (const std::string& name : list_polyshape_names(a.meshes)) {
+    const fs::path mesh = a.meshes / (name + ".polyshape");
+    std::error_code ec;
+    if (fs::is_regular_file(mesh, ec)) {
+      names.push_back(name);
+    } else {  // no building's mesh: lc2wf-dataset could not read it either
+      std::fprintf(stderr, "lc2wf-make-splits: skipped %s: not a regular file\n", mesh.string().c_str());
+      ++skipped;
+    }
+  }
   if (names.empty()) throw std::runtime_error(a.meshes.string() + ": no .polyshape file: nothing to split");
   // Checked here to name the folder and the flags (make_splits can only name its own fields).
   if (names.size() < static_cast<size_t>(a.rule.test_count) + static_cast<size_t>(a.rule.val_count))
@@ -73,7 +86,7 @@ int run(const Args& a) {
   if (!a.quiet)
     std::printf("%zu buildings: %zu train, %zu val, %zu test -> %s\n", names.size(), s.train.size(), s.val.size(), s.test.size(),
               a.out.string().c_str());
-  return kExitDone;
+  return skipped > 0 ? kExitPartly : kExitDone;
 }
 
 }  // namespace

@@ -37,6 +37,24 @@ TEST(MakeSplitsCli, TooFewBuildingsNameTheFolderAndTheFlags) {
   fs::remove_all(dir);
 }
 
+// A folder named like a mesh is left out of the splits and named on stderr, also with -q (it was split as a
+// building that lc2wf-dataset could never read).
+TEST(MakeSplitsCli, AnEntryThatIsNotAFileIsSkippedAndNamed) {
+  const fs::path dir = test::scratch_dir("make_splits_skip");
+  fs::create_directories(dir / "meshes" / "odd.polyshape");
+  for (const char* name : {"a", "b", "c"}) std::ofstream(dir / "meshes" / (std::string(name) + ".polyshape")) << "0 0 0\n";
+  const auto r = testing::run_argv({LC2WF_MAKE_SPLITS_BIN, "--meshes", (dir / "meshes").string(), "-o", (dir / "out").string(),
+                                    "--test", "1", "--val", "1", "-q"});
+  EXPECT_EQ(r.code, kExitPartly) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("lc2wf-make-splits: skipped " + (dir / "meshes" / "odd.polyshape").string() + ": not a regular file"));
+  std::ifstream train(dir / "out" / "train.txt"), val(dir / "out" / "val.txt"), test(dir / "out" / "test.txt");
+  const std::string all = std::string(std::istreambuf_iterator<char>(train), {}) + std::string(std::istreambuf_iterator<char>(val), {}) +
+                          std::string(std::istreambuf_iterator<char>(test), {});
+  EXPECT_EQ(all.size(), 6u) << all;  // a, b and c, one per line
+  EXPECT_THAT(all, Not(HasSubstr("odd")));
+  fs::remove_all(dir);
+}
+
 // Regression: run as root, `lc2wf-cloud-convert CLOUD -o /dev/null` renamed its temporary file over the
 // device, leaving a regular file in its place for every program on the machine (a FIFO stands in here).
 TEST(CloudConvertCli, AnOutputThatIsAFifoIsRefusedAndKept) {

@@ -1,4 +1,4 @@
-// lc2wf-eval --weights compares the predictions with mesh ground truth in one frame: a cloud whose metric
+// lc2wf-eval --weights against mesh ground truth. It compares the predictions with the GT in one frame: a cloud whose metric
 // frame is moved (its origin moved back the same amount, so its raw coordinates stay) scores what
 // lc2wf-infer --units raw + lc2wf-eval --pred --units raw score for it. It scored 0 before: the predictions
 // were taken to be in the GT mesh's frame (origin at its bounding-box centre).
@@ -90,6 +90,29 @@ TEST(EvalFrame, ACloudMovedWithItsOriginScoresAlikeThroughWeightsAndPred) {
   r = run(eval + " --pred " + metre_pred.string() + " --gt " + gt.string() + " --units metres -o " + as_metres.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_GT(std::abs(metrics_of(as_metres)["per_building"][0]["wed"]["total_dist"].get<double>() - wed), 1.0);
+}
+
+// A cloud that cannot be read is named on stderr (also with -q), scored as an empty wireframe among the
+// others, and the run exits 1 (it stopped before scoring anything).
+TEST(EvalFrame, AnUnreadableCloudIsNamedAndScoredEmpty) {
+  testing::ScratchDir dir("eval_bad_cloud");
+  const fs::path gt = dir.path() / "gt", data = dir.path() / "data", weights = dir.path() / "weights", out = dir.path() / "out";
+  fs::create_directories(gt), fs::create_directories(data);
+  test::write_tiny_weights(weights, 16, /*connect_pairs=*/true);
+  const Building b = make_random_building(11, "good");
+  write_raw_polyshape(gt / "good.polyshape", b);
+  write_raw_polyshape(gt / "junk.polyshape", b);
+  write_line_cloud(data / "good.lcloud", make_synthetic_line_cloud(b, 5));
+  std::ofstream(data / "junk.lcloud") << "not a line cloud";
+  const testing::CliResult r = run(std::string(LC2WF_EVAL_BIN) + " --weights " + weights.string() + " --data " + data.string() +
+                                   " --gt " + gt.string() + " -o " + out.string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("skipping " + (data / "junk.lcloud").string() + ": ")) << r.err;
+  EXPECT_THAT(r.err, ::testing::HasSubstr("have no prediction in " + (out / "predictions").string() + " (scored as empty): 'junk'"))
+      << r.err;
+  const nlohmann::json m = metrics_of(out);
+  EXPECT_EQ(m["buildings"], 2);
+  EXPECT_EQ(m["missing_predictions"], nlohmann::json::array({"junk"}));
 }
 
 }  // namespace

@@ -175,8 +175,8 @@ TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
   const ReconstructResult r = reconstruct(o);
   EXPECT_EQ(r.exit_code, 1);
   ASSERT_FALSE(r.warnings.empty());
-  EXPECT_EQ(r.warnings[0], "unreadable image skipped: view_005b.png");
-  EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png", "view_005c.png (not a regular file)"}));
+  EXPECT_EQ(r.warnings[0], "unreadable image skipped: view_005b.png (not a decodable image)");
+  EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png (not a decodable image)", "view_005c.png (not a regular file)"}));
 }
 
 TEST_F(Reconstruct, AScaleThatLeavesTheCoordinateLimitIsAFrameError) {

@@ -138,6 +138,23 @@ TEST_P(CliContract, MissingInputIsADataErrorAndWritesNothing) {
   fs::remove_all(dir);
 }
 
+// --help says what a flag does, never what it scored: no metric with a number ("sAP +0.9", "vAP 93.1"), no
+// signed gain, no percentage and no measured speed-up or time (those belong in the READMEs, with their setting).
+TEST_P(CliContract, HelpStatesNoMeasuredScore) {
+  const CliResult r = run_argv({path(), "--help"});
+  ASSERT_EQ(r.code, 0);
+  const std::vector<std::pair<std::string, std::regex>> rules = {
+      {"a metric with a number", std::regex(R"(\b(vAP|sAP|mAP|AP|WED|nWED|vRecall|sRecall|recall|precision|accuracy|ACO|CF1|EF1|F1)\s*[:=]?\s*[+-]?[0-9])",
+                                            std::regex::icase)},
+      {"a signed gain", std::regex(R"((^|[\s(])[+][0-9])")},
+      {"a percentage", std::regex(R"([0-9]\s?%)")},
+      {"a measured speed", std::regex(R"([0-9.]+\s?x\s+(faster|slower)|[0-9.]+\s?m?s per (building|cloud|image|step))")},
+  };
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);)
+    for (const auto& [what, rule] : rules) EXPECT_FALSE(std::regex_search(line, rule)) << name() << " --help states " << what << ": " << line;
+}
+
 // -j takes a whole count; a command that runs on one thread refuses -j rather than ignoring it.
 TEST_P(CliContract, ThreadsFlagIsACountOrRefused) {
   const CliResult r = run_argv({path(), "-j", "2x"});

@@ -54,10 +54,12 @@ TEST(DatasetCli, FailedBuildingGivesExitCodeOneAndASummary) {
   fs::remove_all(dir);
   fs::create_directories(dir / "meshes");
   std::ofstream(dir / "meshes" / "bad.polyshape") << "# Number of verts: 2\n0,0,0\n";
-  const CliResult r = run(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " -q");
+  const CliResult r = lc2wf::testing::run_cli(kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() + " -q");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_THAT(r.out, HasSubstr("\"failed\"")) << r.out;
   EXPECT_TRUE(fs::exists(dir / "out" / "status" / "bad.json"));
+  // Named on stderr with its reason, also with -q (it was only in the summary).
+  EXPECT_THAT(r.err, HasSubstr("lc2wf-dataset: skipped bad: load: " + (dir / "meshes" / "bad.polyshape").string())) << r.err;
 }
 
 // Regression: one hostile mesh aborted the whole run (and every re-run): a name that is not UTF-8 made the
@@ -129,6 +131,20 @@ TEST(ColmapPosesCli, HelpAndMissingInputs) {
   r = run(kColmap + " " + dir.string() + " --intrinsics 600,600,319.5,239.5");
   EXPECT_EQ(r.code, 3);
   EXPECT_THAT(r.out, HasSubstr("fewer than 3 images"));
+}
+
+// An entry under an image's name that is not a file is left out and named on stderr, also with -q (it was
+// dropped silently); here COLMAP (/bin/false) then fails, so the run ends as a data error.
+TEST(ColmapPosesCli, ASkippedImageIsNamed) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_colmap_skip_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "d.png");
+  for (const char* name : {"a.png", "b.png", "c.png"}) std::ofstream(dir / name) << "an image";
+  const CliResult r = lc2wf::testing::run_cli(kColmap + " " + dir.string() + " --intrinsics 600,600,319.5,239.5 --colmap /bin/false -q --workspace " + (dir / "ws").string() + " -o " +
+                                              (dir / "cams.json").string());
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("lc2wf-colmap-poses: skipped " + (dir / "d.png").string() + ": not a regular file")) << r.err;
+  fs::remove_all(dir);
 }
 
 // Regression: --workspace DIR was cleared with remove_all, so naming the photo folder deleted the photos.

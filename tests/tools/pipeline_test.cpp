@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "core/util/version.h"
@@ -146,6 +147,48 @@ TEST(DatasetRun, ShardsResumesAndReportsFailures) {
   std::ifstream x(dir / "out" / "clouds" / "a_rect.lcloud", std::ios::binary), y(o.out / "clouds" / "a_rect.lcloud", std::ios::binary);
   const std::string bx((std::istreambuf_iterator<char>(x)), {}), by((std::istreambuf_iterator<char>(y)), {});
   EXPECT_EQ(bx, by);
+}
+
+std::set<std::string> entries(const fs::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());
+  return names;
+}
+
+// Only what the user asked for lands in OUT: no renderer scratch (Blender's job file and log were left in
+// views/_batch_0) and no empty views/ folder without --keep-views. Blender runs when it is installed.
+TEST(DatasetRun, LeavesNoScratchInTheOutputFolder) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_layout_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  write_polyshape(dir / "meshes" / "a_rect.polyshape", make_rect_mesh(RectBuildingSpec{}));
+  write_polyshape(dir / "meshes" / "b_l.polyshape", make_l_mesh(LBuildingSpec{}));
+  const bool blender = std::system("command -v blender > /dev/null 2>&1") == 0;
+  for (const RendererKind renderer : {RendererKind::Raster, RendererKind::Blender}) {
+    if (renderer == RendererKind::Blender && !blender) continue;
+    for (const bool keep : {false, true}) {
+      DatasetRunOptions o;
+      o.meshes = dir / "meshes";
+      o.out = dir / ((renderer == RendererKind::Raster ? "raster" : "blender") + std::string(keep ? "_kept" : ""));
+      o.renderer = renderer;
+      o.keep_views = keep;
+      o.cameras.views = 8;
+      o.cameras.width = 320;
+      o.cameras.height = 240;
+      o.progress = false;
+      const auto summary = run_dataset(o);
+      EXPECT_EQ(summary["done"], 2) << o.out << ": " << summary["failed"];
+      std::set<std::string> expected = {"clouds", "status", "summary.json"};
+      if (keep) expected.insert("views");
+      EXPECT_EQ(entries(o.out), expected) << o.out;
+      if (keep) {
+        EXPECT_EQ(entries(o.out / "views"), (std::set<std::string>{"a_rect", "b_l"})) << o.out;
+        EXPECT_TRUE(fs::exists(o.out / "views" / "a_rect" / "cameras.json")) << o.out;
+      }
+    }
+  }
+  fs::remove_all(dir);
+  if (!blender) GTEST_SKIP() << "the raster renderer checked; blender not found on PATH";
 }
 
 TEST(DatasetRun, ShardNamesPartitionTheList) {

@@ -1,5 +1,5 @@
-// Loading a split's buildings: a name in the split without a cloud, or a FIFO under a building's name, is
-// reported through the file the user has to fix; what training reads is kept, the 2D observations are not.
+// Loading a split's buildings: a name in the split without a cloud is reported through the split file, a cloud
+// that cannot be read is skipped naming the file; what training reads is kept, the 2D observations are not.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -39,9 +39,11 @@ TEST(BuildingSet, ProblemsNameTheSplitOrTheCloudFile) {
   std::ofstream(dir / "split.txt") << "typo\n";
   EXPECT_EQ(error_of(data, dir / "split.txt"),
             (dir / "split.txt").string() + ": lists 'typo', but " + data.dir + ": no line-cloud file for building 'typo'");
-  // A FIFO under the name was skipped, so the building looked missing; now its reader refuses it by name.
+  // A FIFO under the name was skipped, so the building looked missing; now its reader refuses it by name (and
+  // with no other building the split has nothing to train on).
   ASSERT_EQ(::mkfifo((dir / "clouds" / "typo.lcloud").c_str(), 0600), 0);
-  EXPECT_EQ(error_of(data, dir / "split.txt"), (dir / "clouds" / "typo.lcloud").string() + ": is not a regular file (a FIFO, socket or device)");
+  EXPECT_EQ(error_of(data, dir / "split.txt"), (dir / "split.txt").string() + ": none of its 1 buildings could be read; the first: typo: " +
+                                                   (dir / "clouds" / "typo.lcloud").string() + ": is not a regular file (a FIFO, socket or device)");
   fs::remove_all(dir);
 }
 
@@ -72,6 +74,28 @@ TEST(BuildingSet, KeepsWhatTrainingReadsAndDropsTheObservations) {
   EXPECT_EQ(kept.wireframe.edges.size(), read.wireframe.edges.size());
   EXPECT_EQ(kept.units.raw_per_metre, read.units.raw_per_metre);
   validate_line_cloud(kept, "kept");  // an empty support list is a valid cloud
+  fs::remove_all(dir);
+}
+
+// A bad cloud among good ones is skipped with the reader's message (lc2wf-train names it and exits 1).
+TEST(BuildingSet, SkipsAnUnreadableCloudNamingIt) {
+  const fs::path dir = fs::temp_directory_path() / ("lc2wf_building_set_skip_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "clouds");
+  write_line_cloud(dir / "clouds" / "rect.lcloud", make_synthetic_line_cloud(make_rect_building("rect", RectBuildingSpec{}), 7));
+  std::ofstream(dir / "clouds" / "broken.lcloud") << "not a cloud";
+  LineCloud empty = make_synthetic_line_cloud(make_rect_building("empty", RectBuildingSpec{}), 7);
+  empty.segments.clear(), empty.labels.clear(), empty.support.clear();
+  write_line_cloud(dir / "clouds" / "empty.lcloud", empty);
+  std::ofstream(dir / "split.txt") << "broken\nrect\nempty\n";
+  DataConfig data;
+  data.dir = (dir / "clouds").string();
+  const BuildingSet set = load_building_set(data, dir / "split.txt", "data.train_split", /*quiet=*/true);
+  ASSERT_EQ(set.clouds.size(), 1u);
+  EXPECT_EQ(set.clouds[0].name, "rect");
+  ASSERT_EQ(set.skipped.size(), 2u);
+  EXPECT_EQ(set.skipped[0].rfind("broken: " + (dir / "clouds" / "broken.lcloud").string(), 0), 0u) << set.skipped[0];
+  EXPECT_EQ(set.skipped[1], "empty: " + (dir / "clouds" / "empty.lcloud").string() + ": line cloud has no segments (cannot be trained on)");
   fs::remove_all(dir);
 }
 

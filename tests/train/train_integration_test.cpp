@@ -406,5 +406,25 @@ TEST_F(TrainIntegration, ASplitSmallerThanTheBatchNamesTheCountAndTheKey) {
       << r.err;
 }
 
+// A bad cloud in the data folder is skipped and named on stderr, also with -q; training runs on the rest and
+// the exit code says the run was partial.
+TEST_F(TrainIntegration, ABadCloudIsSkippedNamedAndExitsOne) {
+  fs::create_directories(dir_ / "with_bad");
+  for (const char* name : {"rect.lcloud", "ell.lcloud"}) fs::copy_file(dir_ / "clouds" / name, dir_ / "with_bad" / name);
+  std::ofstream(dir_ / "with_bad" / "junk.lcloud") << "not a line cloud";
+  std::ofstream(dir_ / "train_bad.txt") << "rect\njunk\nell\n";
+  nlohmann::json bad = config_;
+  bad["data"]["dir"] = (dir_ / "with_bad").string();
+  bad["data"]["train_split"] = (dir_ / "train_bad.txt").string();
+  bad["junction"]["epochs"] = 1;
+  bad["edge"]["epochs"] = 1;
+  std::ofstream(dir_ / "bad_cloud.json") << bad.dump();
+  const testing::CliResult r =
+      testing::run_cli(std::string(LC2WF_TRAIN_BIN) + " " + quote(dir_ / "bad_cloud.json") + " --quiet --out " + quote(dir_ / "bad_cloud"));
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("lc2wf-train: skipped building junk: " + (dir_ / "with_bad" / "junk.lcloud").string())) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "bad_cloud" / "edge.safetensors"));
+}
+
 }  // namespace
 }  // namespace lc2wf

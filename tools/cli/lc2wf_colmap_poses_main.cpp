@@ -45,14 +45,16 @@ options:
   --overlap N                 sequential matcher: next views matched per view (default 10)
   --max-features N            SIFT features per image (default 4000)
   --first-octave N            SIFT's first octave: -1 (default) the image doubled first, 0 at its own size
-                              (4x faster extraction, fewer small features: enough for 20 overlapping views)
+                              (fewer, larger features found in less time)
   --init-min-inliers N        mapper: verified matches of the initial pair (default 100)
   --abs-pose-min-inliers N    mapper: 2D-3D inliers to register a view (default 30)
   --outlier-factor F          alignment: leave views whose centre error exceeds F x the median out of
                               the similarity fit (e.g. 3; default 0 = fit all registered views)
   -j, --threads N             threads of every COLMAP step (default: all cores)
   -q, --quiet                 no summary line on stderr
-Exit code 3: fewer than 3 images, COLMAP failed (its log is named), or an I/O error.
+Exit code 1: done, but some images were skipped (an entry named *.png/*.jpg that is not a regular file) or
+not registered; each is named on stderr, also with -q. 3: fewer than 3 images, COLMAP failed (its log is
+named), or an I/O error.
 )";
 
 struct Args {
@@ -129,12 +131,15 @@ Json comparison_report(const lc2wf::PoseComparison& pc) {
 }
 
 int run(const Args& a) {
-  std::vector<fs::path> images;
+  std::vector<fs::path> images, skipped;
   for (const auto& e : fs::directory_iterator(a.views)) {
     const std::string ext = e.path().extension().string();
-    if (e.is_regular_file() && (ext == ".png" || ext == ".jpg" || ext == ".jpeg")) images.push_back(e.path());
+    if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") (e.is_regular_file() ? images : skipped).push_back(e.path());
   }
   std::sort(images.begin(), images.end());
+  std::sort(skipped.begin(), skipped.end());
+  // A folder or FIFO under an image's name is left out, and said so (also with -q).
+  for (const fs::path& p : skipped) std::fprintf(stderr, "lc2wf-colmap-poses: skipped %s: not a regular file\n", p.string().c_str());
   if (images.size() < 3) throw std::runtime_error(a.views.string() + ": fewer than 3 images");
   std::vector<lc2wf::Camera> reference;
   const fs::path cameras = a.views / "cameras.json";
@@ -180,7 +185,14 @@ int run(const Args& a) {
   if (!a.quiet)
     std::fprintf(stderr, "lc2wf-colmap-poses: %d of %zu images registered -> %s%s\n", report["registered"].get<int>(), images.size(),
                  a.out.string().c_str(), workspace.removed_at_exit() ? "" : (" (workspace " + workspace.root().string() + ")").c_str());
-  return lc2wf::kExitDone;
+  int unregistered = 0;
+  for (size_t i = 0; i < poses.size() && i < images.size(); ++i)
+    if (!poses[i]) {
+      std::fprintf(stderr, "lc2wf-colmap-poses: not registered: %s (no pose found; null in %s)\n", images[i].string().c_str(),
+                   a.out.string().c_str());
+      ++unregistered;
+    }
+  return skipped.empty() && unregistered == 0 ? lc2wf::kExitDone : lc2wf::kExitPartly;
 }
 
 }  // namespace

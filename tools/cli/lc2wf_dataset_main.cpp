@@ -31,7 +31,7 @@ options:
   --blur SIGMA                rasteriser optical blur in pixels (default 1.0; 0 = none)
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
-  --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased, ~3x slower)
+  --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased)
   --textures paper|sfm        paper-like textures (default) or non-repeating noise for structure
                               from motion (lc2wf-colmap-poses on the kept views)
   --blender PATH              Blender executable (default: blender on PATH)
@@ -47,8 +47,9 @@ options:
   --neighbour-max-angle DEG   widest triangulation angle of a neighbour at the scene centre (default 60)
   --sigma-p PX                positional regulariser of the scoring, pixels (default 2.5)
   -q, --quiet                 no progress bar
-The summary (JSON) goes to stdout. Exit code 1: some buildings failed (each with its reason in the summary
-and in OUT/status/); 3: no building to process (an empty mesh folder or shard) or a fatal error.
+The summary (JSON) goes to stdout. Exit code 1: some buildings failed (each named with its reason on stderr,
+also with -q, and in the summary and OUT/status/); 3: no building to process (an empty mesh folder or shard)
+or a fatal error.
 )";
 
 using lc2wf::UsageError;
@@ -163,6 +164,9 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
 int run(const lc2wf::DatasetRunOptions& o) {
   const auto summary = lc2wf::run_dataset(o);
   std::cout << lc2wf::json_text(summary, 2) << std::endl;  // names need not be UTF-8
+  // Every building left out, with its reason: -q silences the progress, not this.
+  for (const auto& f : summary["failed"])
+    std::fprintf(stderr, "lc2wf-dataset: skipped %s: %s\n", f["name"].get<std::string>().c_str(), f["error"].get<std::string>().c_str());
   return summary["failed"].empty() ? lc2wf::kExitDone : lc2wf::kExitPartly;
 }
 

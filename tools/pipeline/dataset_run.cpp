@@ -17,6 +17,7 @@
 #include "core/util/median.h"
 #include "core/util/progress.h"
 #include "core/util/version_json.h"
+#include "core/util/workspace.h"
 #include "dataset/formats/read_file.h"
 #include "dataset/formats/camera_json.h"
 #include "dataset/formats/errors.h"
@@ -146,6 +147,7 @@ struct Job {
   Building building;
   std::vector<Camera> cameras;
   std::vector<RenderedView> views;
+  fs::path render_dir;  // Blender's output folder of this building
   Json status;
   bool failed = false;
 };
@@ -205,7 +207,7 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
       fail(job, e.what());
     }
   }
-  if (o.renderer == RendererKind::Blender && !o.keep_views) fs::remove_all(o.out / "views" / job.name);
+  if (!job.render_dir.empty() && !o.keep_views) fs::remove_all(job.render_dir);
   job.views.clear();
   try {
     write_file_atomic(status_path(o.out, job.name), json_text(job.status, 1));
@@ -355,6 +357,8 @@ Json run_dataset(const DatasetRunOptions& o) {
         report(job);
       }
     } else {
+      // Blender's job file and log, and the renders unless kept: a private scratch folder, never inside OUT.
+      Workspace scratch({}, false);
       for (size_t first = 0; first < todo.size(); first += o.blender_batch) {
         const size_t last = std::min(todo.size(), first + o.blender_batch);
         std::vector<Job> jobs;
@@ -365,14 +369,15 @@ Json run_dataset(const DatasetRunOptions& o) {
         std::vector<size_t> index;
         for (size_t i = 0; i < jobs.size(); ++i) {
           if (jobs[i].failed) continue;
-          batch.push_back({&jobs[i].building, jobs[i].cameras, o.out / "views" / jobs[i].name, building_seed(jobs[i].name, o.seed)});
+          jobs[i].render_dir = o.keep_views ? o.out / "views" / jobs[i].name : scratch.root() / "renders" / jobs[i].name;
+          batch.push_back({&jobs[i].building, jobs[i].cameras, jobs[i].render_dir, building_seed(jobs[i].name, o.seed)});
           index.push_back(i);
         }
         const auto t = Clock::now();
         BlenderOptions bo = o.blender;
         if (bo.threads == 0 && o.threads > 0) bo.threads = o.threads;
         bo.gt_views = o.keep_views;  // the GT projection is only read by people looking at kept views
-        const auto results = render_with_blender(batch, bo, o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
+        const auto results = render_with_blender(batch, bo, scratch.root());
         const double per_building = seconds_since(t) / std::max<size_t>(1, batch.size());
         for (size_t k = 0; k < index.size(); ++k) {
           Job& job = jobs[index[k]];
@@ -388,8 +393,8 @@ Json run_dataset(const DatasetRunOptions& o) {
           report(jobs[i]);
         }
       }
-      // The batch folder holds job.json and blender.log: kept when something failed, for the error messages.
-      if (!o.keep_views && failed == 0) fs::remove_all(o.out / "views" / ("_batch_" + std::to_string(o.shard_index)));
+      // job.json and blender.log: kept when something failed, for the error messages that name the log.
+      if (failed > 0) scratch.keep();
     }
   }
   std::vector<Json> statuses;
