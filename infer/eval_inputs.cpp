@@ -1,7 +1,13 @@
 #include "infer/eval_inputs.h"
 
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <set>
+#include <tuple>
 
+#include "dataset/formats/building_sources.h"
 #include "dataset/geometry/building.h"
 #include "dataset/formats/cloud_input.h"
 #include "dataset/formats/errors.h"
@@ -19,24 +25,43 @@ bool present(const fs::path& p) {
   return fs::exists(fs::symlink_status(p, ec));
 }
 
+// The buildings of a mesh folder (polyshapes, city models), listed once per folder, LoD and modification
+// time: each city-model file is then parsed once for all its buildings, not once per building.
+const BuildingCatalog& mesh_catalog(const GroundTruthSource& source) {
+  static std::mutex mu;
+  static std::map<std::tuple<std::string, std::string, fs::file_time_type>, std::unique_ptr<BuildingCatalog>> catalogs;
+  std::lock_guard<std::mutex> lock(mu);
+  std::error_code ec;
+  const fs::file_time_type changed = fs::last_write_time(source.dir, ec);
+  auto& c = catalogs[{source.dir.string(), source.lod, ec ? fs::file_time_type{} : changed}];
+  if (!c) {
+    BuildingSourceOptions o;
+    o.lod = source.lod;
+    c = std::make_unique<BuildingCatalog>(source.dir, o);
+    for (const SourceFileListing& f : c->files())
+      if (!f.error.empty()) std::fprintf(stderr, "lc2wf-eval: skipped ground-truth file %s\n", f.error.c_str());
+  }
+  return *c;
+}
+
 }  // namespace
 
 std::optional<fs::path> find_ground_truth(const GroundTruthSource& source, const std::string& name) {
   if (source.kind == GroundTruthSource::Kind::kMeshDir) {
     const fs::path obj = source.dir / (name + ".obj");
-    const fs::path poly = source.dir / (name + ".polyshape");
-    const bool has_obj = present(obj), has_poly = present(poly);
-    if (has_obj && has_poly)
-      throw DataError(source.dir.string(), "both " + obj.filename().string() + " and " + poly.filename().string() +
-                                               " exist; keep one ground truth per building");
+    const BuildingEntry* model = mesh_catalog(source).find(name);  // .polyshape or a city model
+    const bool has_obj = !fs::is_regular_file(source.dir) && present(obj);
+    if (has_obj && model)
+      throw DataError(source.dir.string(), "both " + obj.filename().string() + " and " + model->file.filename().string() +
+                                               " hold '" + name + "'; keep one ground truth per building");
     if (has_obj) return obj;
-    if (has_poly) return poly;
+    if (model) return model->file;
     return std::nullopt;
   }
   return find_cloud_file_if_any(source.dir, name);
 }
 
-GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& path) {
+GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& path, const std::string& name) {
   GroundTruth gt;
   gt.path = path;
   if (source.kind == GroundTruthSource::Kind::kLineCloudDir) {
@@ -46,8 +71,9 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
     gt.wireframe = std::move(cloud.wireframe);
     gt.units = cloud.units;
     gt.cloud_segments = std::move(cloud.segments);
-  } else if (path.extension() == ".polyshape") {
-    Building b = load_roof_image_building(path);
+  } else if (path.extension() == ".polyshape" || is_city_model_file_name(path)) {
+    if (is_city_model_file_name(path) && name.empty()) throw DataError(path.string(), "a city model needs the building's name");
+    Building b = is_city_model_file_name(path) ? mesh_catalog(source).load(name) : load_roof_image_building(path);
     gt.wireframe = std::move(b.wireframe);
     gt.units = b.units;
     gt.mesh = std::move(b.mesh);
@@ -70,12 +96,17 @@ Vec3 cloud_to_ground_truth_frame(const Vec3& p, const UnitTransform& cloud_units
 
 std::vector<std::string> list_ground_truth_names(const GroundTruthSource& source) {
   std::set<std::string> names;
+  if (source.kind == GroundTruthSource::Kind::kMeshDir) {
+    const auto models = mesh_catalog(source).names();
+    names.insert(models.begin(), models.end());
+  }
+  if (fs::is_regular_file(source.dir)) return {names.begin(), names.end()};
   for (const auto& entry : fs::directory_iterator(source.dir)) {
     const fs::path& p = entry.path();
     // Mesh folders: every *.obj / *.polyshape entry (a FIFO among them fails by name); line-cloud folders
     // may hold other things (plots, LIMAP runs), so only their regular files are buildings.
     if (source.kind == GroundTruthSource::Kind::kLineCloudDir ? entry.is_regular_file()
-                                                              : p.extension() == ".obj" || p.extension() == ".polyshape")
+                                                              : p.extension() == ".obj")
       names.insert(p.stem().string());
   }
   return {names.begin(), names.end()};

@@ -22,6 +22,7 @@ struct GroundTruthSource {
   CoordinateUnits obj_units = CoordinateUnits::kMetres;  // units of GT `.obj` files
   bool obj_y_up = false;        // GT OBJs exported Y-up (Roof-Image res_obj, LC2WF house/): swap to Z-up
   double raw_per_metre = kRawUnitsPerMetre;  // raw units per metre of GT .obj files and release JSON
+  std::string lod;              // city-model GT: the LoD 2.x to read (empty: each building's highest)
 };
 
 struct GroundTruth {
@@ -41,7 +42,9 @@ std::optional<std::filesystem::path> find_ground_truth(const GroundTruthSource& 
 // Loads a GT file found by find_ground_truth. Polyshapes go through the dataset layer's building import
 // (metres, footprint recentred); line clouds (ours, or the release's LineCloud JSON with `objGTJunc3D` /
 // `line_idx`) carry their own wireframe and transform. Throws DataError.
-GroundTruth load_ground_truth(const GroundTruthSource& source, const std::filesystem::path& path);
+// A city-model file holds many buildings: pass the building's name with it. A building the LoD2 clean-up
+// rejects throws Lod2Skipped (a BuildingSkipped).
+GroundTruth load_ground_truth(const GroundTruthSource& source, const std::filesystem::path& path, const std::string& name = "");
 
 // A point in the metric frame of a line cloud with `cloud_units` (a prediction made on it, or its segments), in
 // the GT's metric frame: each frame maps to the building's raw source coordinates, the one frame they share

@@ -13,6 +13,7 @@
 #include "core/util/input_file.h"
 #include "core/util/progress.h"
 #include "infer/post_process_flags.h"
+#include "dataset/formats/building_sources.h"  // is_city_model_file_name, normalise_lod2, BuildingSkipped
 #include "infer/eval_inputs.h"
 #include "infer/eval_report_io.h"
 #include "infer/building3d_io.h"
@@ -80,7 +81,12 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
   --format F      with --weights: format of the --data clouds: auto (default), lc2wf, release,
                   line3dpp (Line3D++ .txt), limap (finaltracks/ folder) or obj (line OBJ); clouds
                   without ground truth (Line3D++, LIMAP, OBJ) need --gt
-  --gt DIR        ground truth <name>.obj ('v' + 'f'/'l') or <name>.polyshape (Roof-Image mesh)
+  --gt DIR        ground truth <name>.obj ('v' + 'f'/'l') or <name>.polyshape (Roof-Image mesh), or real
+                  LoD2 city models (CityJSON, CityJSONSeq, CityGML; a folder or one file), buildings named
+                  <file stem>__<building id> (dataset/README.md); a building the LoD2 clean-up rejects is
+                  named on stderr and left out (exit 1)
+  --lod L         city-model ground truth: the LoD 2.x to read (2.2, 2.1, or 2 = 2.0; default: each
+                  building's highest)
   --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth;
                   with --weights and --gt, only the clouds to run on
   --split FILE    building names, one per line (default: every ground-truth building in the folder)
@@ -116,6 +122,7 @@ struct Args {
   std::string format = "auto";
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
+  std::string lod;  // --lod
   ApTieRule ties = ApTieRule::kListOrder;
   std::string method;
   int threads = 0;                     // -j, with --weights
@@ -142,6 +149,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "-j" || f == "--threads") a.threads = threads_flag(f, value(i));
     else if (f == "--method") a.method = value(i);
     else if (f == "--gt-y-up") a.gt_y_up = true;
+    else if (f == "--lod") a.lod = value(i);
     else if (f == "--strict-wed") a.strict_wed = true;
     else if (f == "-q" || f == "--quiet") a.quiet = true;
     else if (f == "--html") a.html = true;
@@ -192,7 +200,9 @@ Args parse_args(int argc, char** argv) {
   }
   // Inputs that are not there are data errors (exit 3), found before anything is written.
   for (const fs::path& d : {a.weights.empty() ? a.pred : a.weights, a.gt.empty() ? a.data : a.gt, a.data.empty() ? a.gt : a.data})
-    if (!fs::is_directory(d)) throw std::runtime_error("'" + d.string() + "' is not a folder");
+    if (!fs::is_directory(d) && !(d == a.gt && is_city_model_file_name(d) && fs::is_regular_file(d)))  // --gt may be one city-model file
+      throw std::runtime_error("'" + d.string() + "' is not a folder");
+  if (!a.lod.empty() && normalise_lod2(a.lod).empty()) throw UsageError("--lod must be a LoD 2.x such as 2.2, 2.0 or 2, got '" + a.lod + "'");
   if (!a.split.empty() && !fs::is_regular_file(a.split))
     throw std::runtime_error("split file '" + a.split.string() + "' does not exist");
   if (!a.weights.empty()) a.pred = a.out / "predictions";
@@ -216,6 +226,7 @@ int run(const Args& a) {
   source.dir = a.gt.empty() ? a.data : a.gt;
   source.obj_units = a.units;
   source.obj_y_up = a.gt_y_up;
+  source.lod = a.lod;
 
   const std::vector<std::string> names = a.split.empty() ? list_ground_truth_names(source) : read_name_list(a.split);
   if (names.empty())
@@ -272,6 +283,7 @@ int run(const Args& a) {
   if (a.html) html = std::make_unique<HtmlReport>(HtmlReportOptions{default_three_js_dir()});
   std::unique_ptr<Progress> progress;
   if (!a.quiet) progress = std::make_unique<Progress>("evaluating", static_cast<int64_t>(names.size()));
+  std::vector<std::string> evaluated, skipped_gt;  // ground truth loaded / rejected by the LoD2 clean-up
   for (const std::string& name : names) {
     const auto gt_path = find_ground_truth(source, name);
     if (!gt_path) {
@@ -282,7 +294,17 @@ int run(const Args& a) {
       throw std::runtime_error("no ground truth for building '" + name + "'" + listed + ": no " + looked_for + " in " +
                                source.dir.string());
     }
-    const GroundTruth gt = load_ground_truth(source, *gt_path);
+    GroundTruth gt;
+    try {
+      gt = load_ground_truth(source, *gt_path, name);
+    } catch (const BuildingSkipped& e) {
+      // A city-model building the LoD2 clean-up rejects: left out, named, exit 1.
+      std::fprintf(stderr, "lc2wf-eval: skipped building without a usable ground truth: %s\n", e.what());
+      skipped_gt.push_back(name);
+      if (progress) progress->step();
+      continue;
+    }
+    evaluated.push_back(name);
     const fs::path pred_path = a.pred / (name + ".obj");
     const bool missing = !fs::exists(pred_path);
     ScoredWireframe pred =
@@ -309,7 +331,7 @@ int run(const Args& a) {
 
   const EvalReport report = evaluator.report();
   const Building3dReport b3d{summarize_building3d(building3d, {}, a.gt.empty() || clouds_beside_gt ? "line-cloud segment endpoints" : "GT corners"),
-                             names, building3d};
+                             evaluated, building3d};
   write_eval_outputs(a.out, report, a.method, &b3d, inference_summary ? &*inference_summary : nullptr, &faces);
   const auto missing = report.missing_predictions();
   if (!missing.empty()) {
@@ -323,7 +345,7 @@ int run(const Args& a) {
   if (html)
     std::fprintf(stderr, "lc2wf-eval: report %s\n",
                  write_html_report(a.out, *html, report, a.method, &b3d, a.html_compare, a.weights).string().c_str());
-  return missing.empty() ? kExitDone : kExitPartly;
+  return missing.empty() && skipped_gt.empty() ? kExitDone : kExitPartly;
 }
 
 }  // namespace

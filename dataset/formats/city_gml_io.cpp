@@ -20,7 +20,7 @@ class BuildingGeometry {
   BuildingGeometry(const XmlNode& building, const std::string& source) : source_(source) { index(building); }
 
   // Polygons of a geometry subtree (inline or by reference), reversed under OrientableSurface "-".
-  void collect(const XmlNode& node, SurfaceKind kind, int part, bool with_unnamed, std::vector<CityPolygon>& out) {
+  void collect(const XmlNode& node, CitySurface kind, int part, bool with_unnamed, std::vector<CityPolygon>& out) {
     std::unordered_set<const XmlNode*> visiting;
     walk(node, kind, part, false, with_unnamed, visiting, out);
   }
@@ -31,7 +31,7 @@ class BuildingGeometry {
     for (const XmlNode& c : n.children) index(c);
   }
 
-  void walk(const XmlNode& n, SurfaceKind kind, int part, bool reversed, bool with_unnamed,
+  void walk(const XmlNode& n, CitySurface kind, int part, bool reversed, bool with_unnamed,
             std::unordered_set<const XmlNode*>& visiting, std::vector<CityPolygon>& out) {
     if (n.name == "Polygon" || n.name == "Triangle" || n.name == "Rectangle") {
       const std::string* id = n.attribute("id");
@@ -169,12 +169,12 @@ CityBuilding building_of(const XmlNode& b, const std::string& doc_srs, const std
       for (const XmlNode& surface : c.children)
         for (const XmlNode& g : surface.children)
           if (g.name == "lod2MultiSurface" || g.name == "lod2Geometry")
-            geometry.collect(g, surface_kind_of(surface.name), static_cast<int>(part), true, polys);
+            geometry.collect(g, city_surface_of(surface.name), static_cast<int>(part), true, polys);
     }
     const bool semantic = polys.size() > before;
     for (const XmlNode& c : objects[part]->children)
       if (c.name == "lod2Solid" || c.name == "lod2MultiSurface")
-        geometry.collect(c, SurfaceKind::kUnknown, static_cast<int>(part), !semantic, polys);
+        geometry.collect(c, CitySurface::kUnknown, static_cast<int>(part), !semantic, polys);
   }
   if (!polys.empty()) out.lods.push_back({"2", std::move(polys)});
   return out;

@@ -86,7 +86,7 @@ struct GeometryReader {
   const std::vector<Vec3>& vertices;
   const Context& cx;
   const std::string& object_id;
-  std::vector<SurfaceKind> surface_kinds;  // per semantics.surfaces entry
+  std::vector<CitySurface> surface_kinds;  // per semantics.surfaces entry
   int part = 0;
   std::vector<CityPolygon>* out = nullptr;
   int labelled = 0;
@@ -117,7 +117,7 @@ struct GeometryReader {
       if (v < 0 || v >= static_cast<long long>(surface_kinds.size()))
         cx.fail("object '" + object_id + "': semantics value " + std::to_string(v) + " out of range");
       p.kind = surface_kinds[v];
-      labelled += p.kind != SurfaceKind::kUnknown;
+      labelled += p.kind != CitySurface::kUnknown;
     }
     out->push_back(std::move(p));
   }
@@ -163,8 +163,8 @@ void add_object_geometry(const Json& obj, const std::string& id, int part, const
       const Json& sem = g["semantics"];
       if (sem.contains("surfaces") && sem["surfaces"].is_array())
         for (const Json& s : sem["surfaces"])
-          r.surface_kinds.push_back(s.is_object() && s.contains("type") && s["type"].is_string() ? surface_kind_of(s["type"].get<std::string>())
-                                                                                                : SurfaceKind::kUnknown);
+          r.surface_kinds.push_back(s.is_object() && s.contains("type") && s["type"].is_string() ? city_surface_of(s["type"].get<std::string>())
+                                                                                                : CitySurface::kUnknown);
       if (sem.contains("values")) values = &sem["values"];
     }
     std::vector<CityPolygon> polys;

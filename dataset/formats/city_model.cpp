@@ -7,11 +7,11 @@
 
 namespace lc2wf {
 
-SurfaceKind surface_kind_of(const std::string& city_type) {
-  if (city_type.empty()) return SurfaceKind::kUnknown;
-  if (city_type == "RoofSurface") return SurfaceKind::kRoof;
-  if (city_type == "GroundSurface") return SurfaceKind::kGround;
-  return SurfaceKind::kWall;
+CitySurface city_surface_of(const std::string& city_type) {
+  if (city_type.empty()) return CitySurface::kUnknown;
+  if (city_type == "RoofSurface") return CitySurface::kRoof;
+  if (city_type == "GroundSurface") return CitySurface::kGround;
+  return CitySurface::kWall;
 }
 
 std::string normalise_lod2(const std::string& lod) {

@@ -12,16 +12,16 @@
 namespace lc2wf {
 
 // Semantic surface of a polygon; kUnknown when the file gives none (classified later by normal and height).
-enum class SurfaceKind : uint8_t { kUnknown, kRoof, kWall, kGround };
+enum class CitySurface : uint8_t { kUnknown, kRoof, kWall, kGround };
 
 // RoofSurface -> roof; GroundSurface -> ground; every other surface type (WallSurface, ClosureSurface,
 // OuterCeilingSurface, OuterFloorSurface, Window, Door, ...) -> wall; empty -> unknown.
-SurfaceKind surface_kind_of(const std::string& city_type);
+CitySurface city_surface_of(const std::string& city_type);
 
 struct CityPolygon {
   std::vector<Vec3> exterior;                 // as written (a closing repeat of the first vertex is allowed)
   std::vector<std::vector<Vec3>> interiors;   // inner rings (holes)
-  SurfaceKind kind = SurfaceKind::kUnknown;
+  CitySurface kind = CitySurface::kUnknown;
   int part = 0;                               // 0 = the Building itself, 1.. = its parts in file order
 };
 

@@ -195,14 +195,14 @@ int classify_unlabelled_faces(Lod2Mesh& m, const Lod2CleanupOptions& o) {
   const double vertical = std::sin(10.0 * M_PI / 180);
   int count = 0;
   for (size_t fi = 0; fi < m.faces.size(); ++fi) {
-    if (m.kinds[fi] != SurfaceKind::kUnknown) continue;
+    if (m.kinds[fi] != CitySurface::kUnknown) continue;
     ++count;
     const Vec3 nrm = sign * newell(m.vertices, m.faces[fi]).normalized();
     double ztop = -std::numeric_limits<double>::infinity();
     for (int id : m.faces[fi]) ztop = std::max(ztop, m.vertices[id].z());
-    if (std::abs(nrm.z()) < vertical) m.kinds[fi] = SurfaceKind::kWall;
-    else if (nrm.z() < 0) m.kinds[fi] = ztop <= zmin + o.ground_tol_m ? SurfaceKind::kGround : SurfaceKind::kWall;
-    else m.kinds[fi] = SurfaceKind::kRoof;
+    if (std::abs(nrm.z()) < vertical) m.kinds[fi] = CitySurface::kWall;
+    else if (nrm.z() < 0) m.kinds[fi] = ztop <= zmin + o.ground_tol_m ? CitySurface::kGround : CitySurface::kWall;
+    else m.kinds[fi] = CitySurface::kRoof;
   }
   return count;
 }
@@ -536,7 +536,7 @@ std::string closure_problem(const Lod2Mesh& m, std::string* reason, double on_fa
     std::snprintf(buf, sizeof buf, "%.2f", open_length);
     return fail("not_closed", "does not close: " + std::to_string(open) + " edges belong to one face only (" + buf + " m)");
   }
-  if (std::find(m.kinds.begin(), m.kinds.end(), SurfaceKind::kRoof) == m.kinds.end()) return fail("no_roof", "no roof face");
+  if (std::find(m.kinds.begin(), m.kinds.end(), CitySurface::kRoof) == m.kinds.end()) return fail("no_roof", "no roof face");
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& f : m.faces)
     for (int id : f) {
@@ -562,8 +562,8 @@ PolyMesh to_poly_mesh(const Lod2Mesh& m) {
     }
     out.faces.push_back(std::move(r));
   }
-  for (SurfaceKind k : m.kinds)
-    out.labels.push_back(k == SurfaceKind::kRoof ? FaceLabel::Roof : k == SurfaceKind::kGround ? FaceLabel::Base : FaceLabel::Wall);
+  for (CitySurface k : m.kinds)
+    out.labels.push_back(k == CitySurface::kRoof ? FaceLabel::Roof : k == CitySurface::kGround ? FaceLabel::Base : FaceLabel::Wall);
   return out;
 }
 
@@ -605,7 +605,7 @@ Lod2CleanupResult cleanup_lod2(std::vector<CityPolygon> polygons, const Lod2Clea
   rep.vertices_after = used_vertex_count(m);
   rep.edges_after = static_cast<int>(unique_edges(m).size());
   rep.faces_after = static_cast<int>(m.faces.size());
-  rep.roof_faces_after = static_cast<int>(std::count(m.kinds.begin(), m.kinds.end(), SurfaceKind::kRoof));
+  rep.roof_faces_after = static_cast<int>(std::count(m.kinds.begin(), m.kinds.end(), CitySurface::kRoof));
   res.skip_detail = closure_problem(m, &res.skip_reason, o.coplanar_distance_m);
   if (res.skip_reason.empty()) res.mesh = to_poly_mesh(m);
   return res;

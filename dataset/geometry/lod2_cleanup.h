@@ -30,7 +30,7 @@ struct Lod2CleanupOptions {
 struct Lod2Mesh {
   std::vector<Vec3> vertices;
   std::vector<std::vector<int>> faces;
-  std::vector<SurfaceKind> kinds;
+  std::vector<CitySurface> kinds;
   std::vector<int> parts;
 };
 

@@ -12,13 +12,17 @@ namespace {
 
 constexpr const char* kUsage = R"(Usage: lc2wf-dataset --meshes DIR -o OUT [options]
 
-Renders every building of DIR (*.polyshape, Roof-Image format) from a ring of oblique views, detects 2D
+Renders every building of DIR (a folder or one file: Roof-Image *.polyshape, or real LoD2 city models in
+CityJSON *.city.json/*.json, CityJSONSeq *.jsonl, CityGML *.gml/*.gml.gz, see dataset/README.md) from a
+ring of oblique views, detects 2D
 segments (LSD), triangulates a 3D line cloud across the views and labels each 3D segment (f, i1, d1, i2,
 d2) against the GT wireframe. Writes OUT/clouds/<name>.lcloud, OUT/status/<name>.json and a summary
 (OUT/summary.json, or OUT/summary-shard-<i>-of-<n>.json). Finished buildings are skipped on re-runs.
 
 options:
   -o, --out OUT               output folder
+  --lod L                     city models: the LoD 2.x to read (2.2, 2.1, or 2 = 2.0; default: each
+                              building's highest); buildings without it are not listed
   --renderer raster|blender   built-in software rasteriser (default) or Blender 3.4
   --views N                   views per building (default 20)
   --size WxH                  image size (default 640x480)
@@ -68,6 +72,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
     auto value = [&] { return lc2wf::flag_value(argc, argv, i); };
     if (a == "--meshes") {
       o.meshes = value();
+    } else if (a == "--lod") {
+      o.sources.lod = value();
     } else if (a == "-o" || a == "--out") {
       o.out = value();
     } else if (a == "--renderer") {
@@ -149,6 +155,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
                                             {"DatasetRunOptions.threads", "-j"},
                                             {"DatasetRunOptions.shard_index/shard_count", "--shard i/n"},
                                             {"DatasetRunOptions.limit", "--limit"},
+                                            {"BuildingSourceOptions.lod", "--lod"},
                                             {"LsdOptions.min_length_frac", "--lsd-min-length"},
                                             {"LsdOptions.max_segments", "--max-segments"},
                                             {"LsdOptions.scale", "--lsd-scale"},

@@ -20,6 +20,7 @@
 #include "core/util/workspace.h"
 #include "dataset/formats/read_file.h"
 #include "dataset/formats/camera_json.h"
+#include "dataset/formats/building_sources.h"
 #include "dataset/formats/errors.h"
 #include "dataset/labels/labelling.h"
 #include "dataset/formats/line_cloud_io.h"
@@ -158,10 +159,15 @@ void fail(Job& job, const std::string& reason) {
   job.status["error"] = reason;
 }
 
-void load_job(Job& job, const DatasetRunOptions& o) {
+void load_job(Job& job, const DatasetRunOptions& o, const BuildingCatalog& sources) {
   const auto t = Clock::now();
   try {
-    job.building = load_roof_image_building(o.meshes / (job.name + ".polyshape"), o.building);
+    try {
+      job.building = sources.load(job.name, o.building);
+    } catch (const Lod2Skipped& e) {
+      job.status["skip_reason"] = e.reason();  // counted per reason in the summary
+      throw;
+    }
     CameraRingOptions ring = o.cameras;
     ring.seed = building_seed(job.name, o.seed);
     job.cameras = make_camera_ring(job.building.mesh.vertices, ring);
@@ -228,6 +234,7 @@ void DatasetRunOptions::Check() const {
   if (renderer == RendererKind::Blender) blender.Check();
   cloud.Check();
   building.Check();
+  sources.Check();
   if (blender_batch < 1) throw std::invalid_argument("DatasetRunOptions.blender_batch must be >= 1");
   if (threads < 0) throw std::invalid_argument("DatasetRunOptions.threads must be >= 0");
   if (shard_count < 1 || shard_index < 0 || shard_index >= shard_count)
@@ -315,9 +322,10 @@ Json summarise(const std::vector<Json>& statuses) {
 
 Json run_dataset(const DatasetRunOptions& o) {
   o.Check();
-  if (!fs::is_directory(o.meshes)) throw DataError(o.meshes.string(), "mesh folder does not exist");
-  const std::vector<std::string> all = list_polyshape_names(o.meshes);
-  if (all.empty()) throw DataError(o.meshes.string(), "no .polyshape file: nothing to do");
+  if (!fs::exists(o.meshes)) throw DataError(o.meshes.string(), "mesh folder or file does not exist");
+  const BuildingCatalog sources(o.meshes, o.sources);
+  const std::vector<std::string> all = sources.names();
+  if (all.empty()) throw DataError(o.meshes.string(), "no building (.polyshape, CityJSON, CityJSONSeq or CityGML with the LoD asked for): nothing to do");
   const auto names = shard_names(all, o.shard_index, o.shard_count, o.limit);
   if (names.empty())
     throw DataError(o.meshes.string(), "shard " + std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count) + " of its " +
@@ -351,7 +359,7 @@ Json run_dataset(const DatasetRunOptions& o) {
 #pragma omp parallel for schedule(dynamic, 1)
       for (size_t i = 0; i < todo.size(); ++i) {
         Job job = make_job(todo[i]);
-        load_job(job, o);
+        load_job(job, o, sources);
         if (!job.failed) render_raster(job, o);
         finish_job(job, o);
         report(job);
@@ -364,7 +372,7 @@ Json run_dataset(const DatasetRunOptions& o) {
         std::vector<Job> jobs;
         for (size_t i = first; i < last; ++i) jobs.push_back(make_job(todo[i]));
 #pragma omp parallel for schedule(dynamic, 1)
-        for (size_t i = 0; i < jobs.size(); ++i) load_job(jobs[i], o);
+        for (size_t i = 0; i < jobs.size(); ++i) load_job(jobs[i], o, sources);
         std::vector<BlenderBuilding> batch;
         std::vector<size_t> index;
         for (size_t i = 0; i < jobs.size(); ++i) {
@@ -408,6 +416,13 @@ Json run_dataset(const DatasetRunOptions& o) {
     }
   }
   Json summary = summarise(statuses);
+  // City models: buildings the LoD2 clean-up rejected, per reason; files that could not be read are failures.
+  std::map<std::string, int> skipped_by_reason;
+  for (const Json& st : statuses)
+    if (st.contains("skip_reason")) ++skipped_by_reason[st["skip_reason"].get<std::string>()];
+  summary["skipped_by_reason"] = skipped_by_reason;
+  for (const SourceFileListing& f : sources.files())
+    if (!f.error.empty()) summary["failed"].push_back({{"name", f.file.string()}, {"error", "unreadable source file: " + f.error}});
   summary["shard"] = std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count);
   summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
   summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;

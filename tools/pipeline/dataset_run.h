@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "dataset/formats/building_sources.h"
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"
@@ -19,7 +20,7 @@ namespace lc2wf {
 enum class RendererKind { Raster, Blender };
 
 struct DatasetRunOptions {
-  std::filesystem::path meshes;  // folder of .polyshape files
+  std::filesystem::path meshes;  // folder or file of buildings: .polyshape, CityJSON, CityJSONSeq, CityGML
   std::filesystem::path out;
   RendererKind renderer = RendererKind::Raster;
   CameraRingOptions cameras;
@@ -28,6 +29,7 @@ struct DatasetRunOptions {
   int blender_batch = 16;        // buildings per Blender process (its start-up is shared)
   CloudBuilderOptions cloud;
   BuildingOptions building;
+  BuildingSourceOptions sources;  // city models: LoD and LoD2 clean-up (dataset/formats/building_sources.h)
   int threads = 0;               // 0 = all cores
   int shard_index = 0;           // this process handles buildings k with k % shard_count == shard_index
   int shard_count = 1;
