@@ -8,6 +8,7 @@ packages=(
   libopenblas0-pthread             # fp32 GEMM tiles, loaded at run time (core/blas_backend.h); Eigen without it
   libopencv-dev libopencv-contrib-dev
   libsqlite3-dev                   # tools/ reads the SIFT descriptors from COLMAP's database
+  zlib1g-dev                       # dataset/ reads gzip-compressed CityGML (.gml.gz)
   python3-numpy
   python3-jsonschema               # tests: the CityJSON output against the official CityJSON 2.0 schema
   libjs-three python3-matplotlib   # lc2wf-eval --html inlines three.js; tools/plots/ draws the PNGs
