@@ -44,6 +44,7 @@ const std::map<std::string, Expectation> kExpectations = {
     {"lc2wf-make-splits", {false, {}, {"--meshes", kMissing, "-o", kOut}}},
     {"lc2wf-make-buildings", {false, {}, {"--augment", kMissing, "-o", kOut}}},
     {"lc2wf-cloud-convert", {false, {}, {kMissing, "-o", kOut}}},
+    {"lc2wf-list-buildings", {true, {}, {kMissing, "-o", kOut}}},
     {"lc2wf-cloud-styles", {false, {}, {"--data", kMissing, "--split", kMissing, "-o", kOut}}},
     {"lc2wf-synthetic-data", {false, {}, {"--count", "3", "--val", "1", "--test", "1", "-o", kOut}}},
     {"lc2wf-train", {true, {"LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM"}, {kMissing, "-o", kOut}}},
