@@ -1,5 +1,7 @@
 #include "core/parallel.h"
 
+#include "core/util/thread_count.h"
+
 #include <immintrin.h>
 
 #include <algorithm>
@@ -135,13 +137,7 @@ class ThreadPool {
 
 thread_local bool ThreadPool::in_pool_ = false;
 
-int default_threads() {
-  if (const char* env = std::getenv("OMP_NUM_THREADS")) {
-    int n = std::atoi(env);
-    if (n > 0) return n;
-  }
-  return std::max(1u, std::thread::hardware_concurrency());
-}
+int default_threads() { return default_thread_count(); }
 
 int g_threads = 0;  // 0 = default, resolved on first use
 std::mutex g_pool_mutex;

@@ -6,6 +6,7 @@
 #include <map>
 #include <set>
 
+#include "dataset/splits/city_split.h"
 #include "dataset/splits/tile_splits.h"
 
 namespace lc2wf {
@@ -91,6 +92,44 @@ TEST(TileSplits, SourceRulesFirstMatchWins) {
   EXPECT_EQ(source_of("cityjson/cjdb__5870_ext.jsonl", rules), "3dbag");
   EXPECT_EQ(source_of("elsewhere/x.gml", rules), "");
   EXPECT_THROW(source_of("x", {"no-equals"}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace lc2wf
+
+namespace lc2wf {
+namespace {
+
+// The whole city split over the hand-made city models: every loadable building in exactly one split, its
+// source from the rules, statistics for each source and split.
+TEST(CitySplit, HandMadeCityModelsSplitByTileWithStatistics) {
+  CitySplitOptions o;
+  o.root = std::filesystem::path(LC2WF_SOURCE_DIR) / "tests" / "data";
+  o.inputs = {o.root / "citymodels"};
+  o.source_rules = {"citymodels/*.gml*=gml", "citymodels/*=json"};
+  o.rule.test_share = 0.3;
+  o.rule.val_share = 0.2;
+  o.threads = 2;
+  const CitySplitResult r = make_city_split(o);
+  ASSERT_GE(r.buildings.size(), 4u);
+  std::set<std::string> seen;
+  for (const auto* list : {&r.splits.train, &r.splits.val, &r.splits.test})
+    for (const std::string& n : *list) EXPECT_TRUE(seen.insert(n).second) << n << " in two splits";
+  EXPECT_EQ(seen.size(), r.buildings.size());
+  for (const CitySplitBuilding& b : r.buildings) {
+    EXPECT_TRUE(b.source == "gml" || b.source == "json") << b.name << " " << b.file;
+    EXPECT_FALSE(b.split.empty()) << b.name;
+    EXPECT_GT(b.height_m, 0) << b.name;
+    EXPECT_GE(b.long_side_m, b.short_side_m) << b.name;
+    EXPECT_GT(b.edges, 0) << b.name;
+  }
+  const std::string md = city_split_statistics_markdown(r);
+  EXPECT_NE(md.find("| gml | all |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| json | all |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| all | all | " + std::to_string(r.buildings.size()) + " |"), std::string::npos) << md;
+  // Deterministic with any thread count.
+  o.threads = 1;
+  EXPECT_EQ(make_city_split(o).splits.test, r.splits.test);
 }
 
 }  // namespace

@@ -41,7 +41,7 @@ const std::string kMissing = "MISSING", kOut = "OUT";
 const std::map<std::string, Expectation> kExpectations = {
     {"lc2wf-dataset", {true, {"OMP_NUM_THREADS", "LC2WF_BLENDER_SCRIPT"}, {"--meshes", kMissing, "-o", kOut}}},
     {"lc2wf-colmap-poses", {true, {}, {kMissing, "--intrinsics", "500,500,319.5,239.5", "-o", kOut}}},
-    {"lc2wf-make-splits", {false, {}, {"--meshes", kMissing, "-o", kOut}}},
+    {"lc2wf-make-splits", {true, {}, {"--meshes", kMissing, "-o", kOut}}},
     {"lc2wf-make-buildings", {false, {}, {"--augment", kMissing, "-o", kOut}}},
     {"lc2wf-cloud-convert", {false, {}, {kMissing, "-o", kOut}}},
     {"lc2wf-list-buildings", {true, {}, {kMissing, "-o", kOut}}},
