@@ -15,23 +15,23 @@
 #                 each file <= 20 MB), after eval (and raster)
 #   all           dataset, train, eval, ship
 # Junction stages, scored beside models/base's edge model on the validation split (steps/junction.sh):
-#   local         junction stage with local labels (configs/local-labels.json)
-#   rotate        configs/rotate.json: models/base's junction stage fine-tuned with turns about the vertical
+#   local         junction stage with local labels (experiments/configs/local-labels.json)
+#   rotate        experiments/configs/rotate.json: models/base's junction stage fine-tuned with turns about the vertical
 #                 (1 and 8 test-time views) -> runs/rotate
-#   rotate-edge   then the edge stage of configs/rotate.json on that junction model's hand-off, scored the
+#   rotate-edge   then the edge stage of experiments/configs/rotate.json on that junction model's hand-off, scored the
 #                 same way -> runs/rotate/val-both-views*
-#   loose-seeds   configs/loose-seeds.json: as rotate, with the junction stage's patches sampled from loose
+#   loose-seeds   experiments/configs/loose-seeds.json: as rotate, with the junction stage's patches sampled from loose
 #                 density seeds -> runs/loose-seeds
-#   junction-turns  configs/junction-turns.json: base.json's whole junction schedule with turns and loose
+#   junction-turns  experiments/configs/junction-turns.json: base.json's whole junction schedule with turns and loose
 #                 seeds, scored the same way
 # Fine-tuned models (steps/finetune.sh):
-#   robust        configs/robust.json: models/base fine-tuned with the cloud augmentation (fused and split
+#   robust        experiments/configs/robust.json: models/base fine-tuned with the cloud augmentation (fused and split
 #                 fragments, drops, jitter, photo-like texture clutter), then experiments/robustness.sh on
 #                 held-out buildings -> runs/robust
-#   edge-sound    configs/edge-sound.json: models/base's edge model fine-tuned on the junctions inference
+#   edge-sound    experiments/configs/edge-sound.json: models/base's edge model fine-tuned on the junctions inference
 #                 selects (offset screen, NMS 0.5 m, loose seeds) beside models/rotate-loose's junction
 #                 model -> runs/edge-sound
-#   merged-maps   configs/merged-maps.json: models/edge-sound fine-tuned (both stages) with half the training
+#   merged-maps   experiments/configs/merged-maps.json: models/edge-sound fine-tuned (both stages) with half the training
 #                 buildings made merged line maps and cut as inference cuts them, scored on validation and
 #                 with experiments/robustness.sh on held-out buildings -> runs/merged-maps
 # Denser clouds (steps/clouds.sh, steps/dense.sh):
@@ -42,7 +42,7 @@
 #                 FLAGS -> <name>-TAG
 #   dense-select [WEIGHTS]  test-time settings of WEIGHTS (default models/edge-sound) on the 30-view
 #                 validation clouds, best first -> runs/dense-select/<name>/table.md
-#   dense-train   configs/dense.json: models/edge-sound fine-tuned (both stages) on the 30-view clouds,
+#   dense-train   experiments/configs/dense.json: models/edge-sound fine-tuned (both stages) on the 30-view clouds,
 #                 scored on their validation split -> runs/dense
 # A cheaper edge stage (steps/edge_cost.sh):
 #   edge-cheaper  base.json's edge stage on a quarter of the 30-view training clouds, the paper's 512 pair

@@ -39,7 +39,7 @@ struct DataConfig {
 };
 
 // Training-time augmentation of the clouds' statistics (dataset/sampling/cloud_augmentation.h). Off by default:
-// the paper's configs do not use it; configs/robust.json does.
+// the paper's configs do not use it; experiments/configs/robust.json does.
 struct CloudAugmentConfig {
   bool enabled = false;
   CloudAugmentOptions options;

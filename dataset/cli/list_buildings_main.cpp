@@ -18,6 +18,7 @@
 #include "core/util/cli.h"
 #include "core/util/json_text.h"
 #include "core/util/seconds_since.h"
+#include "core/util/thread_count.h"
 #include "dataset/formats/building_sources.h"
 #include "dataset/geometry/footprint.h"
 
@@ -113,7 +114,7 @@ int run(const Args& a) {
     const auto& entries = catalog.entries();
     std::vector<Row> part(entries.size());
     std::atomic<size_t> next{0};
-    const int nthreads = std::max(1, a.threads > 0 ? a.threads : static_cast<int>(std::thread::hardware_concurrency()));
+    const int nthreads = resolve_thread_count(a.threads);
     auto work = [&] {
       for (size_t i; (i = next++) < entries.size();) {
         Row& r = part[i];

@@ -6,7 +6,7 @@
 step_robust() {
   local resume
   resume_or_restore robust
-  "$build_dir/train/lc2wf-train" configs/robust.json --out runs/robust "${resume[@]}"
+  "$build_dir/train/lc2wf-train" experiments/configs/robust.json --out runs/robust "${resume[@]}"
   experiments/robustness.sh runs/robust bench/reconstruct/robustness-buildings.txt runs/robust/robustness
   if [[ -d runs/recon-bench/dataset/clouds ]]; then
     experiments/robustness.sh runs/robust bench/reconstruct/test-buildings.txt runs/robust/robustness-sfm \

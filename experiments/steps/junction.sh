@@ -1,13 +1,13 @@
 # Steps local, rotate, loose-seeds, junction-turns and rotate-edge: junction stages of their own, scored
 # beside a shipped edge model on the validation split (sourced by experiments/run.sh).
 
-# The junction stage again with local patch labels (configs/local-labels.json: base.json with
+# The junction stage again with local patch labels (experiments/configs/local-labels.json: base.json with
 # junction.positive_radius_m 1.0), scored on the validation split with the shipped edge model.
 step_local() {
   local resume
   need_binary "$build_dir/experiments/lc2wf_oracle_junctions" lc2wf_oracle_junctions  # before hours of training
   resume_or_restore local-labels
-  "$build_dir/train/lc2wf-train" configs/local-labels.json --stage junction --out runs/local-labels "${resume[@]}"
+  "$build_dir/train/lc2wf-train" experiments/configs/local-labels.json --stage junction --out runs/local-labels "${resume[@]}"
   "$build_dir/experiments/lc2wf_oracle_junctions" --weights models/base --junctions predicted \
     --junction-weights runs/local-labels/junction.safetensors --data runs/dataset/clouds \
     --split configs/splits/val.txt -o runs/local-labels/val-with-base-edge --precision auto
@@ -41,6 +41,6 @@ step_junction_turns() { junction_variant junction-turns; }
 # The edge model fine-tuned with the same turns, on the hand-off of the turned junction model.
 step_rotate_edge() {
   [[ -f runs/rotate/junction.safetensors ]] || step_rotate
-  "$build_dir/train/lc2wf-train" configs/rotate.json --stage edge --out runs/rotate --resume
+  "$build_dir/train/lc2wf-train" experiments/configs/rotate.json --stage edge --out runs/rotate --resume
   score_on_val runs/rotate runs/rotate/val-both-views
 }

@@ -85,7 +85,11 @@ TEST(TrainConfig, EveryConfigResolvesToTheSameKeys) {
   std::set<std::string> base_keys;
   collect_keys(read_json(kConfigs / "base.json"), "", base_keys);
   int others = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(kConfigs)) {
+  std::vector<fs::path> configs;
+  for (const fs::path& dir : {kConfigs, fs::path(LC2WF_SOURCE_DIR) / "experiments" / "configs"})
+    for (const auto& entry : fs::directory_iterator(dir)) configs.push_back(entry.path());
+  for (const fs::path& path : configs) {
+    const fs::directory_entry entry(path);
     const std::string name = entry.path().filename().string();
     if (entry.path().extension() != ".json" || name == "base.json") continue;
     ++others;
@@ -115,7 +119,7 @@ TEST(TrainConfig, StoredWeightsConfigsLoad) {
 
 // The next experiment is base.json with local junction labels and nothing else changed.
 TEST(TrainConfig, LocalLabelsIsBaseWithLocalPatchLabels) {
-  nlohmann::json local = resolve_config_json(kConfigs / "local-labels.json");
+  nlohmann::json local = resolve_config_json(fs::path(LC2WF_SOURCE_DIR) / "experiments" / "configs" / "local-labels.json");
   EXPECT_EQ(local["junction"]["positive_radius_m"].get<double>(), 1.0);
   local["junction"]["positive_radius_m"] = -1.0;
   local["out"] = "runs/base";

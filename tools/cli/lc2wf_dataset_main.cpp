@@ -29,6 +29,8 @@ options:
   -j, --threads N             worker threads (default: all cores)
   --shard i/n                 process buildings k with k % n == i (for Slurm arrays, GNU parallel)
   --limit K                   at most K buildings of the shard
+  --names FILE                only the buildings named in FILE, one per line (e.g. configs/splits/lod2/val.txt);
+                              a name that --meshes does not hold is an error
   --seed S                    cameras, textures and noise (default 0)
   --keep-views                keep renders, cameras.json and views.json (projected GT with visibility)
   --supersample N             rasteriser samples per pixel side (default 1)
@@ -91,6 +93,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       std::tie(o.shard_index, o.shard_count) = split_pair(a, value(), '/');
     } else if (a == "--limit") {
       o.limit = lc2wf::int_flag(a, value());
+    } else if (a == "--names") {
+      o.names = value();
     } else if (a == "--seed") {
       o.seed = static_cast<uint64_t>(lc2wf::parse_count_flag(a, value()));
     } else if (a == "--keep-views") {

@@ -1,5 +1,7 @@
 #include "tools/pipeline/dataset_run.h"
 
+#include "dataset/splits/splits.h"
+
 #include <omp.h>
 
 #include <algorithm>
@@ -324,7 +326,15 @@ Json run_dataset(const DatasetRunOptions& o) {
   o.Check();
   if (!fs::exists(o.meshes)) throw DataError(o.meshes.string(), "mesh folder or file does not exist");
   const BuildingCatalog sources(o.meshes, o.sources);
-  const std::vector<std::string> all = sources.names();
+  std::vector<std::string> all = sources.names();
+  if (!o.names.empty()) {  // a split of a folder that holds more buildings: every listed one must be there
+    std::vector<std::string> wanted = read_name_list(o.names);
+    std::sort(wanted.begin(), wanted.end());
+    for (const std::string& n : wanted)
+      if (!std::binary_search(all.begin(), all.end(), n))
+        throw DataError(o.names.string(), "building '" + n + "' is not in " + o.meshes.string());
+    all = std::move(wanted);
+  }
   if (all.empty()) throw DataError(o.meshes.string(), "no building (.polyshape, CityJSON, CityJSONSeq or CityGML with the LoD asked for): nothing to do");
   const auto names = shard_names(all, o.shard_index, o.shard_count, o.limit);
   if (names.empty())

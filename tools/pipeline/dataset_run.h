@@ -34,6 +34,7 @@ struct DatasetRunOptions {
   int shard_index = 0;           // this process handles buildings k with k % shard_count == shard_index
   int shard_count = 1;
   int limit = 0;                 // at most this many buildings of the shard (0 = all)
+  std::filesystem::path names;   // a name list (e.g. configs/splits/lod2/val.txt): only these buildings (empty = all)
   uint64_t seed = 0;             // cameras, textures and noise; combined with each building's name
   bool keep_views = false;       // keep renders, cameras and per-view GT visibility under out/views/
   bool progress = true;
