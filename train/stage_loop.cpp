@@ -95,190 +95,249 @@ std::vector<std::pair<int, int>> micro_batch_ranges(int batch, int64_t micro) {
   return out;
 }
 
-int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, RunLog& log, const StageCallbacks& cb) {
-  const std::string& stage = o.stage;
-  const fs::path best_path = best_checkpoint_path(o.out, stage);
-  std::unique_ptr<Optimizer> optimizer = make_optimizer(model, o.optim);
-  const MultiStepLR schedule(o.optim.lr, o.optim.milestones, o.optim.gamma);
-  const int64_t spe = cb.batches_per_epoch;
-  if (spe < 1)
-    throw std::runtime_error(stage + " stage: the training split's " + std::to_string(cb.training_buildings) +
-                             " usable building(s) give no full batch of " + stage + ".batch_size = " +
-                             std::to_string(o.schedule.batch_size) + " (set " + stage + ".drop_last to false, or a smaller batch)");
+namespace {
 
-  Communicator& comm = o.comm ? *o.comm : local_communicator();
-  const bool writer = comm.rank() == 0;  // logs and checkpoints
+// Where a stage stands: its position in the schedule, its best validation so far and the "last" slot the
+// next save goes to.
+struct StageState {
   TrainingPosition pos;
   Best best;
-  int slot = 0;  // the "last" slot the next save goes to
-  if (o.resume && writer) {
-    // Newest slot that loads completely (weights + matching optimiser state) wins.
-    std::vector<std::pair<int64_t, int>> slots;
-    for (int k : {0, 1}) {
-      const fs::path p = last_checkpoint_path(o.out, stage, k);
-      if (!fs::exists(p)) continue;
-      try {
-        const CheckpointInfo info = read_checkpoint_info(p);
-        const nlohmann::json inputs = info.config.value("inputs", nlohmann::json());
-        if (inputs != o.model_config.value("inputs", nlohmann::json())) {
-          // E.g. the clouds were regenerated and the hand-off predicted again: this state learnt from other data.
-          std::fprintf(stderr, "%s: not resuming %s: it was trained on other inputs (%s, now %s); the stage starts again\n",
-                       stage.c_str(), p.string().c_str(), inputs.dump().c_str(),
-                       o.model_config.value("inputs", nlohmann::json()).dump().c_str());
-          continue;
-        }
-        slots.push_back({info.position.step, k});
-      } catch (const std::exception& e) {
-        if (!o.quiet) std::fprintf(stderr, "%s: ignoring %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
-      }
-    }
-    std::sort(slots.rbegin(), slots.rend());
-    bool loaded = false;
-    for (const auto& [step, k] : slots) {
-      const fs::path p = last_checkpoint_path(o.out, stage, k);
-      if (read_checkpoint_info(p).config.value("net", nlohmann::json()) != o.model_config.at("net"))
-        throw std::runtime_error(p.string() + ": the network config differs from the one being resumed");
-      try {
-        const CheckpointInfo info = load_checkpoint(p, model, &dropout_rng, optimizer.get());
-        pos = info.position;
-        best = Best::from_json(info.config.value("best", nlohmann::json::object()));
-        slot = 1 - k;
-        loaded = true;
-        if (!o.quiet)
-          std::fprintf(stderr, "%s: resuming from %s (epoch %lld, step %lld)\n", stage.c_str(), p.string().c_str(),
-                       static_cast<long long>(pos.epoch), static_cast<long long>(pos.step));
-        break;
-      } catch (const std::exception& e) {  // a pair torn by a kill: fall back to the other slot
-        if (!o.quiet) std::fprintf(stderr, "%s: cannot resume from %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
-      }
-    }
-    if (!loaded) {
-      if (!slots.empty()) throw std::runtime_error(stage + ": no usable checkpoint to resume from in " + (o.out / "checkpoints").string());
-      if (!o.quiet) std::fprintf(stderr, "%s: no checkpoint in %s, starting from scratch\n", stage.c_str(), (o.out / "checkpoints").string().c_str());
-    }
-  }
-  if (pos.step == 0 && !o.init_weights.empty()) {
-    if (read_checkpoint_info(o.init_weights).config.value("net", nlohmann::json()) != o.model_config.at("net"))
-      throw std::runtime_error("init_weights: " + o.init_weights.string() + " has another network config than " + stage + ".net");
-    load_checkpoint(o.init_weights, model, nullptr, nullptr);
-    if (!o.quiet) std::fprintf(stderr, "%s: starting from the weights of %s\n", stage.c_str(), o.init_weights.string().c_str());
-  }
-  if (comm.size() > 1) {
-    // Rank 0's position, weights, optimiser and dropout stream, so every replica starts equal.
-    std::string state = nlohmann::json{{"epoch", pos.epoch}, {"step", pos.step}, {"epoch_loss_sum", pos.epoch_loss_sum},
-                                       {"best", best.to_json()}}.dump();
-    comm.broadcast(state, "start-up state");
-    const nlohmann::json j = nlohmann::json::parse(state);
-    pos.epoch = j["epoch"].get<int64_t>();
-    pos.step = j["step"].get<int64_t>();
-    pos.epoch_loss_sum = j["epoch_loss_sum"].get<double>();
-    best = Best::from_json(j["best"]);
-    broadcast_training_state(comm, model, optimizer.get(), dropout_rng);
-  }
-  if (pos.epoch >= o.schedule.epochs) {  // complete: its log and the later stages' stay as they are
-    if (!o.quiet) std::fprintf(stderr, "%s: already trained for %lld epochs\n", stage.c_str(), static_cast<long long>(pos.epoch));
-    return 0;
-  }
-  if (writer) log.rewind(stage, pos.step, stage_order());
+  int slot = 0;
+};
 
-  auto config_with_best = [&] {
-    nlohmann::json c = o.model_config;
-    c["best"] = best.to_json();
+// The newest "last" slot that loads completely (weights + matching optimiser state); a slot trained on
+// other inputs is passed over, so the stage starts again.
+void resume_from_last_checkpoint(const StageLoopOptions& o, Module& model, Rng& dropout_rng, Optimizer* optimizer, StageState& st) {
+  const std::string& stage = o.stage;
+  std::vector<std::pair<int64_t, int>> slots;
+  for (int k : {0, 1}) {
+    const fs::path p = last_checkpoint_path(o.out, stage, k);
+    if (!fs::exists(p)) continue;
+    try {
+      const CheckpointInfo info = read_checkpoint_info(p);
+      const nlohmann::json inputs = info.config.value("inputs", nlohmann::json());
+      if (inputs != o.model_config.value("inputs", nlohmann::json())) {
+        // E.g. the clouds were regenerated and the hand-off predicted again: this state learnt from other data.
+        std::fprintf(stderr, "%s: not resuming %s: it was trained on other inputs (%s, now %s); the stage starts again\n",
+                     stage.c_str(), p.string().c_str(), inputs.dump().c_str(),
+                     o.model_config.value("inputs", nlohmann::json()).dump().c_str());
+        continue;
+      }
+      slots.push_back({info.position.step, k});
+    } catch (const std::exception& e) {
+      if (!o.quiet) std::fprintf(stderr, "%s: ignoring %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
+    }
+  }
+  std::sort(slots.rbegin(), slots.rend());
+  for (const auto& [step, k] : slots) {
+    const fs::path p = last_checkpoint_path(o.out, stage, k);
+    if (read_checkpoint_info(p).config.value("net", nlohmann::json()) != o.model_config.at("net"))
+      throw std::runtime_error(p.string() + ": the network config differs from the one being resumed");
+    try {
+      const CheckpointInfo info = load_checkpoint(p, model, &dropout_rng, optimizer);
+      st.pos = info.position;
+      st.best = Best::from_json(info.config.value("best", nlohmann::json::object()));
+      st.slot = 1 - k;
+      if (!o.quiet)
+        std::fprintf(stderr, "%s: resuming from %s (epoch %lld, step %lld)\n", stage.c_str(), p.string().c_str(),
+                     static_cast<long long>(st.pos.epoch), static_cast<long long>(st.pos.step));
+      return;
+    } catch (const std::exception& e) {  // a pair torn by a kill: fall back to the other slot
+      if (!o.quiet) std::fprintf(stderr, "%s: cannot resume from %s: %s\n", stage.c_str(), p.string().c_str(), e.what());
+    }
+  }
+  if (!slots.empty()) throw std::runtime_error(stage + ": no usable checkpoint to resume from in " + (o.out / "checkpoints").string());
+  if (!o.quiet) std::fprintf(stderr, "%s: no checkpoint in %s, starting from scratch\n", stage.c_str(), (o.out / "checkpoints").string().c_str());
+}
+
+void load_init_weights(const StageLoopOptions& o, Module& model) {
+  if (read_checkpoint_info(o.init_weights).config.value("net", nlohmann::json()) != o.model_config.at("net"))
+    throw std::runtime_error("init_weights: " + o.init_weights.string() + " has another network config than " + o.stage + ".net");
+  load_checkpoint(o.init_weights, model, nullptr, nullptr);
+  if (!o.quiet) std::fprintf(stderr, "%s: starting from the weights of %s\n", o.stage.c_str(), o.init_weights.string().c_str());
+}
+
+// Rank 0's position, weights, optimiser and dropout stream, so every replica starts equal.
+void share_start_state(Communicator& comm, Module& model, Optimizer* optimizer, Rng& dropout_rng, StageState& st) {
+  std::string state = nlohmann::json{{"epoch", st.pos.epoch}, {"step", st.pos.step}, {"epoch_loss_sum", st.pos.epoch_loss_sum},
+                                     {"best", st.best.to_json()}}.dump();
+  comm.broadcast(state, "start-up state");
+  const nlohmann::json j = nlohmann::json::parse(state);
+  st.pos.epoch = j["epoch"].get<int64_t>();
+  st.pos.step = j["step"].get<int64_t>();
+  st.pos.epoch_loss_sum = j["epoch_loss_sum"].get<double>();
+  st.best = Best::from_json(j["best"]);
+  broadcast_training_state(comm, model, optimizer, dropout_rng);
+}
+
+// One stage's training run: its checkpoints, its log and its steps, shared by the epochs.
+class StageRun {
+ public:
+  StageRun(const StageLoopOptions& o, Module& model, Rng& dropout_rng, RunLog& log, const StageCallbacks& cb)
+      : o_(o), model_(model), dropout_rng_(dropout_rng), log_(log), cb_(cb), optimizer_(make_optimizer(model, o.optim)),
+        comm_(o.comm ? *o.comm : local_communicator()), writer_(comm_.rank() == 0) {}
+
+  int64_t run() {
+    const std::string& stage = o_.stage;
+    if (cb_.batches_per_epoch < 1)
+      throw std::runtime_error(stage + " stage: the training split's " + std::to_string(cb_.training_buildings) +
+                               " usable building(s) give no full batch of " + stage + ".batch_size = " +
+                               std::to_string(o_.schedule.batch_size) + " (set " + stage + ".drop_last to false, or a smaller batch)");
+    if (o_.resume && writer_) resume_from_last_checkpoint(o_, model_, dropout_rng_, optimizer_.get(), st_);
+    if (st_.pos.step == 0 && !o_.init_weights.empty()) load_init_weights(o_, model_);
+    if (comm_.size() > 1) share_start_state(comm_, model_, optimizer_.get(), dropout_rng_, st_);
+    if (st_.pos.epoch >= o_.schedule.epochs) {  // complete: its log and the later stages' stay as they are
+      if (!o_.quiet) std::fprintf(stderr, "%s: already trained for %lld epochs\n", stage.c_str(), static_cast<long long>(st_.pos.epoch));
+      return 0;
+    }
+    if (writer_) log_.rewind(stage, st_.pos.step, stage_order());
+    model_.train();
+    const MultiStepLR schedule(o_.optim.lr, o_.optim.milestones, o_.optim.gamma);
+    for (int64_t epoch = st_.pos.epoch; epoch < o_.schedule.epochs; ++epoch) {
+      const double lr = schedule.lr_at(epoch);
+      optimizer_->set_lr(lr);
+      const EpochTotals totals = train_epoch(epoch, lr);
+      st_.pos.epoch = epoch + 1;
+      st_.pos.epoch_loss_sum = 0.0;
+      if ((epoch + 1) % o_.schedule.val_every == 0 || epoch + 1 == o_.schedule.epochs) validate(epoch);
+      log_epoch(epoch, lr, totals);
+      save_last();
+    }
+    return steps_run_;
+  }
+
+ private:
+  struct EpochTotals {
+    double loss = 0, seconds = 0;
+    int64_t steps = 0, buildings = 0;
+  };
+
+  nlohmann::json config_with_best() const {
+    nlohmann::json c = o_.model_config;
+    c["best"] = st_.best.to_json();
     return c;
-  };
-  auto save_last = [&] {
-    if (!writer) return;
-    save_checkpoint(last_checkpoint_path(o.out, stage, slot), model, config_with_best(), dropout_rng, optimizer.get(), pos);
-    slot = 1 - slot;
-  };
+  }
 
-  int64_t steps_run = 0;
-  model.train();
-  for (int64_t epoch = pos.epoch; epoch < o.schedule.epochs; ++epoch) {
-    const double lr = schedule.lr_at(epoch);
-    optimizer->set_lr(lr);
-    const int64_t first = pos.step - epoch * spe;  // > 0 only when resuming mid-epoch
-    if (first < 0 || first > spe) throw std::runtime_error(stage + ": checkpoint step " + std::to_string(pos.step) + " does not match the schedule");
-    cb.start_epoch(epoch, first);
+  void save_last() {
+    if (!writer_) return;
+    save_checkpoint(last_checkpoint_path(o_.out, o_.stage, st_.slot), model_, config_with_best(), dropout_rng_, optimizer_.get(), st_.pos);
+    st_.slot = 1 - st_.slot;
+  }
+
+  EpochTotals train_epoch(int64_t epoch, double lr) {
+    const std::string& stage = o_.stage;
+    const int64_t spe = cb_.batches_per_epoch;
+    const int64_t first = st_.pos.step - epoch * spe;  // > 0 only when resuming mid-epoch
+    if (first < 0 || first > spe) throw std::runtime_error(stage + ": checkpoint step " + std::to_string(st_.pos.step) + " does not match the schedule");
+    cb_.start_epoch(epoch, first);
     std::unique_ptr<Progress> bar;
-    if (!o.quiet)
-      bar = std::make_unique<Progress>(stage + " epoch " + std::to_string(epoch + 1) + "/" + std::to_string(o.schedule.epochs),
+    if (!o_.quiet)
+      bar = std::make_unique<Progress>(stage + " epoch " + std::to_string(epoch + 1) + "/" + std::to_string(o_.schedule.epochs),
                                        spe - first);
     const auto epoch_start = Clock::now();
     // A mid-epoch resume carries on the checkpoint's sum (same additions, same order): the logged mean is exact.
-    double epoch_loss = first > 0 ? pos.epoch_loss_sum : 0.0;
-    int64_t epoch_steps = first, epoch_buildings = 0;
+    EpochTotals t;
+    t.loss = first > 0 ? st_.pos.epoch_loss_sum : 0.0;
+    t.steps = first;
     for (;;) {
-      const auto t0 = Clock::now();
-      const double cpu0 = process_cpu_seconds();
-      std::optional<StageStep> s = cb.train_step();
+      step_start_ = Clock::now();
+      step_cpu0_ = process_cpu_seconds();
+      const std::optional<StageStep> s = cb_.train_step();
       if (!s) break;
-      if (!std::isfinite(s->loss))
-        throw std::runtime_error(stage + " stage: loss is " + std::to_string(s->loss) + " at step " + std::to_string(pos.step + 1));
-      double grad_norm = -1.0;
-      if (o.optim.clip_grad_norm > 0) grad_norm = clip_grad_norm(model.parameters(), o.optim.clip_grad_norm);
-      optimizer->step();
-      optimizer->zero_grad();
-      ++pos.step;
-      ++steps_run;
-      const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-      nlohmann::json line = {{"stage", stage}, {"type", "step"}, {"epoch", epoch + 1}, {"step", pos.step},
-                             {"loss", s->loss}, {"lr", lr}, {"seconds", seconds},
-                             {"cpu_seconds", process_cpu_seconds() - cpu0},
-                             {"buildings_per_s", seconds > 0 ? s->buildings / seconds : 0.0}};
-      for (auto it = s->terms.begin(); it != s->terms.end(); ++it) line[it.key()] = it.value();
-      if (grad_norm >= 0) line["grad_norm"] = grad_norm;
-      if (comm.size() > 1) {
-        line["ranks"] = comm.size();
-        line["comm_seconds"] = s->comm_seconds;
-        line["replicas"] = check_replicas(comm, model, stage, pos.step);
-      }
-      if (writer) log.append(line);
-      epoch_loss += s->loss;
-      ++epoch_steps;
-      epoch_buildings += s->buildings;
+      train_step(*s, epoch, lr);
+      t.loss += s->loss;
+      ++t.steps;
+      t.buildings += s->buildings;
       if (bar) {
         char note[64];
         std::snprintf(note, sizeof note, "loss %.4f", s->loss);
         bar->step(1, note);
       }
-      const bool epoch_end = pos.step == (epoch + 1) * spe;
-      if (o.schedule.checkpoint_every_steps > 0 && pos.step % o.schedule.checkpoint_every_steps == 0 && !epoch_end) {
-        pos.epoch = epoch;
-        pos.epoch_loss_sum = epoch_loss;
+      const bool epoch_end = st_.pos.step == (epoch + 1) * spe;
+      if (o_.schedule.checkpoint_every_steps > 0 && st_.pos.step % o_.schedule.checkpoint_every_steps == 0 && !epoch_end) {
+        st_.pos.epoch = epoch;
+        st_.pos.epoch_loss_sum = t.loss;
         save_last();
       }
     }
     if (bar) bar->finish();
-    const double epoch_seconds = std::chrono::duration<double>(Clock::now() - epoch_start).count();
-    pos.epoch = epoch + 1;
-    pos.epoch_loss_sum = 0.0;
-
-    if ((epoch + 1) % o.schedule.val_every == 0 || epoch + 1 == o.schedule.epochs) {
-      const auto v0 = Clock::now();
-      const StageValidation v = cb.validate();
-      model.train();
-      const bool improved = v.score > best.score || (v.score == best.score && v.loss < best.loss);
-      if (improved) best = {v.score, v.loss, epoch + 1};
-      nlohmann::json line = {{"stage", stage}, {"type", "val"}, {"epoch", epoch + 1}, {"step", pos.step},
-                             {"score", v.score}, {"loss", v.loss}, {"best", improved},
-                             {"seconds", std::chrono::duration<double>(Clock::now() - v0).count()}};
-      for (auto it = v.metrics.begin(); it != v.metrics.end(); ++it) line[it.key()] = it.value();
-      if (writer) log.append(line);
-      if (improved && writer) save_checkpoint(best_path, model, config_with_best(), dropout_rng, nullptr, pos);
-      if (!o.quiet)
-        std::fprintf(stderr, "%s epoch %lld: validation score %.4f loss %.4f%s\n", stage.c_str(),
-                     static_cast<long long>(epoch + 1), v.score, v.loss, improved ? " (best)" : "");
-    }
-    if (writer)
-      log.append({{"stage", stage}, {"type", "epoch"}, {"epoch", epoch + 1}, {"step", pos.step},
-                {"train_loss", epoch_steps ? epoch_loss / epoch_steps : 0.0}, {"lr", lr}, {"seconds", epoch_seconds},
-                {"buildings_per_s", epoch_seconds > 0 ? epoch_buildings / epoch_seconds : 0.0},
-                // A run resumed on another machine mixes them: the model card lists what each stage ran on.
-                {"precision", to_string(matmul_precision())}, {"gemm", gemm_backend_name()}});
-    save_last();
+    t.seconds = std::chrono::duration<double>(Clock::now() - epoch_start).count();
+    return t;
   }
-  return steps_run;
+
+  // The optimiser step after the callback's forward and backward pass, and its log line.
+  void train_step(const StageStep& s, int64_t epoch, double lr) {
+    const std::string& stage = o_.stage;
+    const Clock::time_point t0 = step_start_;  // taken before the callback's forward and backward pass
+    const double cpu0 = step_cpu0_;
+    if (!std::isfinite(s.loss))
+      throw std::runtime_error(stage + " stage: loss is " + std::to_string(s.loss) + " at step " + std::to_string(st_.pos.step + 1));
+    double grad_norm = -1.0;
+    if (o_.optim.clip_grad_norm > 0) grad_norm = clip_grad_norm(model_.parameters(), o_.optim.clip_grad_norm);
+    optimizer_->step();
+    optimizer_->zero_grad();
+    ++st_.pos.step;
+    ++steps_run_;
+    const double seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    nlohmann::json line = {{"stage", stage}, {"type", "step"}, {"epoch", epoch + 1}, {"step", st_.pos.step},
+                           {"loss", s.loss}, {"lr", lr}, {"seconds", seconds},
+                           {"cpu_seconds", process_cpu_seconds() - cpu0},
+                           {"buildings_per_s", seconds > 0 ? s.buildings / seconds : 0.0}};
+    for (auto it = s.terms.begin(); it != s.terms.end(); ++it) line[it.key()] = it.value();
+    if (grad_norm >= 0) line["grad_norm"] = grad_norm;
+    if (comm_.size() > 1) {
+      line["ranks"] = comm_.size();
+      line["comm_seconds"] = s.comm_seconds;
+      line["replicas"] = check_replicas(comm_, model_, stage, st_.pos.step);
+    }
+    if (writer_) log_.append(line);
+  }
+
+  void validate(int64_t epoch) {
+    const std::string& stage = o_.stage;
+    const auto v0 = Clock::now();
+    const StageValidation v = cb_.validate();
+    model_.train();
+    const bool improved = v.score > st_.best.score || (v.score == st_.best.score && v.loss < st_.best.loss);
+    if (improved) st_.best = {v.score, v.loss, epoch + 1};
+    nlohmann::json line = {{"stage", stage}, {"type", "val"}, {"epoch", epoch + 1}, {"step", st_.pos.step},
+                           {"score", v.score}, {"loss", v.loss}, {"best", improved},
+                           {"seconds", std::chrono::duration<double>(Clock::now() - v0).count()}};
+    for (auto it = v.metrics.begin(); it != v.metrics.end(); ++it) line[it.key()] = it.value();
+    if (writer_) log_.append(line);
+    if (improved && writer_) save_checkpoint(best_checkpoint_path(o_.out, stage), model_, config_with_best(), dropout_rng_, nullptr, st_.pos);
+    if (!o_.quiet)
+      std::fprintf(stderr, "%s epoch %lld: validation score %.4f loss %.4f%s\n", stage.c_str(), static_cast<long long>(epoch + 1),
+                   v.score, v.loss, improved ? " (best)" : "");
+  }
+
+  void log_epoch(int64_t epoch, double lr, const EpochTotals& t) {
+    if (!writer_) return;
+    log_.append({{"stage", o_.stage}, {"type", "epoch"}, {"epoch", epoch + 1}, {"step", st_.pos.step},
+                 {"train_loss", t.steps ? t.loss / t.steps : 0.0}, {"lr", lr}, {"seconds", t.seconds},
+                 {"buildings_per_s", t.seconds > 0 ? t.buildings / t.seconds : 0.0},
+                 // A run resumed on another machine mixes them: the model card lists what each stage ran on.
+                 {"precision", to_string(matmul_precision())}, {"gemm", gemm_backend_name()}});
+  }
+
+  const StageLoopOptions& o_;
+  Module& model_;
+  Rng& dropout_rng_;
+  RunLog& log_;
+  const StageCallbacks& cb_;
+  std::unique_ptr<Optimizer> optimizer_;
+  Communicator& comm_;
+  const bool writer_;
+  StageState st_;
+  int64_t steps_run_ = 0;
+  Clock::time_point step_start_;
+  double step_cpu0_ = 0;
+};
+
+}  // namespace
+
+int64_t run_stage(const StageLoopOptions& o, Module& model, Rng& dropout_rng, RunLog& log, const StageCallbacks& cb) {
+  return StageRun(o, model, dropout_rng, log, cb).run();
 }
 
 }  // namespace lc2wf
