@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "core/storage_cache.h"
 #include "core/util/cli.h"
+#include "core/util/atomic_file.h"
 #include "core/util/progress.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
@@ -49,7 +50,19 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     InferenceResult r;
     try {
       cloud = load_line_cloud(path, o.format, o.raw_per_metre);
-      r = predictor.predict(cloud, o.post);
+      if (o.map_frame.applies_to(cloud)) {
+        const auto t0 = std::chrono::steady_clock::now();
+        FramedInference f = infer_in_metric_frame(predictor, cloud, o.post, o.map_frame);
+        s.frame_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        ++s.framed;
+        std::filesystem::create_directories(out_dir);
+        write_file_atomic(out_dir / (name + ".frame.json"), f.report.dump(2));
+        if (!o.quiet) std::fprintf(stderr, "%s%s: %s\n", bar ? "\n" : "", name.c_str(), f.summary.c_str());
+        cloud = std::move(f.cloud);
+        r = std::move(f.inference);
+      } else {
+        r = predictor.predict(cloud, o.post);
+      }
     } catch (const std::exception& e) {  // one bad cloud must not end the batch
       std::fprintf(stderr, "%slc2wf: skipping %s: %s\n", bar ? "\n" : "", path.string().c_str(), e.what());
       ++s.failed;

@@ -12,6 +12,7 @@
 #include "dataset/formats/cloud_input.h"
 #include "model/inference.h"
 #include "infer/inference_timing.h"
+#include "infer/map_frame.h"
 #include "infer/surfaces/surface_options.h"
 
 namespace lc2wf {
@@ -29,6 +30,9 @@ struct BatchInferenceOptions {
   // Also write the LoD2 surfaces beside each wireframe (<name>.city.json, <name>.faces.obj; infer/surfaces/).
   bool write_surfaces = false;
   SurfaceOptions surfaces;
+  // Line maps made elsewhere put in the networks' frame first (up, ground, scale: infer/map_frame.h), with
+  // <name>.frame.json beside the outputs; off = their coordinates are taken as metres, z up.
+  MapFrameOptions map_frame;
 };
 
 // The --precision flag of the inference commands: fp32, bf16 or auto; a bad value is a usage error.
@@ -38,6 +42,8 @@ struct BatchInferenceSummary : InferenceTiming {
   int failed = 0;           // unreadable clouds (reported on stderr)
   int closed_solids = 0;    // with write_surfaces: buildings whose surfaces close into a valid solid
   double surface_seconds = 0;  // with write_surfaces: finding the faces, summed over buildings (file I/O excluded)
+  int framed = 0;              // maps put in the networks' frame (map_frame)
+  double frame_seconds = 0;    // their frame and scale search, the final inference included
   std::vector<std::string> names;  // predicted buildings, input order
 };
 

@@ -38,6 +38,10 @@ wireframe and a note, never a failure.
   --pair-support S    classify only pairs of junctions whose straight line is covered by the cloud's
                       segments for at least S of its length (0-1; segments within 0.35 m and 20 degrees
                       of it; pairs shorter than 1 m always); default 0 = every pair, as the release
+  --max-pairs N       at most N junction pairs go to the edge model (default 2080, every pair of 65
+                      junctions; 0 = no cap): above N, the pairs with the most line support within 2 m of
+                      their junctions, each junction in at most --max-pairs-per-junction K of them
+                      (default 64), so a cluttered map's time stays bounded; a note says when it bites
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
                       before the cut (default 0.5; the release: 0.25)
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample
@@ -65,8 +69,24 @@ wireframe and a note, never a failure.
                       hold fewer endpoints
   --format F          auto (default), lc2wf, release (LineCloud JSON), line3dpp (Line3D++ .txt),
                       limap (a finaltracks/ folder) or obj (line OBJ of Line3D++/LIMAP); detected from
-                      the content (folder = LIMAP, .obj = line OBJ); clouds made elsewhere are read in
-                      their own frame as metres, z up (dataset/README.md)
+                      the content (folder = LIMAP, .obj = line OBJ)
+  --frame F           auto (default) or as-read: how a line map made elsewhere (Line3D++, LIMAP, OBJ; not
+                      our files, which are metric and z up) is put in the networks' frame (metres, z up,
+                      ground at 0). auto: up from the lines' dominant directions (the one most lines are
+                      perpendicular to, its sign putting the widest structure at the bottom), refined by
+                      the near-vertical lines; ground at the lowest structure; scale from --scale,
+                      --known-distance or --building-height, else the scale search (the networks run on the
+                      map at building heights of 3-60 m, the most confident wireframe wins). The wireframe
+                      is written in that frame and OUT/<name>.frame.json holds the similarity from the map,
+                      the up and scale found, where they came from and the search's scores. as-read: the
+                      map's coordinates are taken as metres, z up
+  --up U              the map's up axis: x, y, z, -x, -y or -z (default auto)
+  --scale F           metres per map unit
+  --known-distance X1,Y1,Z1,X2,Y2,Z2,D  two points of the map (map units) are D metres apart
+  --building-height M the building's height above its ground, metres
+  --scale-measure M   what the scale search maximises: edge-evidence (default: the sum over the kept
+                      edges of P(edge) x both junction confidences), edge-confidence (their mean),
+                      confident-junctions or junction-mean (reconstruct/README.md, "Scale search")
   --precision P       fp32 (default: the same numbers on every CPU), bf16 (operands rounded to bf16,
                       fp32 sums; fast where the CPU has AVX512-BF16, emulated elsewhere) or auto
                       (bf16 where it has, else fp32)
@@ -80,6 +100,12 @@ Each written OUT/<name>.obj is printed on stdout. Exit code 1: some clouds could
 (each is named), 3: none could, or the weights are missing.
 )";
 
+double positive_flag(const std::string& flag, const std::string& value) {
+  const double x = number_flag(flag, value);
+  if (!(x > 0)) throw UsageError(flag + " must be > 0, got '" + value + "'");
+  return x;
+}
+
 struct Args {
   fs::path weights, out;
   std::string preview;
@@ -92,6 +118,7 @@ struct Args {
 
 Args parse_args(int argc, char** argv) {
   Args a;
+  a.options.map_frame.enabled = true;  // --frame auto
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
     auto value = [&] { return flag_value(argc, argv, i); };
@@ -101,6 +128,30 @@ Args parse_args(int argc, char** argv) {
     else if (a.post.parse(f, argc, argv, i)) continue;
     else if (f == "-q" || f == "--quiet") a.options.quiet = true;
     else if (f == "--no-surfaces") a.surfaces = false;
+    else if (f == "--frame") {
+      const std::string v = value();
+      if (v != "auto" && v != "as-read") throw UsageError("--frame must be auto or as-read, got '" + v + "'");
+      a.options.map_frame.enabled = v == "auto";
+    } else if (f == "--up") a.options.map_frame.up = value();
+    else if (f == "--scale") a.options.map_frame.scale = positive_flag(f, value());
+    else if (f == "--building-height") a.options.map_frame.building_height_m = positive_flag(f, value());
+    else if (f == "--scale-measure") {
+      try {
+        a.options.map_frame.search.measure = parse_scale_measure(value());
+      } catch (const std::invalid_argument& e) {
+        throw UsageError(std::string("--scale-measure: ") + e.what());
+      }
+    } else if (f == "--known-distance") {
+      const std::string v = value();
+      double p[7];
+      char tail;
+      if (std::sscanf(v.c_str(), "%lf,%lf,%lf,%lf,%lf,%lf,%lf%c", &p[0], &p[1], &p[2], &p[3], &p[4], &p[5], &p[6], &tail) != 7 ||
+          !Eigen::Matrix<double, 7, 1>(p).allFinite() || !(p[6] > 0) || Vec3(p[0] - p[3], p[1] - p[4], p[2] - p[5]).norm() == 0)
+        throw UsageError("--known-distance expects X1,Y1,Z1,X2,Y2,Z2,METRES (two different points, a distance > 0), got '" + v + "'");
+      a.options.map_frame.known_a = Vec3(p[0], p[1], p[2]);
+      a.options.map_frame.known_b = Vec3(p[3], p[4], p[5]);
+      a.options.map_frame.known_distance_m = p[6];
+    }
     else if (f == "--precision") a.options.precision = precision_flag(value());
     else if (f == "--format") {
       try {
@@ -124,6 +175,7 @@ Args parse_args(int argc, char** argv) {
   if (a.out.empty()) throw UsageError("-o OUT is required");
   if (a.clouds.empty()) throw UsageError("no line cloud given");
   a.options.post = a.post.options();
+  check_options([&] { a.options.map_frame.Check(); }, {{"MapFrameOptions.up", "--up"}});
   a.options.write_surfaces = a.surfaces;
   if (!a.preview.empty()) {
     const fs::path p = a.preview;
@@ -141,6 +193,9 @@ int run(const Args& a) {
   if (!a.options.quiet && a.surfaces && s.buildings > 0)
     std::fprintf(stderr, "lc2wf-infer: surfaces: %d of %d closed solid(s); %.2f ms per building\n", s.closed_solids, s.buildings,
                  1000 * s.surface_seconds / s.buildings);
+  if (!a.options.quiet && s.framed > 0)
+    std::fprintf(stderr, "lc2wf-infer: %d map(s) put in the networks' frame (OUT/<name>.frame.json); %.2f s per map with the scale search\n",
+                 s.framed, s.frame_seconds / s.framed);
   if (!a.options.quiet && s.buildings > 0)
     std::fprintf(stderr,
                  "lc2wf-infer: %d building(s) -> %s (%d empty); %.3f s per building on average (junction %.3f, "

@@ -26,10 +26,13 @@ struct PostProcessFlags {
   std::optional<int64_t> edge_test_time_views;   // --edge-test-time-views N
   std::optional<double> max_segment_length;      // --max-segment-length M (a number: every cloud)
   bool max_segment_length_auto = false;          // --max-segment-length auto
+  std::optional<int64_t> max_pairs;              // --max-pairs N
+  std::optional<int64_t> max_pairs_per_junction; // --max-pairs-per-junction N
 
   bool any() const {
     return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes ||
-           density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto;
+           density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
+           max_pairs || max_pairs_per_junction;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -44,6 +47,8 @@ struct PostProcessFlags {
     else if (flag == "--density-seeds") density_seeds = flag_value(argc, argv, i);
     else if (flag == "--test-time-views") test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--max-pairs") max_pairs = int_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--max-pairs-per-junction") max_pairs_per_junction = int_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-segment-length") {
       const std::string value = flag_value(argc, argv, i);
       max_segment_length_auto = value == "auto";
@@ -78,6 +83,9 @@ struct PostProcessFlags {
       o.merged_maps_only = true;
     }
     if (max_segment_length) o.max_segment_length_m = *max_segment_length, o.merged_maps_only = false;
+    if (max_pairs) o.pair_cap.max_pairs = static_cast<int>(std::clamp<int64_t>(*max_pairs, -1, 1 << 30));
+    if (max_pairs_per_junction)
+      o.pair_cap.max_pairs_per_junction = static_cast<int>(std::clamp<int64_t>(*max_pairs_per_junction, -1, 1 << 30));
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
@@ -85,7 +93,9 @@ struct PostProcessFlags {
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},
                                        {"JunctionSelectionOptions.test_time_views", "--test-time-views"},
                                        {"PostProcessOptions.edge_test_time_views", "--edge-test-time-views"},
-                                       {"PostProcessOptions.max_segment_length_m", "--max-segment-length"}});
+                                       {"PostProcessOptions.max_segment_length_m", "--max-segment-length"},
+                                       {"PairCapOptions.max_pairs_per_junction", "--max-pairs-per-junction"},
+                                       {"PairCapOptions.max_pairs", "--max-pairs"}});
     return o;
   }
 };

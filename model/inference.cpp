@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/tensor.h"
+#include "dataset/selection/pair_cap.h"
 #include "dataset/selection/pair_support.h"
 #include "dataset/geometry/segment_split.h"
 #include "model/patch_tensors.h"
@@ -158,6 +159,12 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   r.notes = r.selection.notes;
   r.pairs = supported_pairs(selection_pairs(r.selection, label_against, PairSamplingOptions{}.fp_distance_m),
                             cloud.segments, options.pair_support);
+  if (const size_t before = r.pairs.size(); before > 0) {
+    r.pairs = capped_pairs(r.pairs, cloud.segments, options.pair_cap, options.pair_support);
+    if (r.pairs.size() < before)
+      r.notes.push_back(std::to_string(before) + " pairs of " + std::to_string(r.selection.positions.size()) +
+                        " junctions capped to the " + std::to_string(r.pairs.size()) + " with the most line support");
+  }
   r.post_seconds = seconds_since(t0);
   if (r.pairs.empty() && r.selection.positions.size() >= 2)
     r.notes.push_back("no pair of junctions has line support >= " + format_number("%g", options.pair_support.min_support) +

@@ -20,6 +20,7 @@ bool probability(double p) { return std::isfinite(p) && p >= 0.0 && p <= 1.0; }
 void PostProcessOptions::Check() const {
   selection.Check();
   pair_support.Check();
+  pair_cap.Check();
   require(max_segment_length_m == 0.0 || (max_segment_length_m >= 0.05 && max_segment_length_m <= 100.0),
           "max_segment_length_m", "0 (off) or in [0.05, 100] metres", max_segment_length_m);
   require(cut_sampling_passes >= 1 && cut_sampling_passes <= 8, "cut_sampling_passes", "in [1, 8]", cut_sampling_passes);

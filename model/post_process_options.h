@@ -4,6 +4,7 @@
 #pragma once
 
 #include "dataset/selection/junction_selection.h"
+#include "dataset/selection/pair_cap.h"
 #include "dataset/selection/pair_support.h"
 #include "dataset/geometry/segment_split.h"
 
@@ -26,6 +27,10 @@ struct PostProcessOptions {
   // Which pairs of the selection the edge model classifies: all of them unless min_support > 0
   // (dataset/selection/pair_support.h); a skipped pair is no edge and no identical pair.
   PairSupportOptions pair_support;
+  // Not in the release (every pair): above pair_cap.max_pairs, the pairs with the most line support near their
+  // junctions, at most max_pairs_per_junction per junction (dataset/selection/pair_cap.h), so a cluttered map's
+  // hundreds of junction candidates cannot make the edge model's time explode.
+  PairCapOptions pair_cap;
   // Not in the release (one view): each pair's class probabilities are the edge model's mean over this many
   // views of the building's pairs (1, 2, 4 or 8; model/test_time_symmetry.h), at views x its time.
   int edge_test_time_views = 1;

@@ -34,13 +34,17 @@ every stage succeeded:
 
 Frame. COLMAP's frame has no metric scale and an arbitrary up axis; the networks expect metres, z up,
 ground at z = 0:
-  up      the mean of the cameras' up vectors (photos are taken upright), refined by the dominant
-          direction of the 3D lines within 15 deg of it (vertical wall corners) when >= 10 such lines
-          exist; --up z keeps the input z axis, --up X,Y,Z gives it
-  scale   --scale F (metres per COLMAP unit), or --known-distance A,B,D (the camera centres of images
-          A and B are D metres apart), else an estimate: the cloud's height above its ground is set
-          to 7.25 m (every Roof-Image building is that tall; for real buildings give a scale;
-          height = 99th - 1st percentile of the endpoint heights)
+  up      the GPS frame's up when the scale came from GPS, else the mean of the cameras' up vectors
+          (photos are taken upright); refined by the dominant direction of the 3D lines within 15 deg
+          of it (vertical wall corners) when >= 10 such lines exist; --up z keeps the input z axis,
+          --up X,Y,Z gives it
+  scale   from evidence, the first there is: --scale F (metres per COLMAP unit); --known-distance
+          A,B,D (the camera centres of images A and B are D metres apart); the photos' EXIF GPS
+          (>= 3 registered photos with position and altitude, not on one line: the camera centres
+          are fitted to them, which also gives up and north; --no-gps ignores it); --building-height
+          M (the cloud's height above its ground, the 99th - 1st percentile of the endpoint heights,
+          is M metres); else the scale search: the networks run on the cloud at building heights of
+          3-60 m and the most confident wireframe wins (report.json: its scores per height)
   origin  x/y at the median segment midpoint, z = 0 at the 1st percentile of endpoint heights
 Up, height and origin are measured on the best-supported lines (>= k supporting 2D segments, k the
 largest up to 8 that leaves >= 100 lines), so texture clutter above the roof and below the ground does
@@ -68,12 +72,17 @@ Options:
   --up U                 auto (default), cameras (no line refinement), z, or X,Y,Z
   --scale F              metres per input unit
   --known-distance A,B,D camera centres of images A and B (file names) are D metres apart
+  --building-height M    the building's height above its ground, metres (used when no known
+                         distance or GPS gives the scale)
+  --no-gps               do not take scale and up from the photos' EXIF GPS
   --reference-cameras F  evaluation: also write wireframe_aligned.obj in the frame of these cameras
                          (cameras JSON, one per image; similarity fitted on the camera centres)
   --release-quirks       post-process as the paper's release (see lc2wf-infer --help)
   --no-junction-refine   keep the regressed junction positions (see lc2wf-infer --help)
   --min-confidence C     junctions paired by the edge model: confidence > C (default 0.05)
   --pair-support S       classify only pairs with line support >= S (0-1; see lc2wf-infer --help)
+  --max-pairs N          at most N pairs for the edge model (default 2080; see lc2wf-infer --help)
+  --max-pairs-per-junction K  and at most K per junction when the cap bites (default 64)
   --nms-radius M         point-NMS radius of the candidate junctions (default 0.5 m; see lc2wf-infer --help)
   --max-offset M         ignore candidates regressed more than M metres from their sample point (default 0.75;
                          0 = every candidate; see lc2wf-infer --help)
@@ -117,6 +126,11 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--workspace") o.workspace = value();
     else if (f == "--keep") o.keep = true;
     else if (f == "--no-surfaces") o.surfaces = false;
+    else if (f == "--no-gps") o.use_gps = false;
+    else if (f == "--building-height") {
+      o.frame.building_height_m = number_flag(f, value());
+      if (!(o.frame.building_height_m > 0)) throw UsageError("--building-height must be > 0");
+    }
     else if (f == "-q" || f == "--quiet") o.quiet = true;
     else if (f == "-j" || f == "--threads") o.threads = threads_flag(f, value());
     else if (post.parse(f, argc, argv, i)) continue;

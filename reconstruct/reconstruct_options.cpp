@@ -16,6 +16,9 @@ void ReconstructOptions::Check() const {
     throw std::invalid_argument("ReconstructOptions.intrinsics: fx and fy must be > 0");
   if (frame.known_distance_m > 0 && (known_image_a.empty() || known_image_b.empty() || known_image_a == known_image_b))
     throw std::invalid_argument("ReconstructOptions: a known distance needs two different image names");
+  if (min_gps_photos < 3) throw std::invalid_argument("ReconstructOptions.min_gps_photos must be >= 3");
+  gps_fit.Check();
+  scale_search.Check();
   if (frame_max_supports < 3 || frame_min_lines < 1) throw std::invalid_argument("ReconstructOptions.frame_max_supports must be >= 3, frame_min_lines >= 1");
   colmap.Check();
   lsd.Check();

@@ -9,6 +9,8 @@
 
 #include "dataset/photo/line_confirmation.h"
 #include "dataset/photo/metric_frame.h"
+#include "dataset/photo/similarity_align.h"
+#include "model/scale_search.h"
 #include "model/post_process_options.h"
 #include "tools/colmap/colmap_poses.h"
 #include "tools/lines/lsd_detector.h"
@@ -47,13 +49,20 @@ struct ReconstructOptions {
   MetricFrameOptions frame;
   // The frame is measured on the lines with >= k supporting 2D segments, k the largest in
   // [3, frame_max_supports] that leaves frame_min_lines lines (all lines when none does). On the
-  // known-camera clouds of 11 held-out buildings (20 views) this picks k = 6 and puts the typical-height
+  // known-camera clouds of 11 held-out buildings (20 views) this picks k = 6 and puts a height-based
   // scale within 1.5 % on 10 of them (8 % on one); with all lines it was off by up to 2.4x.
   int frame_max_supports = 8;
   int frame_min_lines = 100;
   bool up_given = false;     // frame.up set on the command line
   bool scale_given = false;  // frame.scale or a known distance set on the command line
   std::string known_image_a, known_image_b;  // file names for frame.known_distance_m
+  // Scale and up from the photos' EXIF GPS (>= 3 registered photos with a fix and altitude, not on one line),
+  // after a known distance and before a building height (frame.building_height_m) and the scale search.
+  bool use_gps = true;
+  int min_gps_photos = 3;
+  // GPS fixes are metres off: a camera is left out of the fit only beyond 3 x the median residual and 5 m.
+  SimilarityFitOptions gps_fit{.outlier_factor = 3.0, .outlier_floor = 5.0, .rounds = 3, .min_spread_ratio = 0.05};
+  ScaleSearchOptions scale_search;  // when nothing else gives the scale
 
   PostProcessOptions post;
   bool surfaces = true;  // also write wireframe.city.json + wireframe.faces.obj (infer/surfaces/); --no-surfaces

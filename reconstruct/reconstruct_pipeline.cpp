@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <map>
 #include <cstdio>
 #include <optional>
 
@@ -14,7 +15,11 @@
 #include "dataset/formats/errors.h"
 #include "dataset/formats/line_cloud_io.h"
 #include "dataset/formats/line_obj_io.h"
+#include "core/util/number_format.h"
+#include "dataset/photo/exif_gps.h"
+#include "dataset/photo/local_enu.h"
 #include "model/inference.h"
+#include "model/scale_search.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
 #include "infer/surfaces/surface_writers.h"
@@ -84,6 +89,62 @@ int registered_view_of(const std::string& name, const std::vector<fs::path>& pat
   for (size_t v = 0; v < image_of_view.size(); ++v)
     if (paths[image_of_view[v]].filename() == name) return static_cast<int>(v);
   throw StageError("frame", "--known-distance image '" + name + "' is not a registered image");
+}
+
+struct GpsAlignment {
+  std::optional<Similarity> to_enu;  // camera centres -> local east-north-up metres
+  Json report;
+};
+
+// The registered photos' EXIF GPS fixes and the similarity that puts their camera centres onto them; no
+// similarity (and the reason in the report) with fewer than `min_photos` fixes or fixes on one line.
+GpsAlignment align_to_gps(const std::vector<Camera>& registered, const std::vector<int>& image_of_view,
+                          const std::vector<fs::path>& paths, int min_photos, const SimilarityFitOptions& fit_options) {
+  GpsAlignment a;
+  std::vector<GpsFix> fixes;
+  std::vector<Vec3> centres;
+  std::map<std::string, int> why_not;
+  for (size_t v = 0; v < registered.size(); ++v) {
+    std::string why;
+    std::optional<GpsFix> fix;
+    try {
+      fix = exif_gps_of_file(paths[image_of_view[v]], &why);
+    } catch (const std::exception& e) {
+      why = e.what();
+    }
+    if (fix && !fix->has_altitude) fix.reset(), why = "GPS without altitude";
+    if (!fix) {
+      ++why_not[why];
+      continue;
+    }
+    fixes.push_back(*fix);
+    centres.push_back(registered[v].center());
+  }
+  a.report = {{"used", false}, {"photos_with_gps", fixes.size()}, {"photos_without", why_not}};
+  if (static_cast<int>(fixes.size()) < min_photos) {
+    a.report["why_not"] = std::to_string(fixes.size()) + " registered photo(s) with GPS and altitude, " + std::to_string(min_photos) + " needed";
+    return a;
+  }
+  try {
+    const SimilarityFit fit = fit_similarity(centres, local_enu(fixes), fit_options);
+    a.to_enu = fit.transform;
+    a.report["used"] = true;
+    a.report["inliers"] = fit.inliers.size();
+    a.report["rms_residual_m"] = fit.rms_residual;
+    a.report["median_residual_m"] = fit.median_residual;
+  } catch (const std::invalid_argument& e) {
+    a.report["why_not"] = e.what();
+  }
+  return a;
+}
+
+double search_ratio(const ScaleSearchResult& s) { return s.runner_up_score > 0 ? s.best_score / s.runner_up_score : 0.0; }
+
+Json scale_search_json(const ScaleSearchResult& s, const ScaleSearchOptions& o) {
+  Json curve = Json::array();
+  for (const ScaleCandidate& c : s.curve) curve.push_back({{"height_m", c.height_m}, {"score", c.score}, {"junctions", c.junctions}, {"edges", c.edges}});
+  return {{"measure", to_string(o.measure)}, {"height_m", s.height_m}, {"score", s.best_score}, {"runner_up_height_m", s.runner_up_height_m},
+          {"runner_up_score", s.runner_up_score}, {"best_over_runner_up", search_ratio(s)}, {"curve", curve}};
 }
 
 }  // namespace
@@ -186,21 +247,41 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
     fo.known_view_a = registered_view_of(o.known_image_a, folder.paths, image_of_view);
     fo.known_view_b = registered_view_of(o.known_image_b, folder.paths, image_of_view);
   }
+  Json gps_report = {{"used", false}};
+  if (o.use_gps && !cams.metric_z_up && fo.scale == 0 && fo.known_distance_m == 0) {
+    const GpsAlignment gps = align_to_gps(registered, image_of_view, folder.paths, o.min_gps_photos, o.gps_fit);
+    gps_report = gps.report;
+    if (gps.to_enu) fo.gps_to_enu = gps.to_enu;
+  }
   MetricFrame frame;
   try {
     frame = estimate_metric_frame(registered, segments, fo);
   } catch (const std::invalid_argument& e) {
     throw StageError("frame", e.what());
   }
-  LineCloud cloud;
-  cloud.name = "cloud";
-  for (const Camera& c : registered) cloud.cameras.push_back(frame.to_metric.apply(c));
-  for (const TriangulatedLine& l : lines) {
-    cloud.segments.push_back(frame.to_metric.apply(l.line));
-    std::vector<Observation> obs;
-    for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, views[s.ref.view].segments[s.ref.segment]});
-    cloud.support.push_back(std::move(obs));
+  // The cloud in a frame: cameras, lines and their supports.
+  auto cloud_in = [&](const MetricFrame& f) {
+    LineCloud c;
+    c.name = "cloud";
+    for (const Camera& cam : registered) c.cameras.push_back(f.to_metric.apply(cam));
+    for (const TriangulatedLine& l : lines) {
+      c.segments.push_back(f.to_metric.apply(l.line));
+      std::vector<Observation> obs;
+      for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, views[s.ref.view].segments[s.ref.segment]});
+      c.support.push_back(std::move(obs));
+    }
+    return c;
+  };
+  std::optional<ScaleSearchResult> search;
+  if (frame.needs_scale_search) {
+    log.done(seconds, "up from " + frame.up_source + ", scale left to the search (no GPS, known distance or building height)");
+    log.start("scale search");
+    // Each candidate height sees what inference would: the cloud confirmed in metres at that height.
+    search = search_scale(
+        *predictor, [&](double h) { return keep_confirmed_lines(cloud_in(frame.scaled_by(h)), o.confirmation); }, o.post, o.scale_search);
+    frame = frame.scaled_by(search->height_m);
   }
+  LineCloud cloud = cloud_in(frame);
   for (const Segment3& s : cloud.segments)
     if (!within_coordinate_limit(s.a) || !within_coordinate_limit(s.b))  // e.g. --scale 1e20
       throw StageError("frame", "the scale " + std::to_string(frame.to_metric.scale) + " m/unit (" +
@@ -211,8 +292,13 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
                      {"up_source", frame.up_source}, {"vertical_lines", frame.vertical_lines},
                      {"scale_source", frame.scale_source}, {"height_input_units", frame.height_input},
                      {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
-                     {"height_m", frame.height_input * frame.to_metric.scale}};
-  log.done(seconds, "up from " + frame.up_source + ", scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source + ")");
+                     {"height_m", frame.height_input * frame.to_metric.scale}, {"gps", gps_report}};
+  if (search) report["frame"]["scale_search"] = scale_search_json(*search, o.scale_search);
+  log.done(seconds, search ? "building height " + format_number("%.1f", search->height_m) + " m (" + format_number("%.2f", search_ratio(*search)) +
+                                 "x the runner-up's score at " + format_number("%.1f", search->runner_up_height_m) + " m), " +
+                                 std::to_string(search->curve.size()) + " heights tried"
+                           : "up from " + frame.up_source + ", scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source + ")" +
+                                 (frame.scale_source == "gps" ? ", GPS residual " + format_number("%.2f", gps_report.value("rms_residual_m", 0.0)) + " m" : ""));
 
   log.start("confirmation");
   const size_t triangulated = cloud.segments.size();
@@ -225,7 +311,7 @@ ReconstructResult reconstruct(const ReconstructOptions& o) {
   log.done(seconds, std::to_string(cloud.segments.size()) + " of " + std::to_string(triangulated) + " lines confirmed by another view");
 
   log.start("inference");
-  const InferenceResult r = predictor->predict(cloud, o.post);
+  const InferenceResult r = search ? search->inference : predictor->predict(cloud, o.post);  // the search ran it already
   report["junctions"] = r.wireframe.wireframe.junctions.size();
   report["edges"] = r.wireframe.wireframe.edges.size();
   report["notes"] = r.notes;

@@ -1,5 +1,7 @@
 #include "dataset/photo/metric_frame.h"
 
+#include "dataset/photo/line_up.h"
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
@@ -13,6 +15,13 @@ Camera Similarity::apply(const Camera& c) const {
   out.R = c.R * R.transpose();
   out.t = scale * c.t - out.R * t;
   return out;
+}
+
+MetricFrame MetricFrame::scaled_by(double factor) const {
+  MetricFrame f = *this;
+  f.to_metric.scale *= factor;
+  f.to_metric.t *= factor;
+  return f;
 }
 
 Similarity Similarity::inverse() const {
@@ -30,7 +39,9 @@ void MetricFrameOptions::Check() const {
   if (known_distance_m < 0 || !std::isfinite(known_distance_m)) throw std::invalid_argument("MetricFrameOptions.known_distance_m must be >= 0");
   if (known_distance_m > 0 && (known_view_a < 0 || known_view_b < 0 || known_view_a == known_view_b))
     throw std::invalid_argument("MetricFrameOptions: a known distance needs two different views");
-  if (!(typical_height_m > 0)) throw std::invalid_argument("MetricFrameOptions.typical_height_m must be > 0");
+  if (!(building_height_m >= 0) || !std::isfinite(building_height_m)) throw std::invalid_argument("MetricFrameOptions.building_height_m must be >= 0");
+  if (gps_to_enu && !(gps_to_enu->scale > 0 && std::isfinite(gps_to_enu->scale) && gps_to_enu->R.allFinite()))
+    throw std::invalid_argument("MetricFrameOptions.gps_to_enu is not a similarity");
   if (!(ground_quantile >= 0 && ground_quantile < top_quantile && top_quantile <= 1))
     throw std::invalid_argument("MetricFrameOptions: need 0 <= ground_quantile < top_quantile <= 1");
   if (up == UpSource::kGiven && !(given_up.norm() > 0)) throw std::invalid_argument("MetricFrameOptions.given_up is zero");
@@ -85,19 +96,32 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
     case UpSource::kGiven:
       f.up_input = o.given_up.normalized(), f.up_source = "given";
       break;
+    case UpSource::kLines:
     case UpSource::kCameras:
     case UpSource::kAuto: {
-      if (cameras.empty()) throw std::invalid_argument("estimate_metric_frame: no camera to take the up direction from");
-      f.up_input = mean_camera_up(cameras), f.up_source = "cameras";
-      if (o.up == UpSource::kAuto) {
+      const bool from_gps = o.up == UpSource::kAuto && o.gps_to_enu;
+      const bool from_lines = o.up == UpSource::kLines || (o.up == UpSource::kAuto && !from_gps && cameras.empty());
+      if (from_gps) {
+        f.up_input = (o.gps_to_enu->R.transpose() * Vec3::UnitZ()).normalized(), f.up_source = "gps";
+      } else if (from_lines) {
+        f.up_input = up_from_lines(segments).up, f.up_source = "line directions";
+      } else {
+        if (cameras.empty()) throw std::invalid_argument("estimate_metric_frame: no camera to take the up direction from");
+        f.up_input = mean_camera_up(cameras), f.up_source = "cameras";
+      }
+      if (o.up != UpSource::kCameras) {
         int count = 0;
         const Vec3 refined = refine_with_vertical_lines(f.up_input, segments, o.vertical_line_max_deg, &count);
-        if (count >= o.min_vertical_lines) f.up_input = refined, f.up_source = "cameras+lines", f.vertical_lines = count;
+        if (count >= o.min_vertical_lines) f.up_input = refined, f.up_source += "+lines", f.vertical_lines = count;
       }
       break;
     }
   }
-  const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(f.up_input, Vec3::UnitZ()).toRotationMatrix();
+  // With GPS, x east and y north: the GPS rotation, tilted by the refinement of its up.
+  const Eigen::Matrix3d R =
+      o.gps_to_enu && f.up_source.rfind("gps", 0) == 0
+          ? Eigen::Matrix3d(Eigen::Quaterniond::FromTwoVectors(o.gps_to_enu->R * f.up_input, Vec3::UnitZ()).toRotationMatrix() * o.gps_to_enu->R)
+          : Eigen::Matrix3d(Eigen::Quaterniond::FromTwoVectors(f.up_input, Vec3::UnitZ()).toRotationMatrix());
 
   std::vector<double> heights, mid_x, mid_y;
   for (const Segment3& s : segments) {
@@ -119,9 +143,14 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
     if (!(d > 0)) throw std::invalid_argument("estimate_metric_frame: the two known-distance cameras coincide");
     scale = o.known_distance_m / d, f.scale_source = "known distance";
   }
+  if (scale == 0 && o.gps_to_enu) scale = o.gps_to_enu->scale, f.scale_source = "gps";
   if (scale == 0) {
-    if (!(f.height_input > 0)) throw std::invalid_argument("estimate_metric_frame: the cloud has no height to estimate a scale from");
-    scale = o.typical_height_m / f.height_input, f.scale_source = "estimate (typical height)";
+    if (!(f.height_input > 0)) throw std::invalid_argument("estimate_metric_frame: the cloud has no height to take a scale from");
+    if (o.building_height_m > 0) {
+      scale = o.building_height_m / f.height_input, f.scale_source = "building height";
+    } else {
+      scale = 1.0 / f.height_input, f.scale_source = "scale search", f.needs_scale_search = true;
+    }
   }
   f.to_metric.scale = scale;
   f.to_metric.R = R;

@@ -1,14 +1,16 @@
 // Fixing the frame of a structure-from-motion reconstruction for the networks, which work in metres with
 // z up and the ground at z = 0: a similarity (scale, rotation, translation) from the SfM frame.
-//   up:    the mean of the cameras' up vectors (photos are taken upright; our renders are oblique ring
-//          cameras without roll), refined by the dominant direction of the 3D lines within 15 deg of it
-//          (vertical wall corners); or the input z axis, or a given vector.
-//   scale: given (metres per input unit), or one known distance between two camera centres, or an
-//          estimate: the cloud's height above its ground set to a typical building height (7.25 m, the
-//          height of every Roof-Image building to within 0.4 %; a guess for real buildings).
+//   up:    the GPS frame's up (when the camera centres were fitted to GPS), else the mean of the cameras' up
+//          vectors (photos are taken upright), else the lines' own vertical (line_up.h, maps without
+//          cameras); refined by the dominant direction of the 3D lines within 15 deg of it (vertical wall
+//          corners); or the input z axis, or a given vector.
+//   scale: from evidence only, in this order: given (metres per input unit), one known distance between
+//          two camera centres, the GPS fit, a given building height; else it is left to the scale search
+//          (model/scale_search.h), and the frame comes back with the cloud's height as its unit.
 //   origin: x/y at the median segment midpoint, z = 0 at the cloud's low quantile (the ground lines).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,17 +30,20 @@ struct Similarity {
   Similarity inverse() const;
 };
 
-enum class UpSource { kAuto, kCameras, kInputZ, kGiven };
+enum class UpSource { kAuto, kCameras, kLines, kInputZ, kGiven };
 
 struct MetricFrameOptions {
-  UpSource up = UpSource::kAuto;  // kAuto: cameras, refined by near-vertical lines
+  UpSource up = UpSource::kAuto;  // kAuto: GPS or cameras (the lines' vertical without cameras), refined by near-vertical lines
   Vec3 given_up = Vec3::UnitZ();  // kGiven only
   double vertical_line_max_deg = 15.0;
   int min_vertical_lines = 10;    // fewer near-vertical lines keep the cameras' up
   double scale = 0.0;             // metres per input unit; 0 = known distance, else the estimate
   int known_view_a = -1, known_view_b = -1;  // indices into the camera list
   double known_distance_m = 0.0;             // distance between those two camera centres
-  double typical_height_m = 7.25;
+  // Input -> local east-north-up metres (camera centres fitted to their GPS positions, similarity_align.h):
+  // scale and up, and x east / y north.
+  std::optional<Similarity> gps_to_enu;
+  double building_height_m = 0.0;            // > 0: the cloud's height above its ground is this many metres
   double ground_quantile = 0.01;  // of the endpoint heights
   double top_quantile = 0.99;
   void Check() const;
@@ -47,10 +52,14 @@ struct MetricFrameOptions {
 struct MetricFrame {
   Similarity to_metric;
   Vec3 up_input = Vec3::UnitZ();  // the up direction found, input frame
-  std::string up_source;          // "cameras", "cameras+lines", "input z", "given"
+  std::string up_source;          // "gps", "cameras", "line directions" (each "+lines" when refined by near-vertical lines), "input z", "given"
   int vertical_lines = 0;         // lines used for the refinement
-  std::string scale_source;       // "given", "known distance", "estimate (typical height)"
+  std::string scale_source;       // "given", "known distance", "gps", "building height", "scale search"
   double height_input = 0.0;      // cloud height above its ground, input units
+  // Scale source "scale search": no evidence fixed the scale, so to_metric makes the cloud's height 1; the
+  // caller multiplies by the height the search finds (scaled_by).
+  bool needs_scale_search = false;
+  MetricFrame scaled_by(double factor) const;  // the same frame with metric coordinates x factor
 };
 
 // `cameras`: the registered cameras (input frame), `segments`: the 3D lines (input frame). Throws

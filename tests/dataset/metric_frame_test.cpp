@@ -39,11 +39,12 @@ TEST(MetricFrame, CamerasGiveUpAndTheCloudGivesGroundAndScale) {
   const Similarity sfm = random_sfm_frame();
   const Scene s = scene_in(sfm);
   MetricFrameOptions o;
-  o.typical_height_m = s.height;  // the estimate assumes a known typical height
+  o.building_height_m = s.height;  // the user's word for the building's height
   o.min_vertical_lines = 4;
   const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
   EXPECT_EQ(f.up_source, "cameras+lines");
-  EXPECT_EQ(f.scale_source, "estimate (typical height)");
+  EXPECT_EQ(f.scale_source, "building height");
+  EXPECT_FALSE(f.needs_scale_search);
   EXPECT_NEAR(f.to_metric.scale * sfm.scale, 1.0, 1e-9);
   // Back in metres: z is up again (up to a turn about z) and the ground is at 0.
   const Eigen::Matrix3d back = f.to_metric.R * sfm.R;
@@ -67,6 +68,56 @@ TEST(MetricFrame, GivenScaleAndKnownDistanceWinOverTheEstimate) {
   const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
   EXPECT_EQ(f.scale_source, "known distance");
   EXPECT_NEAR(f.to_metric.scale * sfm.scale, 1.0, 1e-9);
+}
+
+// No evidence, no assumed height: the frame's unit is the cloud's height, and the search's height scales it.
+TEST(MetricFrame, WithoutEvidenceTheScaleIsLeftToTheSearch) {
+  const Similarity sfm = random_sfm_frame();
+  const Scene s = scene_in(sfm);
+  MetricFrameOptions o;
+  o.min_vertical_lines = 4;
+  const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
+  EXPECT_EQ(f.scale_source, "scale search");
+  EXPECT_TRUE(f.needs_scale_search);
+  EXPECT_NEAR(f.height_input * f.to_metric.scale, 1.0, 1e-9);
+  const MetricFrame g = f.scaled_by(s.height);
+  EXPECT_NEAR(g.to_metric.scale * sfm.scale, 1.0, 1e-9);
+  for (const Vec3& j : s.building.wireframe.junctions) EXPECT_NEAR(g.to_metric.apply(sfm.apply(j)).z(), j.z(), 1e-9);
+}
+
+// Camera centres fitted to GPS give scale, up and north: x east, y north.
+TEST(MetricFrame, GpsGivesScaleUpAndNorth) {
+  const Similarity sfm = random_sfm_frame();
+  const Scene s = scene_in(sfm);
+  Similarity building_to_enu;  // the building stands turned 30 deg from east, 100 m east of the GPS origin
+  building_to_enu.R = Eigen::AngleAxisd(0.52, Vec3::UnitZ()).toRotationMatrix();
+  building_to_enu.t = Vec3(100, -20, 35);
+  const Similarity inv = sfm.inverse();
+  Similarity to_enu;  // sfm -> enu = building_to_enu o sfm^-1
+  to_enu.scale = inv.scale, to_enu.R = building_to_enu.R * inv.R, to_enu.t = building_to_enu.R * inv.t + building_to_enu.t;
+  MetricFrameOptions o;
+  o.gps_to_enu = to_enu;
+  o.building_height_m = 99;  // GPS comes first
+  o.min_vertical_lines = 4;
+  const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
+  EXPECT_EQ(f.scale_source, "gps");
+  EXPECT_EQ(f.up_source, "gps+lines");
+  EXPECT_NEAR(f.to_metric.scale * sfm.scale, 1.0, 1e-9);
+  // The output frame is the ENU frame up to a shift: its rotation is the GPS one.
+  const Eigen::Matrix3d back = f.to_metric.R * sfm.R;
+  EXPECT_LT((back - building_to_enu.R).norm(), 1e-9);
+}
+
+// A map without cameras: up from the lines alone, whatever the frame it came in.
+TEST(MetricFrame, LinesAloneGiveUpForMapsWithoutCameras) {
+  const Similarity sfm = random_sfm_frame();
+  const Scene s = scene_in(sfm);
+  MetricFrameOptions o;
+  o.min_vertical_lines = 4;
+  const MetricFrame f = estimate_metric_frame({}, s.segments, o);
+  EXPECT_EQ(f.up_source, "line directions+lines");
+  const Vec3 up = (f.to_metric.R * sfm.R).transpose() * Vec3::UnitZ();
+  EXPECT_LT(std::acos(std::min(1.0, up.z())) * 180 / M_PI, 1e-6);
 }
 
 TEST(MetricFrame, CameraUpWithoutLinesAndTiltedCamerasStayClose) {
@@ -103,6 +154,9 @@ TEST(MetricFrame, BadInputIsRejected) {
   EXPECT_THROW(estimate_metric_frame({}, {}, o), std::invalid_argument);
   o.known_distance_m = 3;
   EXPECT_THROW(o.Check(), std::invalid_argument);  // no views named
+  o = {};
+  o.building_height_m = -1;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "dataset/synthetic/synthetic_line_cloud.h"
 #include "dataset/formats/line_cloud_io.h"
 #include "dataset/geometry/segment_split.h"
+#include "core/rng.h"
 #include "core/util/cli.h"
 #include "infer/batch_inference.h"
 #include "model/inference.h"
@@ -350,6 +351,37 @@ TEST_F(Inference, PairSupportScreensThePairsTheEdgeModelSees) {
   EXPECT_TRUE(none.wireframe.wireframe.edges.empty());
   ASSERT_FALSE(none.notes.empty());
   EXPECT_THAT(none.notes.back(), HasSubstr("line support"));
+}
+
+// A cloud with thousands of clutter lines yields hundreds of junctions; the edge model still sees at most
+// max_pairs pairs, each junction in at most max_pairs_per_junction of them (counted, not timed).
+TEST_F(Inference, ClutteredCloudsRunOnABoundedNumberOfPairs) {
+  const WireframePredictor predictor(dir_);
+  LineCloud cluttered = cloud_;
+  Rng rng(11);
+  for (int k = 0; k < 4000; ++k) {
+    const Vec3 a(rng.next_uniform(-40, 40), rng.next_uniform(-40, 40), rng.next_uniform(0, 20));
+    cluttered.segments.push_back({a, a + Vec3(rng.next_uniform(-2, 2), rng.next_uniform(-2, 2), rng.next_uniform(-2, 2))});
+  }
+  PostProcessOptions o = keep_every_junction();
+  o.selection.sampling_passes = 8;  // 256 sample points of the tiny model's 32
+  const InferenceResult r = predictor.predict(cluttered, o);
+  const size_t n = r.selection.positions.size();
+  ASSERT_GT(n * (n - 1) / 2, 10u * static_cast<size_t>(o.pair_cap.max_pairs));  // the cap must bite
+  EXPECT_LE(r.pairs.size(), static_cast<size_t>(o.pair_cap.max_pairs));
+  EXPECT_GT(r.pairs.size(), static_cast<size_t>(o.pair_cap.max_pairs) / 2);
+  std::vector<int> per_junction(n, 0);
+  for (const JunctionPair& p : r.pairs) ++per_junction[p.i], ++per_junction[p.j];
+  EXPECT_LE(*std::max_element(per_junction.begin(), per_junction.end()), o.pair_cap.max_pairs_per_junction);
+  EXPECT_THAT(testing::PrintToString(r.notes), HasSubstr("capped to the"));
+  EXPECT_NO_THROW(r.wireframe.check("cluttered"));
+  // The cloud without clutter has fewer pairs than the cap: the same pairs as with no cap at all.
+  PostProcessOptions uncapped = keep_every_junction();
+  uncapped.pair_cap.max_pairs = 0;
+  const InferenceResult plain = predictor.predict(cloud_, keep_every_junction());
+  const InferenceResult plain_uncapped = predictor.predict(cloud_, uncapped);
+  ASSERT_EQ(plain.pairs.size(), plain_uncapped.pairs.size());
+  EXPECT_EQ(plain.wireframe.wireframe.edges, plain_uncapped.wireframe.wireframe.edges);
 }
 
 TEST_F(Inference, BatchSkipsACloudWhoseStemCannotNameAnOutput) {

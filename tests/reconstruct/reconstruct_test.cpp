@@ -118,10 +118,11 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
 
   ReconstructOptions o = options("sfm_frame");
   o.cameras = model;
-  o.frame.typical_height_m = height;  // the scale estimate's prior, here the building's true height
+  o.frame.building_height_m = height;  // the user's word for the building's height, here its true height
   const ReconstructResult r = reconstruct(o);
   const Json& f = r.report["frame"];
-  EXPECT_EQ(f["scale_source"], "estimate (typical height)");
+  EXPECT_EQ(f["scale_source"], "building height");
+  EXPECT_EQ(f["gps"]["used"], false);  // PNG renders carry no EXIF
   const Similarity to_metric = test::similarity_from_json(f["to_metric"]);
   EXPECT_NEAR(to_metric.scale * sfm.scale, 1.0, 0.05);
   const Vec3 up = (to_metric.R * sfm.R).transpose() * Vec3::UnitZ();  // metric up seen in the building frame
@@ -137,6 +138,20 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   const Json& g = rk.report["frame"];
   EXPECT_EQ(g["scale_source"], "known distance");
   EXPECT_NEAR(g["to_metric"]["scale"].get<double>() * sfm.scale, 1.0, 1e-6);
+
+  // No evidence at all: the scale search runs the networks at 3-60 m and reports its scores per height.
+  ReconstructOptions n = options("scale_search");
+  n.cameras = model;
+  const ReconstructResult rn = reconstruct(n);
+  const Json& h = rn.report["frame"];
+  EXPECT_EQ(h["scale_source"], "scale search");
+  ASSERT_TRUE(h.contains("scale_search"));
+  EXPECT_GE(h["scale_search"]["curve"].size(), 10u);
+  const double found = h["scale_search"]["height_m"].get<double>();
+  EXPECT_GE(found, 3.0);
+  EXPECT_LE(found, 60.0);
+  EXPECT_NEAR(h["height_m"].get<double>(), found, 1e-6 * found);
+  EXPECT_TRUE(rn.report["seconds"].contains("scale search"));
 }
 
 void expect_stage_error(const ReconstructOptions& o, const std::string& stage, const std::string& text) {

@@ -1,0 +1,93 @@
+#include "dataset/selection/pair_cap.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace lc2wf {
+
+void PairCapOptions::Check() const {
+  auto fail = [](const std::string& what) { throw std::invalid_argument("PairCapOptions." + what); };
+  if (max_pairs < 0) fail("max_pairs must be >= 0 (0 = no cap)");
+  if (max_pairs_per_junction < 0) fail("max_pairs_per_junction must be >= 0 (0 = no per-junction limit)");
+  if (!(end_length_m > 0) || !std::isfinite(end_length_m)) fail("end_length_m must be a positive distance in metres");
+}
+
+namespace {
+
+double point_segment_distance(const Vec3& p, const Segment3& s) {
+  const Vec3 d = s.b - s.a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - s.a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (s.a + t * d)).norm();
+}
+
+}  // namespace
+
+std::vector<double> pair_end_support(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
+                                     const PairSupportOptions& support, double end_length_m) {
+  // Each junction's nearby segments only: a query then scans tens of segments, not the whole map.
+  std::map<int, SegmentSupport> near;
+  SegmentSupport scratch({});  // a junction without an index is not cached
+  auto near_of = [&](int index, const Vec3& at) -> const SegmentSupport& {
+    if (index >= 0)
+      if (auto it = near.find(index); it != near.end()) return it->second;
+    std::vector<Segment3> close;
+    for (const Segment3& s : segments)
+      if (point_segment_distance(at, s) <= end_length_m + support.radius_m) close.push_back(s);
+    if (index < 0) return scratch = SegmentSupport(close);
+    return near.emplace(index, SegmentSupport(close)).first->second;
+  };
+  std::vector<double> rank(pairs.size());
+  for (size_t k = 0; k < pairs.size(); ++k) {
+    const JunctionPair& p = pairs[k];
+    const double length = (p.v - p.u).norm();
+    if (length < support.keep_shorter_than_m) {
+      rank[k] = 2.0;  // above any support share
+      continue;
+    }
+    const Vec3 d = (p.v - p.u) / length;
+    const double reach = std::min(end_length_m, 0.5 * length);
+    const double at_u = near_of(p.i, p.u).support(p.u, p.u + reach * d, support.radius_m, support.max_angle_deg);
+    const double at_v = near_of(p.j, p.v).support(p.v, p.v - reach * d, support.radius_m, support.max_angle_deg);
+    rank[k] = 0.5 * (at_u + at_v);
+  }
+  return rank;
+}
+
+std::vector<JunctionPair> capped_pairs(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
+                                       const PairCapOptions& cap, const PairSupportOptions& support) {
+  cap.Check();
+  support.Check();
+  if (!cap.enabled() || pairs.size() <= static_cast<size_t>(cap.max_pairs)) return pairs;
+  const std::vector<double> rank = pair_end_support(pairs, segments, support, cap.end_length_m);
+  std::vector<size_t> order(pairs.size());
+  std::iota(order.begin(), order.end(), size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    if (rank[a] != rank[b]) return rank[a] > rank[b];
+    return (pairs[a].v - pairs[a].u).squaredNorm() < (pairs[b].v - pairs[b].u).squaredNorm();
+  });
+  std::map<int, int> used;  // pairs kept per junction index
+  std::vector<char> keep(pairs.size(), 0);
+  size_t kept = 0;
+  for (size_t k : order) {
+    if (kept == static_cast<size_t>(cap.max_pairs)) break;
+    const JunctionPair& p = pairs[k];
+    if (cap.max_pairs_per_junction > 0 &&
+        ((p.i >= 0 && used[p.i] >= cap.max_pairs_per_junction) || (p.j >= 0 && used[p.j] >= cap.max_pairs_per_junction)))
+      continue;
+    keep[k] = 1, ++kept;
+    if (p.i >= 0) ++used[p.i];
+    if (p.j >= 0) ++used[p.j];
+  }
+  std::vector<JunctionPair> out;
+  out.reserve(kept);
+  for (size_t k = 0; k < pairs.size(); ++k)
+    if (keep[k]) out.push_back(pairs[k]);
+  return out;
+}
+
+}  // namespace lc2wf
