@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "infer/surfaces/face_labels.h"
 #include "infer/surfaces/plane_faces.h"
+#include "infer/surfaces/prism_shell.h"
 #include "infer/surfaces/shell_assembly.h"
 #include "infer/surfaces/wireframe_cleanup.h"
 
@@ -23,6 +25,8 @@ struct Attempt {
 };
 
 double tiny(const SurfaceOptions& o) { return std::max(1e-6, 0.25 * o.merge_distance_m); }
+
+void set_status(Attempt& a, const std::vector<std::string>& reasons, const SurfaceOptions& o);
 
 // Adds the sides that close open chains: those two planes ask for, or one plane whose two chain ends are each
 // other's nearest and at least three edges apart. Two rounds, so a plane made only of closed sides (the ground under completed walls) closes too.
@@ -84,6 +88,11 @@ Attempt build(const Wireframe& cleaned, const SurfaceOptions& o) {
   snap_vertices_to_planes(a.model.vertices, rings, 2 * o.plane_distance_m);
   for (auto& r : rings) a.model.faces.push_back({std::move(r), SurfaceLabel::kRoof});
   label_faces(a.model, o.wall_tilt_deg, o.plane_distance_m);
+  set_status(a, reasons, o);
+  return a;
+}
+
+void set_status(Attempt& a, const std::vector<std::string>& reasons, const SurfaceOptions& o) {
   a.check = check_shell(a.model, o.planarity_tolerance_m);
   if (a.model.faces.empty()) {
     a.model.status = ShellStatus::kNoFaces;
@@ -96,7 +105,6 @@ Attempt build(const Wireframe& cleaned, const SurfaceOptions& o) {
     for (std::string& p : a.check.problems())
       if (std::find(a.model.reasons.begin(), a.model.reasons.end(), p) == a.model.reasons.end()) a.model.reasons.push_back(std::move(p));
   }
-  return a;
 }
 
 // Walls down from the eaves: every end of a horizontal open side of a roof face gets a vertical edge to the
@@ -151,6 +159,77 @@ bool complete_walls(Wireframe& wf, const Attempt& a, const SurfaceOptions& o) {
   return true;
 }
 
+// The ground level: the mean height of the junctions at the lowest end of the vertical edges (within the
+// plane tolerance of it). None without vertical edges: a roof alone says nothing about the ground.
+std::optional<double> ground_level(const Wireframe& wf, const SurfaceOptions& o) {
+  const double cos_vertical = std::cos(o.wall_tilt_deg * M_PI / 180);
+  double lowest = INFINITY;
+  for (const auto& e : wf.edges) {
+    const Vec3 d = wf.junctions[e[1]] - wf.junctions[e[0]];
+    if (d.norm() > 0 && std::abs(d.z()) >= cos_vertical * d.norm())
+      lowest = std::min({lowest, wf.junctions[e[0]].z(), wf.junctions[e[1]].z()});
+  }
+  if (!std::isfinite(lowest)) return std::nullopt;
+  double sum = 0;
+  int count = 0;
+  for (const Vec3& p : wf.junctions)
+    if (std::abs(p.z() - lowest) <= o.plane_distance_m) sum += p.z(), ++count;
+  return sum / count;
+}
+
+// A shell whose lowest point lies above the ground level is a roof closed by a lid at the eaves (the eaves'
+// horizontal cycle), not the building: the walls below were not found.
+bool floats_above(const SurfaceModel& m, double ground, const SurfaceOptions& o) {
+  double lowest = INFINITY;
+  for (const Vec3& p : m.vertices) lowest = std::min(lowest, p.z());
+  return lowest > ground + o.plane_distance_m;
+}
+
+// The shell as a prism below the roof of `a` (prism_shell.h), its vertices on their faces' planes.
+std::optional<Attempt> prism_attempt(const Attempt& a, double ground, const SurfaceOptions& o, const std::vector<bool>& parts,
+                                     int* part_count = nullptr);
+
+// The prism under every part of the roof sheet when it is a valid solid; else greedily from the largest part,
+// each further part kept when the solid stays valid (two prisms side by side overlap where they touch).
+std::optional<Attempt> closed_prism(const Attempt& a, double ground, const SurfaceOptions& o) {
+  int count = 0;
+  std::optional<Attempt> all = prism_attempt(a, ground, o, {}, &count);
+  if (all && all->model.closed_solid()) return all;
+  if (count < 2) return std::nullopt;
+  std::vector<bool> parts(count, false);
+  std::optional<Attempt> best;
+  for (int k = 0; k < count; ++k) {
+    parts[k] = true;
+    std::optional<Attempt> p = prism_attempt(a, ground, o, parts);
+    if (p && p->model.closed_solid()) best = std::move(p);
+    else parts[k] = false;
+  }
+  return best;
+}
+
+std::optional<Attempt> prism_attempt(const Attempt& a, double ground, const SurfaceOptions& o, const std::vector<bool>& parts,
+                                     int* part_count) {
+  PrismOptions p;
+  p.parts = parts;
+  p.ground_z = ground;
+  p.level_distance = o.plane_distance_m;
+  p.column_distance = o.merge_distance_m;
+  p.wall_tilt_deg = o.wall_tilt_deg;
+  p.straight_deg = o.plane_angle_deg;
+  std::optional<SurfaceModel> m = extrude_roof_to_ground(a.model, p, nullptr, part_count);
+  if (!m) return std::nullopt;
+  Attempt out;
+  out.model = std::move(*m);
+  std::vector<std::vector<int>> rings;
+  for (const SurfaceFace& f : out.model.faces) rings.push_back(f.ring);
+  std::vector<std::string> reasons;
+  orient_faces(rings, out.model.vertices, &reasons);
+  snap_vertices_to_planes(out.model.vertices, rings, 2 * o.plane_distance_m);
+  for (size_t f = 0; f < rings.size(); ++f) out.model.faces[f].ring = std::move(rings[f]);
+  set_status(out, reasons, o);
+  return out;
+}
+
 }  // namespace
 
 SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& o) {
@@ -163,12 +242,19 @@ SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOp
   }
   const Wireframe cleaned = clean_wireframe(wireframe, o.merge_distance_m);
   Attempt first = build(cleaned, o);
-  if (first.model.closed_solid() || !o.complete_walls) return std::move(first.model);
+  if (!o.complete_walls) return std::move(first.model);
+  const std::optional<double> ground = ground_level(cleaned, o);
+  if (first.model.closed_solid() && !(ground && o.prism_walls && floats_above(first.model, *ground, o))) return std::move(first.model);
+  if (ground && o.prism_walls)
+    if (std::optional<Attempt> prism = closed_prism(first, *ground, o)) return std::move(prism->model);
+  if (first.model.closed_solid()) return std::move(first.model);
   Wireframe extended = cleaned;
   if (!complete_walls(extended, first, o)) return std::move(first.model);
   Attempt second = build(clean_wireframe(extended, o.merge_distance_m), o);
-  const bool take_second = second.model.closed_solid() ||
-                           (!second.model.faces.empty() && second.defects() < first.defects());
+  if (second.model.closed_solid()) return std::move(second.model);
+  if (ground && o.prism_walls)
+    if (std::optional<Attempt> prism = closed_prism(second, *ground, o)) return std::move(prism->model);
+  const bool take_second = !second.model.faces.empty() && second.defects() < first.defects();
   return std::move(take_second ? second.model : first.model);
 }
 
