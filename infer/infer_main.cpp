@@ -84,8 +84,9 @@ wireframe and a note, never a failure.
   --scale F           metres per map unit
   --known-distance X1,Y1,Z1,X2,Y2,Z2,D  two points of the map (map units) are D metres apart
   --building-height M the building's height above its ground, metres
-  --scale-measure M   what the scale search maximises: edge-evidence (default: the sum over the kept
-                      edges of P(edge) x both junction confidences), edge-confidence (their mean),
+  --scale-measure M   what the scale search maximises: edge-confidence (default: the mean over the kept
+                      edges of P(edge) x the geometric mean of their junctions' confidences),
+                      edge-evidence (the sum over the kept edges of P(edge) x both confidences),
                       confident-junctions or junction-mean (reconstruct/README.md, "Scale search")
   --precision P       fp32 (default: the same numbers on every CPU), bf16 (operands rounded to bf16,
                       fp32 sums; fast where the CPU has AVX512-BF16, emulated elsewhere) or auto

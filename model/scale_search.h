@@ -29,7 +29,7 @@ struct ScaleSearchOptions {
   double max_height_m = 60.0;
   int coarse_steps = 10;  // log-spaced heights from min to max
   int refine_rounds = 2;  // each tries the best height x step^(+-1/2), then x step^(+-1/4), ...
-  ScaleMeasure measure = ScaleMeasure::kEdgeEvidence;
+  ScaleMeasure measure = ScaleMeasure::kEdgeConfidence;  // the best of the four on the bench (reconstruct/README.md)
   void Check() const;  // throws std::invalid_argument naming the field
 };
 
