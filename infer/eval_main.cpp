@@ -320,12 +320,13 @@ int run(const Args& a) {
       cloud_segments = std::move(cloud.segments);
     }
     evaluator.add(name, pred, gt.wireframe, missing);
-    faces.buildings.push_back(evaluate_faces(name, pred.wireframe, gt.mesh));  // LoD2 surfaces (infer/surfaces/)
+    SurfaceModel surfaces;  // LoD2 surfaces (infer/surfaces/), also drawn in the HTML report
+    faces.buildings.push_back(evaluate_faces(name, pred.wireframe, gt.mesh, &surfaces));
     faces.gt_has_faces = faces.gt_has_faces && !gt.mesh.faces.empty();
     const NormalisationFrame frame =
         cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(cloud_segments);
     building3d.push_back(building3d_counts(pred, gt.wireframe, frame));
-    if (html) html->add(pred, gt.wireframe, cloud_segments, options);
+    if (html) html->add(pred, gt.wireframe, cloud_segments, options, &surfaces);
     if (progress) progress->step();
   }
   if (progress) progress->finish();
@@ -345,7 +346,7 @@ int run(const Args& a) {
                (a.out / "metrics.json").string().c_str(), (a.out / "per_building.csv").string().c_str());
   if (html)
     std::fprintf(stderr, "lc2wf-eval: report %s\n",
-                 write_html_report(a.out, *html, report, a.method, &b3d, a.html_compare, a.weights).string().c_str());
+                 write_html_report(a.out, *html, report, a.method, &b3d, a.html_compare, a.weights, &faces).string().c_str());
   return missing.empty() && skipped_gt.empty() ? kExitDone : kExitPartly;
 }
 

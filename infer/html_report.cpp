@@ -1,6 +1,7 @@
 #include "infer/html_report.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -58,6 +59,19 @@ std::string script_safe(std::string s) {
 
 double ratio(double a, double b) { return b > 0 ? a / b : 0.0; }
 
+// A building's faces for the viewer: vertices in millimetres (integers keep the page small), rings, and
+// labels as 0 roof / 1 wall / 2 ground.
+std::string faces_block(const SurfaceModel& m) {
+  nlohmann::json v = nlohmann::json::array(), f = nlohmann::json::array(), l = nlohmann::json::array();
+  for (const Vec3& p : m.vertices)
+    for (int k = 0; k < 3; ++k) v.push_back(std::llround(p[k] * 1000));
+  for (const SurfaceFace& face : m.faces) {
+    f.push_back(face.ring);
+    l.push_back(face.label == SurfaceLabel::kRoof ? 0 : face.label == SurfaceLabel::kWall ? 1 : 2);
+  }
+  return json_text(nlohmann::json{{"v", v}, {"f", f}, {"l", l}, {"s", to_string(m.status)}});
+}
+
 }  // namespace
 
 std::filesystem::path default_three_js_dir() {
@@ -71,7 +85,8 @@ HtmlReport::HtmlReport(HtmlReportOptions options) : options_(std::move(options))
 }
 
 void HtmlReport::add(const ScoredWireframe& pred_in, const Wireframe& gt, const std::vector<Segment3>& cloud,
-                     const EvalOptions& eval) {
+                     const EvalOptions& eval, const SurfaceModel* faces) {
+  face_blocks_.push_back(faces ? faces_block(*faces) : std::string());
   const ScoredWireframe pred = referenced_junctions_only(pred_in);  // what the metrics evaluate
   ReportGeometryInput in;
   in.pred = &pred;
@@ -87,7 +102,8 @@ void HtmlReport::add(const ScoredWireframe& pred_in, const Wireframe& gt, const 
 }
 
 std::string HtmlReport::html(const EvalReport& report, const std::string& method, const Building3dReport* building3d,
-                             const std::vector<nlohmann::json>& compare, const std::vector<HtmlPlot>& plots) const {
+                             const std::vector<nlohmann::json>& compare, const std::vector<HtmlPlot>& plots,
+                             const FaceReport* faces) const {
   if (report.buildings.size() != blocks_.size())
     throw std::logic_error("HtmlReport: " + std::to_string(blocks_.size()) + " buildings added, the report has " +
                            std::to_string(report.buildings.size()));
@@ -96,6 +112,11 @@ std::string HtmlReport::html(const EvalReport& report, const std::string& method
   if (building3d) {
     summary["building3d"] = building3d_json(*building3d);
     summary["building3d"].erase("per_building");
+  }
+  if (faces && faces->buildings.size() != report.buildings.size()) faces = nullptr;  // not one score per building
+  if (faces) {
+    summary["faces"] = faces_json(*faces);
+    summary["faces"].erase("per_building");
   }
   nlohmann::json rows = nlohmann::json::array();
   for (size_t k = 0; k < report.buildings.size(); ++k) {
@@ -111,6 +132,12 @@ std::string HtmlReport::html(const EvalReport& report, const std::string& method
       r["cf1"] = cp + cr > 0 ? 2 * cp * cr / (cp + cr) : 0.0;
       r["ef1"] = ep + er > 0 ? 2 * ep * er / (ep + er) : 0.0;
       r["nw"] = c.nwed;
+    }
+    if (faces) {
+      const FaceBuilding& f = faces->buildings[k];
+      r["fp"] = ratio(f.scores.matched_roof, f.scores.pred_roof);
+      r["fr"] = ratio(f.scores.matched_roof, f.scores.gt_roof);
+      r["fs"] = f.status;
     }
     rows.push_back(std::move(r));
   }
@@ -136,6 +163,9 @@ std::string HtmlReport::html(const EvalReport& report, const std::string& method
   h += "<script type=\"application/json\" id=\"report-data\">" + script_safe(json_text(data)) + "</script>\n";
   for (size_t k = 0; k < blocks_.size(); ++k)
     h += "<script type=\"text/plain\" id=\"g" + std::to_string(k) + "\">" + blocks_[k] + "</script>\n";
+  for (size_t k = 0; k < face_blocks_.size(); ++k)
+    if (!face_blocks_[k].empty())
+      h += "<script type=\"application/json\" id=\"f" + std::to_string(k) + "\">" + script_safe(face_blocks_[k]) + "</script>\n";
   h += "<script>/* three.js r111 (MIT), Debian libjs-three */\n" + three_js_ + "\n</script>\n";
   h += "<script>\n" + orbit_controls_js_ + "\n</script>\n<script>\n";
   h += embedded::kReportJs;
@@ -146,7 +176,7 @@ std::string HtmlReport::html(const EvalReport& report, const std::string& method
 std::filesystem::path write_html_report(const std::filesystem::path& out, const HtmlReport& html, const EvalReport& report,
                                         const std::string& method, const Building3dReport* building3d,
                                         const std::vector<std::filesystem::path>& compare_dirs,
-                                        const std::filesystem::path& weights) {
+                                        const std::filesystem::path& weights, const FaceReport* faces) {
   namespace fs = std::filesystem;
   std::vector<nlohmann::json> compare;
   for (const fs::path& dir : compare_dirs) {
@@ -173,7 +203,7 @@ std::filesystem::path write_html_report(const std::filesystem::path& out, const 
       plots.push_back({p.stem().string(), fs::relative(fs::absolute(p), fs::absolute(out)).generic_string()});
   }
   const fs::path path = out / "report.html";
-  write_text_atomically(path, html.html(report, method, building3d, compare, plots));
+  write_text_atomically(path, html.html(report, method, building3d, compare, plots, faces));
   return path;
 }
 

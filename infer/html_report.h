@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "infer/building3d_io.h"
+#include "infer/surfaces/face_metrics_io.h"
 #include "model/evaluator.h"
 
 namespace lc2wf {
@@ -33,18 +34,22 @@ class HtmlReport {
   // Reads the three.js files; throws std::runtime_error naming a missing file and the package to install.
   explicit HtmlReport(HtmlReportOptions options);
 
-  // One building, in the evaluator's add() order, with the prediction as given to Evaluator::add.
+  // One building, in the evaluator's add() order, with the prediction as given to Evaluator::add; `faces`:
+  // the LoD2 surfaces found in the prediction (drawn as translucent polygons by label), when given.
   void add(const ScoredWireframe& pred, const Wireframe& gt, const std::vector<Segment3>& cloud,
-           const EvalOptions& eval_options);
+           const EvalOptions& eval_options, const SurfaceModel* faces = nullptr);
 
   // `compare`: metrics.json objects of other runs (e.g. --release-quirks), shown as extra table rows.
+  // `faces`: the face scores (section (d)), one per building in add() order, when given.
   std::string html(const EvalReport& report, const std::string& method, const Building3dReport* building3d,
-                   const std::vector<nlohmann::json>& compare, const std::vector<HtmlPlot>& plots) const;
+                   const std::vector<nlohmann::json>& compare, const std::vector<HtmlPlot>& plots,
+                   const FaceReport* faces = nullptr) const;
 
  private:
   HtmlReportOptions options_;
   std::string three_js_, orbit_controls_js_;
   std::vector<std::string> blocks_;             // base64 geometry per building
+  std::vector<std::string> face_blocks_;        // JSON faces per building ("" without faces)
   std::vector<std::pair<int, int>> cloud_sizes_;  // (segments in the cloud, segments kept)
 };
 
@@ -54,6 +59,6 @@ class HtmlReport {
 std::filesystem::path write_html_report(const std::filesystem::path& out, const HtmlReport& html, const EvalReport& report,
                                         const std::string& method, const Building3dReport* building3d,
                                         const std::vector<std::filesystem::path>& compare_dirs,
-                                        const std::filesystem::path& weights);
+                                        const std::filesystem::path& weights, const FaceReport* faces = nullptr);
 
 }  // namespace lc2wf

@@ -53,6 +53,20 @@
         b.distance_threshold + ' normalised; confidence cut: edges with score &gt; ' + b.confidence_threshold +
         '; variant: ' + esc(b.variant) + '. B3D-nWED is normalised by the GT edge length and is not the paper\'s WED.</p>';
     }
+    const fc = all.filter((m) => m.faces);
+    if (fc.length) {
+      const scored = fc[0].faces.gt_has_faces;
+      h += '<h2>(d) Faces: LoD2 surfaces from the predicted wireframes (%)</h2>' + (scored
+        ? table(['method', 'roof P', 'roof R', 'labels', 'valid closed solids', 'roof area error', 'ms per building'], fc.map((m) => {
+          const x = m.faces;
+          return [esc(m.method), pct(x.roof_precision), pct(x.roof_recall), pct(x.label_accuracy),
+            pct(x.closed_share) + ' (' + x.closed_solids + ' of ' + x.buildings + ')', pct(x.roof_area_error), x.surfaces_ms_mean.toFixed(2)];
+        }))
+        : table(['method', 'valid closed solids', 'ms per building'], fc.map((m) => [esc(m.method),
+          pct(m.faces.closed_share) + ' (' + m.faces.closed_solids + ' of ' + m.faces.buildings + ')', m.faces.surfaces_ms_mean.toFixed(2)])) +
+          '<p class="note">Face scores need a ground truth with faces (Roof-Image meshes); this one has none.</p>') +
+        '<p class="note">A predicted roof facet matches a GT facet when the planes agree within 10° and 0.2 m and the polygons overlap with IoU ≥ 0.5 (one-to-one).</p>';
+    }
     $('summary').innerHTML = h;
     $('method').textContent = S.method;
     const missing = S.missing_predictions.length;
@@ -97,6 +111,12 @@
     columns.push({ key: 'cf1', label: 'CF1', title: 'Building3D corner F1', get: (r) => r.cf1, dir: 1, fmt: pct },
       { key: 'ef1', label: 'EF1', title: 'Building3D edge F1', get: (r) => r.ef1, dir: 1, fmt: pct },
       { key: 'nw', label: 'nWED', title: 'B3D-nWED (GT-length normalised)', get: (r) => r.nw, dir: -1, fmt: (v) => v.toFixed(3) });
+  }
+  if (rows.length && rows[0].fp !== undefined) {
+    columns.push({ key: 'fp', label: 'roof P', title: 'roof-facet precision', get: (r) => r.fp, dir: 1, fmt: pct },
+      { key: 'fr', label: 'roof R', title: 'roof-facet recall', get: (r) => r.fr, dir: 1, fmt: pct },
+      { key: 'fs', label: 'solid', title: 'the faces form a valid closed solid', get: (r) => (r.fs === 'closed_solid' ? 1 : 0), dir: 1,
+        fmt: (v) => (v ? '✓' : '✗') });
   }
   function renderHead() {
     $('buildings').tHead.innerHTML = '<tr><th title="position in the current order">#</th>' + columns.map((c) =>
@@ -178,6 +198,8 @@
   const metres = (g, q) => { const out = new Float32Array(q.length); for (let k = 0; k < q.length; ++k) out[k] = g.origin[k % 3] + q[k] * g.step; return out; };
 
   // ---------- 3D viewer ----------
+  const FACE = [0xe8702a, 0x5b8def, 0x8c6d46];  // roof, wall, ground (translucent)
+  const FACE_NAMES = ['roof', 'wall', 'ground'];
   const C = { cloud: 0x8c959f, pred: 0xd62728, predFp: 0xd62728, gt: 0x2ca02c, gtMiss: 0x1a7f37, junFp: 0xff8c00 };
   const RAMP = [[0x44, 0x01, 0x54], [0x3b, 0x52, 0x8b], [0x21, 0x91, 0x8c], [0x5e, 0xc9, 0x62], [0xfd, 0xe7, 0x25]];
   function ramp(t) {
@@ -199,7 +221,7 @@
     controls.addEventListener('change', render);
     new ResizeObserver(resize).observe(el);
     resize();
-    for (const id of ['show-cloud', 'show-pred', 'show-gt']) $(id).addEventListener('change', applyVisibility);
+    for (const id of ['show-cloud', 'show-pred', 'show-gt', 'show-faces']) $(id).addEventListener('change', applyVisibility);
     $('by-score').addEventListener('change', () => { rebuildWireframes(); renderLegend(); });
     $('reset').addEventListener('click', fitCamera);
   }
@@ -265,7 +287,40 @@
     applyVisibility();
     renderInfo();
   }
+  // Face polygons in 2D (the plane's dominant axis dropped) triangulated by three.js, one mesh per label.
+  function buildFaces() {
+    dispose(layers.faces);
+    layers.faces = null;
+    document.body.dataset.faces = '0';
+    if (!geo.faces) return;
+    const F = geo.faces, v = (k) => new THREE.Vector3(F.v[3 * k] / 1000, F.v[3 * k + 1] / 1000, F.v[3 * k + 2] / 1000);
+    const tris = [[], [], []];
+    let drawn = 0;
+    F.f.forEach((ring, i) => {
+      const pts = ring.map(v);
+      const n = new THREE.Vector3();
+      for (let k = 0; k < pts.length; ++k) n.add(new THREE.Vector3().crossVectors(pts[k], pts[(k + 1) % pts.length]));
+      const a = Math.abs(n.x) >= Math.abs(n.y) && Math.abs(n.x) >= Math.abs(n.z) ? 0 : Math.abs(n.y) >= Math.abs(n.z) ? 1 : 2;
+      const flat = pts.map((p) => { const c = p.toArray(); c.splice(a, 1); return new THREE.Vector2(c[0], c[1]); });
+      const t = THREE.ShapeUtils.triangulateShape(flat, []);
+      if (!t.length) return;
+      ++drawn;
+      for (const [x, y, z] of t) for (const k of [x, y, z]) tris[F.l[i]].push(pts[k].x, pts[k].y, pts[k].z);
+    });
+    const group = new THREE.Group();
+    tris.forEach((pos, label) => {
+      if (!pos.length) return;
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', new THREE.Float32BufferAttribute(pos, 3));
+      group.add(new THREE.Mesh(g, new THREE.MeshBasicMaterial({ color: FACE[label], transparent: true, opacity: 0.35,
+        side: THREE.DoubleSide, depthWrite: false })));
+    });
+    layers.faces = group;
+    scene.add(group);
+    document.body.dataset.faces = String(drawn);
+  }
   function applyVisibility() {
+    if (layers.faces) layers.faces.visible = $('show-faces').checked;
     if (layers.cloud) layers.cloud.visible = $('show-cloud').checked;
     if (layers.pred) layers.pred.visible = $('show-pred').checked;
     if (layers.gt) layers.gt.visible = $('show-gt').checked;
@@ -301,7 +356,8 @@
     $('bname').textContent = r.n;
     $('binfo').textContent = 'GT ' + r.gv + ' v / ' + r.ge + ' e · pred ' + r.pv + ' v / ' + r.pe + ' e · edges matched ' +
       r.etp[t] + ' (η ' + eT[Math.min(t, eT.length - 1)].toFixed(2) + ' m) · WED ' + r.wn + ' / ' + num(r.wd) + ' m' +
-      (r.cloud > r.shown ? ' · cloud: ' + r.shown + ' of ' + r.cloud + ' segments shown' : '');
+      (r.cloud > r.shown ? ' · cloud: ' + r.shown + ' of ' + r.cloud + ' segments shown' : '') +
+      (geo && geo.faces ? ' · faces ' + geo.faces.f.length + ' (' + geo.faces.s.replace('_', ' ') + ')' : '');
   }
   function renderLegend() {
     const line = (c, dashed, w) => '<svg width="28" height="8"><line x1="1" y1="4" x2="27" y2="4" stroke="' + c + '" stroke-width="' + (w || 2) +
@@ -314,6 +370,8 @@
         : line('#d62728') + ' predicted, matched', byScore ? '' : line('#d62728', true) + ' predicted, spurious',
       line('#2ca02c') + ' GT, matched', line('#1a7f37', true) + ' GT, missed',
       dot('#ff8c00') + ' unmatched predicted junction', dot('#1a7f37') + ' missed GT junction (larger)',
+      ...FACE.map((c, k) => '<svg width="14" height="10"><rect width="14" height="10" fill="#' + c.toString(16).padStart(6, '0') +
+        '" fill-opacity="0.5"/></svg> ' + FACE_NAMES[k] + ' face'),
     ].filter(Boolean).map((s) => '<span>' + s + '</span>').join('');
   }
   function open(i) {
@@ -327,6 +385,9 @@
     cg.setAttribute('position', new THREE.Float32BufferAttribute(geo.cm, 3));
     layers.cloud = new THREE.LineSegments(cg, new THREE.LineBasicMaterial({ color: C.cloud, transparent: true, opacity: 0.45 }));
     scene.add(layers.cloud);
+    const fb = document.getElementById('f' + i);
+    geo.faces = fb ? JSON.parse(fb.textContent) : null;
+    buildFaces();
     fitCamera();
     rebuildWireframes();
     for (const tr of $('buildings').tBodies[0].rows) tr.classList.toggle('sel', +tr.dataset.i === i);

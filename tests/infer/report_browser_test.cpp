@@ -1,6 +1,7 @@
 // lc2wf-eval --html opened in a real browser: headless Chromium loads the report of a small evaluation
 // (synthetic line clouds, predictions with matched, shifted, missing and spurious edges) through
-// tools/report/check_report.py; no console errors, a 3D view that is not blank, a table that sorts.
+// tools/report/check_report.py; no console errors, a 3D view that is not blank, faces drawn and toggled, a table
+// that sorts.
 // Skipped, with a message, where Chromium is not installed.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -89,6 +90,14 @@ TEST(ReportBrowser, ChromiumLoadsSortsAndRendersTheReport) {
   EXPECT_GT(c["red"].get<double>(), 0.0002) << c.dump();
   EXPECT_GT(c["green"].get<double>(), 0.0002) << c.dump();
   EXPECT_GT(c["grey"].get<double>(), 0.0002) << c.dump();
+  // Faces: none for synth_3 (no prediction); the clicked building's faces drawn as translucent polygons (walls
+  // blue), gone when toggled off; section (d) for this run and the compared one.
+  EXPECT_EQ(r["faces_first"], 0);
+  EXPECT_GT(r["faces_after_click"].get<int>(), 0);
+  EXPECT_GT(c["blue"].get<double>(), 0.0002) << c.dump();
+  EXPECT_LT(r["canvas_faces_off"]["blue"].get<double>(), 0.2 * c["blue"].get<double>()) << r["canvas_faces_off"].dump();
+  EXPECT_GT(r["canvas_faces_off"]["red"].get<double>(), 0.0002) << r["canvas_faces_off"].dump();
+  EXPECT_EQ(r["face_summary_rows"], 2);
   // Sorting: name ascending, then descending; edge recall worst first (ascending).
   const auto names1 = r["order_name_1"].get<std::vector<std::string>>();
   const auto names2 = r["order_name_2"].get<std::vector<std::string>>();
@@ -100,9 +109,9 @@ TEST(ReportBrowser, ChromiumLoadsSortsAndRendersTheReport) {
   EXPECT_EQ(recall.front(), 0.0);  // synth_3 has no prediction
   EXPECT_NE(r["rendered_after_click"], r["rendered"]);
   EXPECT_EQ(r["summary_rows"], 2);  // this run and the compared one
-  // Coloured by score (viridis), the prediction's red gives way to other hues; the GT stays.
+  // Coloured by score (viridis; faces still off), the prediction's red gives way to other hues; the GT stays.
   const nlohmann::json& scored = r["canvas_by_score"];
-  EXPECT_LT(scored["red"].get<double>(), 0.5 * c["red"].get<double>()) << scored.dump();
+  EXPECT_LT(scored["red"].get<double>(), 0.5 * r["canvas_faces_off"]["red"].get<double>()) << scored.dump();
   EXPECT_GT(scored["green"].get<double>(), 0.0002) << scored.dump();
 }
 

@@ -98,5 +98,34 @@ TEST(HtmlReport, OneSelfContainedPageWithABlockPerBuilding) {
   EXPECT_THROW(HtmlReport(HtmlReportOptions{dir.path() / "missing"}), std::runtime_error);
 }
 
+TEST(HtmlReport, FacesOfThePredictionAndSectionDGoIntoThePage) {
+  testing::ScratchDir dir("html_faces");
+  testing::write_text(dir.path() / "three" / "three.min.js", "var THREE_STUB = 1;");
+  testing::write_text(dir.path() / "three" / "examples" / "js" / "controls" / "OrbitControls.js", "var ORBIT_STUB = 1;");
+  HtmlReport html(HtmlReportOptions{dir.path() / "three"});
+  Evaluator ev(EvalOptions{});
+  const Wireframe gt = two_edges();
+  SurfaceModel square;
+  square.vertices = {{0, 0, 1}, {1, 0, 1}, {1, 1, 1.0006}};
+  square.faces = {{{0, 1, 2}, SurfaceLabel::kWall}};
+  square.status = ShellStatus::kOpenSurfaces;
+  FaceReport faces;
+  faces.gt_has_faces = false;
+  for (const char* name : {"with_faces", "without"}) {
+    ev.add(name, predicted(), gt);
+    html.add(predicted(), gt, {}, EvalOptions{}, std::string(name) == "with_faces" ? &square : nullptr);
+    faces.buildings.push_back({name, {}, "open_surfaces", {}, 0.001});
+  }
+  const std::string page = html.html(ev.report(), "m", nullptr, {}, {}, &faces);
+  // Millimetre integers, rings, labels (1 = wall) and the status; no block for the building without faces.
+  EXPECT_THAT(page, HasSubstr("id=\"f0\">{\"f\":[[0,1,2]],\"l\":[1],\"s\":\"open_surfaces\",\"v\":[0,0,1000,1000,0,1000,1000,1000,1001]}"));
+  EXPECT_THAT(page, Not(HasSubstr("id=\"f1\"")));
+  EXPECT_THAT(page, HasSubstr("\"fs\":\"open_surfaces\""));
+  EXPECT_THAT(page, HasSubstr("\"closed_share\":"));
+  // Face scores that are not one per building are left out rather than misattributed.
+  faces.buildings.pop_back();
+  EXPECT_THAT(html.html(ev.report(), "m", nullptr, {}, {}, &faces), Not(HasSubstr("\"closed_share\":")));
+}
+
 }  // namespace
 }  // namespace lc2wf

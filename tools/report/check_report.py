@@ -157,10 +157,11 @@ def png_pixels(data):
 
 
 def pixel_stats(png):
-    """Share of non-background pixels, and of clearly red / green / grey ones, in a screenshot."""
+    """Share of non-background pixels, and of clearly red / green / grey / blue ones, in a screenshot (blue: the
+    translucent wall faces)."""
     width, height, channels, rows = png_pixels(png)
     total = width * height
-    ink = red = green = grey = 0
+    ink = red = green = grey = blue = 0
     colours = set()
     for line in rows:
         for x in range(0, len(line), channels):
@@ -175,8 +176,11 @@ def pixel_stats(png):
                 green += 1
             elif max(r, g, b) - min(r, g, b) < 24:
                 grey += 1
+            elif b > r + 30 and b > g + 15:
+                blue += 1
     return {"width": width, "height": height, "ink": ink / total, "red": red / total, "green": green / total,
-            "grey": grey / total, "colours": len(colours)}
+            "grey": grey / total, "blue": blue / total,
+            "colours": len(colours)}
 
 
 def canvas_stats(browser, save_as):
@@ -210,6 +214,10 @@ def check(report, chromium, timeout, shots=None):
         out["buildings"] = browser.evaluate("window.lc2wfReport.order().length")
         out["summary_rows"] = browser.evaluate("document.querySelectorAll('#summary table')[0].tBodies[0].rows.length")
         out["canvas"] = canvas_stats(browser, shots and os.path.join(shots, "first.png"))
+        out["faces_first"] = int(browser.evaluate("document.body.dataset.faces || '0'"))
+        out["face_summary_rows"] = browser.evaluate(
+            "(() => { const h = [...document.querySelectorAll('#summary h2')].findIndex(e => e.textContent.startsWith('(d)'));"
+            " return h < 0 ? 0 : document.querySelectorAll('#summary h2')[h].nextElementSibling.tBodies[0].rows.length; })()")
         # Sorting by clicking headers: name ascending, then descending; an edge-recall sort, worst first.
         out["order_initial"] = browser.evaluate("window.lc2wfReport.order()")
         browser.click("#buildings th[data-key=n]")
@@ -226,6 +234,10 @@ def check(report, chromium, timeout, shots=None):
             "document.body.dataset.rendered !== %s && document.body.dataset.rendered" % json.dumps(out["rendered"]),
             "the clicked building")
         out["canvas_after_click"] = canvas_stats(browser, shots and os.path.join(shots, "clicked.png"))
+        out["faces_after_click"] = int(browser.evaluate("document.body.dataset.faces || '0'"))
+        # The faces toggled off: their translucent colours go (they stay off, so the colours below are the lines').
+        browser.click("#show-faces")
+        out["canvas_faces_off"] = canvas_stats(browser, shots and os.path.join(shots, "faces_off.png"))
         # Colour by score and another threshold: the prediction is no longer drawn in plain red.
         browser.click("#by-score")
         browser.evaluate("(() => { const s = document.getElementById('eta'); s.value = '2';"
