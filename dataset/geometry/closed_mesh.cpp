@@ -4,7 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <set>
+#include <numeric>
+#include <stdexcept>
 #include <utility>
 
 #include "dataset/geometry/building.h"
@@ -12,115 +13,66 @@
 namespace lc2wf {
 namespace {
 
-using EdgeKey = std::pair<int, int>;
-EdgeKey undirected(int a, int b) { return {std::min(a, b), std::max(a, b)}; }
-
-// Distance of p from segment ab when p projects strictly inside it, else infinity.
-double distance_inside_segment(const Vec3& p, const Vec3& a, const Vec3& b, double tol, double* t_out = nullptr) {
-  const Vec3 d = b - a;
-  const double len2 = d.squaredNorm();
-  if (len2 <= 0) return std::numeric_limits<double>::infinity();
-  const double t = (p - a).dot(d) / len2;
-  const double len = std::sqrt(len2);
-  if (t * len <= tol || (1 - t) * len <= tol) return std::numeric_limits<double>::infinity();
-  if (t_out) *t_out = t;
-  return (a + t * d - p).norm();
-}
-
-std::set<EdgeKey> unique_edges(const PolyMesh& m) {
-  std::set<EdgeKey> edges;
-  for (const auto& f : m.faces)
-    for (size_t k = 0; k < f.size(); ++k) edges.insert(undirected(f[k], f[(k + 1) % f.size()]));
-  return edges;
-}
-
-// Inserts into every face edge the vertices lying strictly inside it, in order along the edge.
-void split_edges_at_vertices(PolyMesh& m, double tol) {
-  for (auto& f : m.faces) {
-    std::vector<int> out;
-    for (size_t k = 0; k < f.size(); ++k) {
-      const int a = f[k], b = f[(k + 1) % f.size()];
-      out.push_back(a);
-      std::vector<std::pair<double, int>> inner;
-      for (size_t v = 0; v < m.vertices.size(); ++v) {
-        double t = 0;
-        if (static_cast<int>(v) != a && static_cast<int>(v) != b &&
-            distance_inside_segment(m.vertices[v], m.vertices[a], m.vertices[b], tol, &t) <= tol)
-          inner.emplace_back(t, static_cast<int>(v));
-      }
-      std::sort(inner.begin(), inner.end());
-      for (const auto& [t, v] : inner) out.push_back(v);
-    }
-    f = std::move(out);
+// Whether point p lies on face f: within `tol` of its plane and inside its outline (even-odd rule in the
+// plane of the two axes the face is least steep to).
+bool on_face(const std::vector<Vec3>& v, const Ring& f, const Vec3& p, double tol) {
+  const Vec3 nv = newell_vector(v, f);
+  if (nv.norm() <= 0) return false;
+  const Vec3 n = nv.normalized();
+  if (std::abs(n.dot(p - ring_centroid(v, f))) > tol) return false;
+  int drop = 0;
+  n.cwiseAbs().maxCoeff(&drop);
+  const int u = (drop + 1) % 3, w = (drop + 2) % 3;
+  bool inside = false;
+  for (size_t i = 0, j = f.size() - 1; i < f.size(); j = i++) {
+    const Vec3 &a = v[f[i]], &b = v[f[j]];
+    if ((a[w] > p[w]) != (b[w] > p[w]) && p[u] < (b[u] - a[u]) * (p[w] - a[w]) / (b[w] - a[w]) + a[u]) inside = !inside;
   }
+  return inside;
 }
 
-// Removes vertices with exactly two neighbours in line with them (they only continue a straight edge).
-void drop_straight_vertices(PolyMesh& m) {
-  for (bool changed = true; changed;) {
-    changed = false;
-    std::vector<std::set<int>> neighbours(m.vertices.size());
-    for (const auto& [a, b] : unique_edges(m)) {
-      neighbours[a].insert(b);
-      neighbours[b].insert(a);
-    }
-    for (size_t v = 0; v < m.vertices.size(); ++v) {
-      if (neighbours[v].size() != 2) continue;
-      const Vec3 p = m.vertices[*neighbours[v].begin()] - m.vertices[v];
-      const Vec3 q = m.vertices[*neighbours[v].rbegin()] - m.vertices[v];
-      if (p.dot(q) >= 0 || p.cross(q).norm() > 1e-9 * p.norm() * q.norm()) continue;
-      for (auto& f : m.faces) f.erase(std::remove(f.begin(), f.end(), static_cast<int>(v)), f.end());
-      changed = true;
-      break;
-    }
+// Whether the edge (a, b) of one face lies on a face that does not have both its ends.
+bool edge_on_other_face(const PolyMesh& m, int a, int b, double tol) {
+  const Vec3 mid = 0.5 * (m.vertices[a] + m.vertices[b]);
+  for (const Ring& f : m.faces) {
+    const bool has_edge = std::find(f.begin(), f.end(), a) != f.end() && std::find(f.begin(), f.end(), b) != f.end();
+    if (!has_edge && on_face(m.vertices, f, mid, tol)) return true;
   }
-}
-
-void drop_unused_vertices(PolyMesh& m) {
-  std::vector<int> new_id(m.vertices.size(), -1);
-  std::vector<Vec3> kept;
-  for (auto& f : m.faces)
-    for (int& v : f) {
-      if (new_id[v] < 0) {
-        new_id[v] = static_cast<int>(kept.size());
-        kept.push_back(m.vertices[v]);
-      }
-      v = new_id[v];
-    }
-  m.vertices = std::move(kept);
+  return false;
 }
 
 }  // namespace
 
-PolyMesh mesh_from_faces(const std::vector<PointFace>& faces, double tol) {
+PolyMesh mesh_from_faces(const std::vector<PointFace>& faces, const MeshRepairOptions& options) {
+  options.Check();
   PolyMesh m;
-  const double tol2 = tol * tol;
+  VertexWelder welder(options.weld_m);
   for (const PointFace& pf : faces) {
-    std::vector<int> f;
-    for (const Vec3& p : pf.points) {
-      int id = -1;
-      for (size_t i = 0; i < m.vertices.size() && id < 0; ++i)
-        if ((m.vertices[i] - p).squaredNorm() <= tol2) id = static_cast<int>(i);
-      if (id < 0) {
-        id = static_cast<int>(m.vertices.size());
-        m.vertices.push_back(p);
-      }
-      if (f.empty() || f.back() != id) f.push_back(id);
-    }
-    while (f.size() > 1 && f.front() == f.back()) f.pop_back();
-    if (f.size() < 3) continue;
+    Ring f = welder.add_ring(pf.points);
+    if (f.empty()) continue;
     m.faces.push_back(std::move(f));
     m.labels.push_back(pf.label);
   }
-  split_edges_at_vertices(m, tol);
-  drop_straight_vertices(m);
-  drop_unused_vertices(m);
+  m.vertices = welder.take_vertices();
+  conform_t_junctions(m.vertices, m.faces, options.on_edge_m);
+  std::vector<int> kept;
+  remove_collinear_vertices(m.vertices, m.faces, options.collinear_m, &kept);
+  std::vector<FaceLabel> labels;
+  for (int f : kept) labels.push_back(m.labels[f]);
+  m.labels = std::move(labels);
+  drop_unused_vertices(m.vertices, m.faces);
   return m;
 }
 
-ClosedMeshReport inspect_closed_mesh(const PolyMesh& m, double tol) {
+void ClosedMeshOptions::Check() const {
+  if (!(tol >= 0) || !std::isfinite(tol)) throw std::invalid_argument("ClosedMeshOptions.tol must be >= 0");
+  if (!(on_face_tol >= 0) || !std::isfinite(on_face_tol)) throw std::invalid_argument("ClosedMeshOptions.on_face_tol must be >= 0");
+}
+
+ClosedMeshReport inspect_closed_mesh(const PolyMesh& m, const ClosedMeshOptions& options) {
+  options.Check();
   ClosedMeshReport r;
-  const MeshReport base = analyse_mesh(m, tol);
+  const MeshReport base = analyse_mesh(m, options.tol);
   r.duplicate_vertex_pairs = base.duplicate_vertex_pairs;
   r.max_planarity_deviation = base.max_planarity_deviation;
   std::map<EdgeKey, std::vector<int>> directions;  // +1: walked from the smaller id, -1: from the larger
@@ -132,18 +84,27 @@ ClosedMeshReport inspect_closed_mesh(const PolyMesh& m, double tol) {
     for (size_t k = 0; k < f.size(); ++k) {
       const int a = f[k], b = f[(k + 1) % f.size()];
       used[a] = true;
-      directions[undirected(a, b)].push_back(a < b ? 1 : -1);
+      directions[undirected_edge(a, b)].push_back(a < b ? 1 : -1);
       // Signed volume by a fan of triangles from the face's first corner.
       if (k >= 2) r.volume += m.vertices[f[0]].dot(m.vertices[f[k - 1]].cross(m.vertices[f[k]])) / 6.0;
     }
   }
+  std::vector<int> all(m.vertices.size());
+  std::iota(all.begin(), all.end(), 0);
+  const EdgeInteriorIndex index(m.vertices, std::move(all), options.tol);
   for (const auto& [e, dirs] : directions) {
     if (dirs.size() != 2) ++r.edges_not_shared_by_two;
     else if (dirs[0] == dirs[1]) ++r.edges_same_direction;
-    for (size_t v = 0; v < m.vertices.size(); ++v)
-      if (static_cast<int>(v) != e.first && static_cast<int>(v) != e.second &&
-          distance_inside_segment(m.vertices[v], m.vertices[e.first], m.vertices[e.second], tol) <= tol)
-        ++r.vertices_inside_edges;
+    if (dirs.size() == 1) {
+      ++r.edges_used_once;
+      if (options.on_face_tol > 0 && edge_on_other_face(m, e.first, e.second, options.on_face_tol)) {
+        ++r.edges_on_faces;
+      } else {
+        ++r.open_edges;
+        r.open_length += (m.vertices[e.first] - m.vertices[e.second]).norm();
+      }
+    }
+    r.vertices_inside_edges += static_cast<int>(index.inside(e.first, e.second).size());
   }
   r.unused_vertices = static_cast<int>(std::count(used.begin(), used.end(), false));
   r.min_vertex_distance = std::numeric_limits<double>::infinity();

@@ -1,12 +1,13 @@
-// Closed polygon meshes from faces given as point lists, and the checks a closed building mesh must pass:
-// every edge used by exactly two faces in opposite directions, no vertex in the middle of another face's
-// edge, no duplicate vertex, planar faces, outward orientation. The procedural buildings and the mesh
-// augmentation are held to these.
+// Closed polygon meshes from faces given as point lists, and the one check of closure: every edge used by
+// exactly two faces in opposite directions, no vertex in the middle of another face's edge, no duplicate
+// vertex, planar faces, outward orientation. The procedural buildings and the mesh augmentation are held
+// to all of it; the LoD2 clean-up to its open edges (an edge lying on another face allowed).
 #pragma once
 
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/geometry/mesh_repair.h"
 
 namespace lc2wf {
 
@@ -15,13 +16,25 @@ struct PointFace {
   FaceLabel label = FaceLabel::Wall;
 };
 
-// Welds points closer than `tol`, puts every vertex that lies on another face's edge into that face (so each
-// edge is shared by exactly two faces), then drops vertices that only continue a straight edge (two
-// neighbours, in line): the polygon edges left are the ones a person would draw.
-PolyMesh mesh_from_faces(const std::vector<PointFace>& faces, double tol = 1e-6);
+// The shared repair steps (mesh_repair.h) in order: weld (faces with < 3 distinct vertices or no area
+// dropped), every vertex that lies on another face's edge put into that face (so each edge is shared by
+// exactly two faces), vertices that only continue a straight edge removed, unused vertices dropped: the
+// polygon edges left are the ones a person would draw.
+PolyMesh mesh_from_faces(const std::vector<PointFace>& faces, const MeshRepairOptions& options = {});
+
+struct ClosedMeshOptions {
+  double tol = 1e-6;         // vertices closer than this are duplicates; this close to an edge, a T-junction
+  double on_face_tol = 0;    // > 0: an edge of one face lying on another face (within this of its plane,
+                             // inside its outline) is not open: the rim of a dropped inner ring
+  void Check() const;
+};
 
 struct ClosedMeshReport {
   int edges_not_shared_by_two = 0;   // undirected edges used by one face or by more than two
+  int edges_used_once = 0;           // of those, by one face ...
+  int edges_on_faces = 0;            // ... lying on another face (counted with on_face_tol > 0 only)
+  int open_edges = 0;                // ... the rest: holes in the surface
+  double open_length = 0;            // their total length
   int edges_same_direction = 0;      // edges whose two faces walk them the same way (flipped face)
   int vertices_inside_edges = 0;     // T-junctions: a vertex strictly inside an edge of some face
   int duplicate_vertex_pairs = 0;    // vertex pairs closer than the tolerance
@@ -36,6 +49,6 @@ struct ClosedMeshReport {
   }
 };
 
-ClosedMeshReport inspect_closed_mesh(const PolyMesh& mesh, double tol = 1e-6);
+ClosedMeshReport inspect_closed_mesh(const PolyMesh& mesh, const ClosedMeshOptions& options = {});
 
 }  // namespace lc2wf

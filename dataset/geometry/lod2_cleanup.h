@@ -12,6 +12,7 @@
 
 #include "dataset/formats/city_model.h"
 #include "dataset/geometry/geometry.h"
+#include "dataset/geometry/mesh_repair.h"
 
 namespace lc2wf {
 
@@ -51,8 +52,8 @@ struct Lod2CleanupReport {
 
 // Step 1: inner rings dropped (returns how many).
 int drop_inner_rings(std::vector<CityPolygon>& polygons);
-// Step 2: indexed mesh with vertices within `tol` welded (to the first one seen), repeated consecutive ids,
-// faces with < 3 distinct vertices and faces of no area (every vertex within `tol` of a line) dropped.
+// Step 2: indexed mesh through the shared VertexWelder (mesh_repair.h): vertices within `tol` welded (to the
+// first one seen), repeated consecutive ids, faces with < 3 distinct vertices or of no area dropped.
 Lod2Mesh weld_polygons(const std::vector<CityPolygon>& polygons, double tol, Lod2CleanupReport* report = nullptr);
 // Faces without semantics: within 10 degrees of vertical -> wall; facing down with every vertex within
 // ground_tol_m of the lowest vertex -> ground; other downward faces -> wall (overhangs); upward -> roof.
@@ -67,14 +68,11 @@ int merge_coplanar_faces(Lod2Mesh& mesh, const Lod2CleanupOptions& options);
 // Step 4: faces with the same vertex set: both removed when they run in opposite directions (a wall shared
 // by two parts, an interior face), one of them kept when they are plain duplicates. Returns faces removed.
 int remove_coincident_faces(Lod2Mesh& mesh);
-// Step 5: every vertex within `tol` of another face's edge (strictly inside it) is inserted into that edge.
-// Returns the number of insertions.
-int conform_t_junctions(Lod2Mesh& mesh, double tol);
-// Step 6: vertices with exactly two neighbours in the edge graph that lie within `tol` of the segment
-// between them are removed from every face (repeated until none is left). Returns how many.
-int remove_collinear_vertices(Lod2Mesh& mesh, double tol);
+// Step 5 (T-junctions, at on_edge_tol_m) and step 6 (collinear vertices, at collinear_tol_m) are the shared
+// conform_t_junctions and remove_collinear_vertices of mesh_repair.h, run on the mesh's vertices and faces.
 // Why the mesh is not a usable closed building, empty when it is: every edge must belong to two faces or
-// lie on a face (within on_face_tol of its plane, inside its outline: where an inner ring was dropped).
+// lie on a face (within on_face_tol of its plane, inside its outline: where an inner ring was dropped); the
+// edges are counted by the shared closure check (closed_mesh.h).
 // `reason` gets a short key (not_closed, no_roof, too_few_faces, flat) for counting.
 std::string closure_problem(const Lod2Mesh& mesh, std::string* reason = nullptr, double on_face_tol = 0.03);
 

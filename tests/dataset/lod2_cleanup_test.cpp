@@ -140,7 +140,7 @@ TEST(Lod2Cleanup, InsertsVerticesLyingOnAnotherFacesEdge) {
   std::vector<CityPolygon> p = {poly({{0, 0, 0}, {2, 0, 0}, {2, 0, 1}, {0, 0, 1}}),
                                 poly({{1, 0, 0}, {1, -1, 0}, {1.5, -1, 0}}), poly({{0.009, 0, 0}, {0.009, -1, 0}, {-1, -1, 0}})};
   Lod2Mesh m = weld_polygons(p, 0.001);
-  EXPECT_EQ(conform_t_junctions(m, 0.01), 1);
+  EXPECT_EQ(conform_t_junctions(m.vertices, m.faces, 0.01), 1);
   EXPECT_EQ(m.faces[0].size(), 5u);
   EXPECT_EQ(m.vertices[m.faces[0][1]], Vec3(1, 0, 0));
 }
@@ -149,12 +149,12 @@ TEST(Lod2Cleanup, RemovesDegreeTwoVerticesOnAStraightLineOnly) {
   // A square with a vertex in the middle of its bottom edge (removed) and one 5 cm off its top edge (kept).
   std::vector<CityPolygon> p = {poly({{0, 0, 0}, {1, 0.004, 0}, {2, 0, 0}, {2, 2, 0}, {1, 2.05, 0}, {0, 2, 0}})};
   Lod2Mesh m = mesh_of(p);
-  EXPECT_EQ(remove_collinear_vertices(m, 0.01), 1);
+  EXPECT_EQ(remove_collinear_vertices(m.vertices, m.faces, 0.01), 1);
   EXPECT_EQ(m.faces[0].size(), 5u);
   // A vertex with three neighbours stays even on a straight line.
   std::vector<CityPolygon> t = {poly({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}}), poly({{1, 0, 0}, {0, 0, 0}, {1, -1, 0}})};
   Lod2Mesh tm = mesh_of(t);
-  EXPECT_EQ(remove_collinear_vertices(tm, 0.01), 0);
+  EXPECT_EQ(remove_collinear_vertices(tm.vertices, tm.faces, 0.01), 0);
 }
 
 TEST(Lod2Cleanup, ClosureNamesTheReason) {
