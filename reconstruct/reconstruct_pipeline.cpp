@@ -149,233 +149,298 @@ Json scale_search_json(const ScaleSearchResult& s, const ScaleSearchOptions& o) 
 
 }  // namespace
 
-ReconstructResult reconstruct(const ReconstructOptions& o) {
-  o.Check();
-  const auto t_total = Clock::now();
-  set_num_threads(o.threads);
-  if (o.threads > 0) omp_set_num_threads(o.threads);
-  Workspace ws(o.workspace, o.keep);
-  ReconstructResult result;
-  Json& report = result.report;
-  report = {{"format", "lc2wf-reconstruct-report"}, {"version", 1}, {"images_dir", o.images.string()}};
-  add_version_fields(report);
-  Json seconds = Json::object();
-  StageLog log(o.quiet);
+namespace {
 
-  log.start("weights");
-  std::optional<WireframePredictor> predictor;
-  try {
-    predictor.emplace(o.weights);
-  } catch (const std::exception& e) {
-    throw StageError("weights", e.what());
+// One run of the pipeline: each stage a method that reads what the stages before it left and records its
+// part of the report, in the order reconstruct() calls them.
+class ReconstructRun {
+ public:
+  explicit ReconstructRun(const ReconstructOptions& o) : o_(o), ws_(o.workspace, o.keep), log_(o.quiet) {
+    report_ = {{"format", "lc2wf-reconstruct-report"}, {"version", 1}, {"images_dir", o.images.string()}};
+    add_version_fields(report_);
   }
-  log.done(seconds, o.weights.string());
 
-  log.start("images");
-  const ImageFolder folder = read_image_folder(o.images, o.min_images);
-  for (const auto& n : folder.unreadable) result.warnings.push_back("unreadable image skipped: " + n);
-  report["images"] = {{"read", folder.images.size()}, {"unreadable", folder.unreadable}, {"width", folder.width}, {"height", folder.height}};
-  log.done(seconds, std::to_string(folder.images.size()) + " image(s) of " + std::to_string(folder.width) + "x" +
-                        std::to_string(folder.height) + (folder.unreadable.empty() ? "" : ", " + std::to_string(folder.unreadable.size()) + " unreadable"));
-
-  log.start("cameras");
-  ColmapOptions colmap = o.colmap;
-  if (o.threads > 0) colmap.threads = o.threads;
-  const CameraSet cams = o.cameras.empty()
-                             ? cameras_from_colmap(folder.paths, colmap_intrinsics(o, folder.width, folder.height), ws.root() / "colmap", colmap)
-                             : cameras_from_file(o.cameras, folder.all_names, folder.paths);
-  std::vector<int> image_of_view;  // registered images only
-  Json unregistered = Json::array();
-  for (size_t i = 0; i < cams.cameras.size(); ++i) {
-    if (cams.cameras[i]) image_of_view.push_back(static_cast<int>(i));
-    else unregistered.push_back(folder.paths[i].filename().string());
+  void load_weights() {
+    log_.start("weights");
+    try {
+      predictor_.emplace(o_.weights);
+    } catch (const std::exception& e) {
+      throw StageError("weights", e.what());
+    }
+    log_.done(seconds_, o_.weights.string());
   }
-  Json steps = Json::object();
-  for (const auto& [step, s] : cams.step_seconds) steps[step] = s;
-  report["cameras"] = {{"source", cams.source}, {"registered", image_of_view.size()}, {"unregistered", unregistered}, {"colmap_seconds", steps}};
-  if (static_cast<int>(image_of_view.size()) < o.min_images)
-    throw StageError("cameras", std::to_string(image_of_view.size()) + " of " + std::to_string(folder.paths.size()) +
-                                    " images registered (" + cams.source + (o.cameras.empty() ? "" : " " + o.cameras.string()) + "), at least " + std::to_string(o.min_images) +
-                                    " needed; unregistered: " + json_text(unregistered) +
-                                    (o.cameras.empty() ? "; COLMAP log: " + (ws.root() / "colmap" / "colmap.log").string() : ""));
-  if (!unregistered.empty()) result.warnings.push_back(std::to_string(unregistered.size()) + " image(s) not registered: " + json_text(unregistered));
-  log.done(seconds, std::to_string(image_of_view.size()) + "/" + std::to_string(folder.paths.size()) + " registered (" + cams.source + ")");
 
-  log.start("lsd");
-  std::vector<TriangulationView> views(image_of_view.size());
-  long long segments_2d = 0;
-  for (size_t v = 0; v < views.size(); ++v) {
-    views[v].camera = *cams.cameras[image_of_view[v]];
-    views[v].segments = detect_segments(folder.images[image_of_view[v]], o.lsd);
-    segments_2d += static_cast<long long>(views[v].segments.size());
+  void read_images() {
+    log_.start("images");
+    folder_ = read_image_folder(o_.images, o_.min_images);
+    for (const auto& n : folder_.unreadable) result_.warnings.push_back("unreadable image skipped: " + n);
+    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"width", folder_.width}, {"height", folder_.height}};
+    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s) of " + std::to_string(folder_.width) + "x" +
+                            std::to_string(folder_.height) +
+                            (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
-  report["segments_2d"] = segments_2d;
-  if (segments_2d == 0) throw StageError("lsd", "no 2D line segment in any of the " + std::to_string(views.size()) + " registered images of " + o.images.string());
-  log.done(seconds, std::to_string(segments_2d) + " 2D segments");
 
-  log.start("triangulation");
-  TriangulationStats tstats;
-  const std::vector<TriangulatedLine> lines = triangulate_lines(views, o.triangulator, std::nullopt, &tstats);
-  report["lines_3d"] = lines.size();
-  if (lines.empty())
-    throw StageError("triangulation", "no 3D line from " + std::to_string(segments_2d) + " 2D segments in " + std::to_string(views.size()) +
-                                          " views (too little overlap between the images, or poses too inaccurate)");
-  log.done(seconds, std::to_string(lines.size()) + " 3D lines");
+  void register_cameras() {
+    log_.start("cameras");
+    ColmapOptions colmap = o_.colmap;
+    if (o_.threads > 0) colmap.threads = o_.threads;
+    cams_ = o_.cameras.empty()
+                ? cameras_from_colmap(folder_.paths, colmap_intrinsics(o_, folder_.width, folder_.height), ws_.root() / "colmap", colmap)
+                : cameras_from_file(o_.cameras, folder_.all_names, folder_.paths);
+    Json unregistered = Json::array();
+    for (size_t i = 0; i < cams_.cameras.size(); ++i) {
+      if (cams_.cameras[i]) image_of_view_.push_back(static_cast<int>(i));
+      else unregistered.push_back(folder_.paths[i].filename().string());
+    }
+    Json steps = Json::object();
+    for (const auto& [step, s] : cams_.step_seconds) steps[step] = s;
+    report_["cameras"] = {{"source", cams_.source}, {"registered", image_of_view_.size()}, {"unregistered", unregistered}, {"colmap_seconds", steps}};
+    if (static_cast<int>(image_of_view_.size()) < o_.min_images)
+      throw StageError("cameras", std::to_string(image_of_view_.size()) + " of " + std::to_string(folder_.paths.size()) +
+                                      " images registered (" + cams_.source + (o_.cameras.empty() ? "" : " " + o_.cameras.string()) +
+                                      "), at least " + std::to_string(o_.min_images) + " needed; unregistered: " + json_text(unregistered) +
+                                      (o_.cameras.empty() ? "; COLMAP log: " + (ws_.root() / "colmap" / "colmap.log").string() : ""));
+    if (!unregistered.empty()) result_.warnings.push_back(std::to_string(unregistered.size()) + " image(s) not registered: " + json_text(unregistered));
+    log_.done(seconds_, std::to_string(image_of_view_.size()) + "/" + std::to_string(folder_.paths.size()) + " registered (" + cams_.source + ")");
+  }
 
-  log.start("frame");
-  std::vector<Camera> registered;
-  for (const auto& v : views) registered.push_back(v.camera);
-  // The best-supported lines only: texture clutter (most of a cloud from photo-like textures, with
-  // lines metres above the roof and below the ground) would bias the height, the up and the origin.
-  // Support counts grow with the number of views, so the threshold is the largest that keeps enough lines.
-  std::vector<Segment3> segments;
-  int min_supports = o.frame_max_supports;
-  for (; min_supports >= 3; --min_supports) {
+  void detect_lines() {
+    log_.start("lsd");
+    views_.resize(image_of_view_.size());
+    long long segments_2d = 0;
+    for (size_t v = 0; v < views_.size(); ++v) {
+      views_[v].camera = *cams_.cameras[image_of_view_[v]];
+      views_[v].segments = detect_segments(folder_.images[image_of_view_[v]], o_.lsd);
+      segments_2d += static_cast<long long>(views_[v].segments.size());
+    }
+    report_["segments_2d"] = segments_2d;
+    if (segments_2d == 0)
+      throw StageError("lsd", "no 2D line segment in any of the " + std::to_string(views_.size()) + " registered images of " + o_.images.string());
+    log_.done(seconds_, std::to_string(segments_2d) + " 2D segments");
+  }
+
+  void triangulate() {
+    log_.start("triangulation");
+    TriangulationStats tstats;
+    lines_ = triangulate_lines(views_, o_.triangulator, std::nullopt, &tstats);
+    report_["lines_3d"] = lines_.size();
+    if (lines_.empty())
+      throw StageError("triangulation", "no 3D line from " + std::to_string(report_["segments_2d"].get<long long>()) + " 2D segments in " +
+                                            std::to_string(views_.size()) + " views (too little overlap between the images, or poses too inaccurate)");
+    log_.done(seconds_, std::to_string(lines_.size()) + " 3D lines");
+  }
+
+  // Up, ground and scale: from the given scale, a known distance, GPS, a building height or the scale search.
+  void estimate_frame() {
+    log_.start("frame");
+    for (const auto& v : views_) registered_.push_back(v.camera);
+    int min_supports = 0;
+    const std::vector<Segment3> segments = frame_lines(min_supports);
+    MetricFrameOptions fo = o_.frame;
+    if (cams_.metric_z_up && !o_.up_given) fo.up = UpSource::kInputZ;  // the project's cameras are metric and z-up
+    if (cams_.metric_z_up && !o_.scale_given) fo.scale = 1.0;
+    if (fo.known_distance_m > 0) {
+      fo.known_view_a = registered_view_of(o_.known_image_a, folder_.paths, image_of_view_);
+      fo.known_view_b = registered_view_of(o_.known_image_b, folder_.paths, image_of_view_);
+    }
+    Json gps_report = {{"used", false}};
+    if (o_.use_gps && !cams_.metric_z_up && fo.scale == 0 && fo.known_distance_m == 0) {
+      const GpsAlignment gps = align_to_gps(registered_, image_of_view_, folder_.paths, o_.min_gps_photos, o_.gps_fit);
+      gps_report = gps.report;
+      if (gps.to_enu) fo.gps_to_enu = gps.to_enu;
+    }
+    try {
+      frame_ = estimate_metric_frame(registered_, segments, fo);
+    } catch (const std::invalid_argument& e) {
+      throw StageError("frame", e.what());
+    }
+    if (frame_.needs_scale_search) {
+      log_.done(seconds_, "up from " + frame_.up_source + ", scale left to the search (no GPS, known distance or building height)");
+      log_.start("scale search");
+      // Each candidate height sees what inference would: the cloud confirmed in metres at that height.
+      search_ = search_scale(
+          *predictor_, [&](double h) { return keep_confirmed_lines(cloud_in(frame_.scaled_by(h)), o_.confirmation); }, o_.post,
+          o_.scale_search);
+      frame_ = frame_.scaled_by(search_->height_m);
+    }
+    cloud_ = cloud_in(frame_);
+    for (const Segment3& s : cloud_.segments)
+      if (!within_coordinate_limit(s.a) || !within_coordinate_limit(s.b))  // e.g. --scale 1e20
+        throw StageError("frame", "the scale " + std::to_string(frame_.to_metric.scale) + " m/unit (" +
+                                      (frame_.scale_source == "given" ? std::string("--scale") :
+                                       frame_.scale_source == "known distance" ? std::string("--known-distance") : frame_.scale_source) +
+                                      ") puts the cloud beyond +-1e9 m");
+    report_["frame"] = {{"to_metric", similarity_json(frame_.to_metric)}, {"up_input", vec_json(frame_.up_input)},
+                        {"up_source", frame_.up_source}, {"vertical_lines", frame_.vertical_lines},
+                        {"scale_source", frame_.scale_source}, {"height_input_units", frame_.height_input},
+                        {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
+                        {"height_m", frame_.height_input * frame_.to_metric.scale}, {"gps", gps_report}};
+    if (search_) report_["frame"]["scale_search"] = scale_search_json(*search_, o_.scale_search);
+    log_.done(seconds_, search_ ? "building height " + format_number("%.1f", search_->height_m) + " m (" +
+                                      format_number("%.2f", search_ratio(*search_)) + "x the runner-up's score at " +
+                                      format_number("%.1f", search_->runner_up_height_m) + " m), " +
+                                      std::to_string(search_->curve.size()) + " heights tried"
+                                : "up from " + frame_.up_source + ", scale " + std::to_string(frame_.to_metric.scale) + " m/unit (" +
+                                      frame_.scale_source + ")" +
+                                      (frame_.scale_source == "gps"
+                                           ? ", GPS residual " + format_number("%.2f", gps_report.value("rms_residual_m", 0.0)) + " m"
+                                           : ""));
+  }
+
+  void confirm_lines() {
+    log_.start("confirmation");
+    const size_t triangulated = cloud_.segments.size();
+    cloud_ = keep_confirmed_lines(cloud_, o_.confirmation);  // in metres: the overlap test's 10 cm needs the frame
+    report_["lines_unconfirmed"] = triangulated - cloud_.segments.size();
+    if (cloud_.segments.empty())
+      throw StageError("confirmation", "none of the " + std::to_string(triangulated) + " 3D lines is overlapped by a line of " +
+                                           std::to_string(o_.confirmation.min_other_views) +
+                                           " other view(s) (--min-confirming-views; 0 keeps every line)");
+    log_.done(seconds_, std::to_string(cloud_.segments.size()) + " of " + std::to_string(triangulated) + " lines confirmed by another view");
+  }
+
+  void infer() {
+    log_.start("inference");
+    inference_ = search_ ? search_->inference : predictor_->predict(cloud_, o_.post);  // the search ran it already
+    const Wireframe& w = inference_.wireframe.wireframe;
+    report_["junctions"] = w.junctions.size();
+    report_["edges"] = w.edges.size();
+    report_["notes"] = inference_.notes;
+    if (w.edges.empty()) result_.warnings.push_back("empty wireframe: " + Json(inference_.notes).dump());
+    log_.done(seconds_, std::to_string(w.junctions.size()) + " junctions, " + std::to_string(w.edges.size()) + " edges");
+  }
+
+  ReconstructResult write_outputs(Clock::time_point t_total) {
+    log_.start("outputs");
+    const fs::path stage = ws_.staging();
+    write_line_cloud(stage / "cloud.lcloud", cloud_);
+    write_line_obj(stage / "cloud.obj", cloud_);
+    write_prediction(stage, "wireframe", inference_.wireframe, inference_.notes);
+    if (o_.surfaces) {
+      const SurfaceModel surfaces = surfaces_from_wireframe(inference_.wireframe.wireframe, inference_.wireframe.edge_scores);
+      write_surface_outputs(stage, "wireframe", surfaces);
+      report_["surfaces"] = {{"status", to_string(surfaces.status)}, {"faces", surfaces.faces.size()}, {"reasons", surfaces.reasons}};
+    }
+    write_preview(stage / "preview.png", cloud_, inference_.wireframe.wireframe, nullptr);
+    Json cameras_out = Json::array();
+    for (size_t i = 0, v = 0; i < cams_.cameras.size(); ++i)
+      cameras_out.push_back(cams_.cameras[i] ? camera_to_json(cloud_.cameras[v++]) : Json(nullptr));
+    write_file_atomic(stage / "cameras.json", cameras_out.dump());
+    if (!o_.reference_cameras.empty()) align_to_reference_cameras(stage);
+    log_.done(seconds_, "staged in " + stage.string());
+    seconds_["total"] = seconds_since(t_total);
+    report_["seconds"] = seconds_;
+    result_.exit_code = result_.warnings.empty() ? kExitDone : kExitPartly;
+    report_["warnings"] = result_.warnings;
+    report_["exit_code"] = result_.exit_code;
+    write_file_atomic(stage / "report.json", json_text(report_, 2));
+    result_.written = ws_.publish(o_.out);
+    if (!ws_.removed_at_exit()) result_.workspace = ws_.root().string();
+    if (!o_.quiet)
+      std::fprintf(stderr, "lc2wf-reconstruct: wrote %zu files to %s (%.1f s in total)%s\n", result_.written.size(), o_.out.string().c_str(),
+                   seconds_["total"].get<double>(), result_.workspace.empty() ? "" : (", workspace kept: " + result_.workspace).c_str());
+    result_.report = report_;
+    return result_;
+  }
+
+ private:
+  // The best-supported lines only: texture clutter (most of a cloud from photo-like textures, with lines
+  // metres above the roof and below the ground) would bias the height, the up and the origin. Support counts
+  // grow with the number of views, so the threshold is the largest that keeps enough lines.
+  std::vector<Segment3> frame_lines(int& min_supports) const {
+    std::vector<Segment3> segments;
+    for (min_supports = o_.frame_max_supports; min_supports >= 3; --min_supports) {
+      segments.clear();
+      for (const auto& l : lines_)
+        if (static_cast<int>(l.support.size()) >= min_supports) segments.push_back(l.line);
+      if (static_cast<int>(segments.size()) >= o_.frame_min_lines) return segments;
+    }
     segments.clear();
-    for (const auto& l : lines)
-      if (static_cast<int>(l.support.size()) >= min_supports) segments.push_back(l.line);
-    if (static_cast<int>(segments.size()) >= o.frame_min_lines) break;
+    for (const auto& l : lines_) segments.push_back(l.line);
+    return segments;
   }
-  if (min_supports < 3) {
-    segments.clear();
-    for (const auto& l : lines) segments.push_back(l.line);
-  }
-  MetricFrameOptions fo = o.frame;
-  if (cams.metric_z_up && !o.up_given) fo.up = UpSource::kInputZ;  // the project's cameras are metric and z-up
-  if (cams.metric_z_up && !o.scale_given) fo.scale = 1.0;
-  if (fo.known_distance_m > 0) {
-    fo.known_view_a = registered_view_of(o.known_image_a, folder.paths, image_of_view);
-    fo.known_view_b = registered_view_of(o.known_image_b, folder.paths, image_of_view);
-  }
-  Json gps_report = {{"used", false}};
-  if (o.use_gps && !cams.metric_z_up && fo.scale == 0 && fo.known_distance_m == 0) {
-    const GpsAlignment gps = align_to_gps(registered, image_of_view, folder.paths, o.min_gps_photos, o.gps_fit);
-    gps_report = gps.report;
-    if (gps.to_enu) fo.gps_to_enu = gps.to_enu;
-  }
-  MetricFrame frame;
-  try {
-    frame = estimate_metric_frame(registered, segments, fo);
-  } catch (const std::invalid_argument& e) {
-    throw StageError("frame", e.what());
-  }
+
   // The cloud in a frame: cameras, lines and their supports.
-  auto cloud_in = [&](const MetricFrame& f) {
+  LineCloud cloud_in(const MetricFrame& f) const {
     LineCloud c;
     c.name = "cloud";
-    for (const Camera& cam : registered) c.cameras.push_back(f.to_metric.apply(cam));
-    for (const TriangulatedLine& l : lines) {
+    for (const Camera& cam : registered_) c.cameras.push_back(f.to_metric.apply(cam));
+    for (const TriangulatedLine& l : lines_) {
       c.segments.push_back(f.to_metric.apply(l.line));
       std::vector<Observation> obs;
-      for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, views[s.ref.view].segments[s.ref.segment]});
+      for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, views_[s.ref.view].segments[s.ref.segment]});
       c.support.push_back(std::move(obs));
     }
     return c;
-  };
-  std::optional<ScaleSearchResult> search;
-  if (frame.needs_scale_search) {
-    log.done(seconds, "up from " + frame.up_source + ", scale left to the search (no GPS, known distance or building height)");
-    log.start("scale search");
-    // Each candidate height sees what inference would: the cloud confirmed in metres at that height.
-    search = search_scale(
-        *predictor, [&](double h) { return keep_confirmed_lines(cloud_in(frame.scaled_by(h)), o.confirmation); }, o.post, o.scale_search);
-    frame = frame.scaled_by(search->height_m);
   }
-  LineCloud cloud = cloud_in(frame);
-  for (const Segment3& s : cloud.segments)
-    if (!within_coordinate_limit(s.a) || !within_coordinate_limit(s.b))  // e.g. --scale 1e20
-      throw StageError("frame", "the scale " + std::to_string(frame.to_metric.scale) + " m/unit (" +
-                                    (frame.scale_source == "given" ? std::string("--scale") :
-                                     frame.scale_source == "known distance" ? std::string("--known-distance") : frame.scale_source) +
-                                    ") puts the cloud beyond +-1e9 m");
-  report["frame"] = {{"to_metric", similarity_json(frame.to_metric)}, {"up_input", vec_json(frame.up_input)},
-                     {"up_source", frame.up_source}, {"vertical_lines", frame.vertical_lines},
-                     {"scale_source", frame.scale_source}, {"height_input_units", frame.height_input},
-                     {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
-                     {"height_m", frame.height_input * frame.to_metric.scale}, {"gps", gps_report}};
-  if (search) report["frame"]["scale_search"] = scale_search_json(*search, o.scale_search);
-  log.done(seconds, search ? "building height " + format_number("%.1f", search->height_m) + " m (" + format_number("%.2f", search_ratio(*search)) +
-                                 "x the runner-up's score at " + format_number("%.1f", search->runner_up_height_m) + " m), " +
-                                 std::to_string(search->curve.size()) + " heights tried"
-                           : "up from " + frame.up_source + ", scale " + std::to_string(frame.to_metric.scale) + " m/unit (" + frame.scale_source + ")" +
-                                 (frame.scale_source == "gps" ? ", GPS residual " + format_number("%.2f", gps_report.value("rms_residual_m", 0.0)) + " m" : ""));
 
-  log.start("confirmation");
-  const size_t triangulated = cloud.segments.size();
-  cloud = keep_confirmed_lines(cloud, o.confirmation);  // in metres: the overlap test's 10 cm needs the frame
-  report["lines_unconfirmed"] = triangulated - cloud.segments.size();
-  if (cloud.segments.empty())
-    throw StageError("confirmation", "none of the " + std::to_string(triangulated) + " 3D lines is overlapped by a line of " +
-                                         std::to_string(o.confirmation.min_other_views) +
-                                         " other view(s) (--min-confirming-views; 0 keeps every line)");
-  log.done(seconds, std::to_string(cloud.segments.size()) + " of " + std::to_string(triangulated) + " lines confirmed by another view");
-
-  log.start("inference");
-  const InferenceResult r = search ? search->inference : predictor->predict(cloud, o.post);  // the search ran it already
-  report["junctions"] = r.wireframe.wireframe.junctions.size();
-  report["edges"] = r.wireframe.wireframe.edges.size();
-  report["notes"] = r.notes;
-  if (r.wireframe.wireframe.edges.empty()) result.warnings.push_back("empty wireframe: " + Json(r.notes).dump());
-  log.done(seconds, std::to_string(r.wireframe.wireframe.junctions.size()) + " junctions, " + std::to_string(r.wireframe.wireframe.edges.size()) + " edges");
-
-  log.start("outputs");
-  const fs::path stage = ws.staging();
-  write_line_cloud(stage / "cloud.lcloud", cloud);
-  write_line_obj(stage / "cloud.obj", cloud);
-  write_prediction(stage, "wireframe", r.wireframe, r.notes);
-  if (o.surfaces) {
-    const SurfaceModel surfaces = surfaces_from_wireframe(r.wireframe.wireframe);
-    write_surface_outputs(stage, "wireframe", surfaces);
-    report["surfaces"] = {{"status", to_string(surfaces.status)}, {"faces", surfaces.faces.size()}, {"reasons", surfaces.reasons}};
-  }
-  write_preview(stage / "preview.png", cloud, r.wireframe.wireframe, nullptr);
-  Json cameras_out = Json::array();
-  for (size_t i = 0, v = 0; i < cams.cameras.size(); ++i)
-    cameras_out.push_back(cams.cameras[i] ? camera_to_json(cloud.cameras[v++]) : Json(nullptr));
-  write_file_atomic(stage / "cameras.json", cameras_out.dump());
-  if (!o.reference_cameras.empty()) {
-    // Evaluation only: the similarity that puts our cameras onto known ones, applied to the wireframe.
+  // Evaluation only: the similarity that puts our cameras onto known ones, applied to the wireframe.
+  void align_to_reference_cameras(const fs::path& stage) {
     std::vector<Camera> reference;
-    const std::string source = o.reference_cameras.string();
+    const std::string source = o_.reference_cameras.string();
     Json list;
     try {
-      list = Json::parse(read_file(o.reference_cameras));
+      list = Json::parse(read_file(o_.reference_cameras));
     } catch (const Json::exception& e) {
       throw StageError("outputs", source + ": not JSON: " + e.what());
     }
     if (!list.is_array()) throw StageError("outputs", source + ": expected an array of cameras, one per image");
     for (size_t i = 0; i < list.size(); ++i) reference.push_back(camera_from_json(list[i], source + " entry " + std::to_string(i)));
-    if (reference.size() != cams.cameras.size())
-      throw StageError("outputs", o.reference_cameras.string() + " has " + std::to_string(reference.size()) + " cameras for " +
-                                      std::to_string(cams.cameras.size()) + " images");
-    std::vector<std::optional<Camera>> ours(cams.cameras.size());
-    for (size_t v = 0; v < image_of_view.size(); ++v) ours[image_of_view[v]] = cloud.cameras[v];
+    if (reference.size() != cams_.cameras.size())
+      throw StageError("outputs", source + " has " + std::to_string(reference.size()) + " cameras for " +
+                                      std::to_string(cams_.cameras.size()) + " images");
+    std::vector<std::optional<Camera>> ours(cams_.cameras.size());
+    for (size_t v = 0; v < image_of_view_.size(); ++v) ours[image_of_view_[v]] = cloud_.cameras[v];
     AlignOptions align;
     align.outlier_factor = 3;
     const PoseComparison pc = align_to_reference(reference, ours, align);
-    ScoredWireframe aligned = r.wireframe;
+    ScoredWireframe aligned = inference_.wireframe;
     for (Vec3& j : aligned.wireframe.junctions) j = pc.scale * pc.rotation * j + pc.translation;
-    write_prediction(stage, "wireframe_aligned", aligned, r.notes);
+    write_prediction(stage, "wireframe_aligned", aligned, inference_.notes);
     Similarity to_reference;
     to_reference.scale = pc.scale, to_reference.R = pc.rotation, to_reference.t = pc.translation;
-    report["reference"] = {{"cameras", o.reference_cameras.string()},   {"scale_to_reference", pc.scale},
-                           {"to_reference", similarity_json(to_reference)},
-                           {"aligned_on", pc.inliers},                   {"rotation_error_deg_median", pc.median_rotation_deg},
-                           {"centre_error_median", pc.median_centre_error}, {"camera_distance", pc.camera_distance}};
+    report_["reference"] = {{"cameras", source},   {"scale_to_reference", pc.scale},
+                            {"to_reference", similarity_json(to_reference)},
+                            {"aligned_on", pc.inliers},                   {"rotation_error_deg_median", pc.median_rotation_deg},
+                            {"centre_error_median", pc.median_centre_error}, {"camera_distance", pc.camera_distance}};
   }
-  log.done(seconds, "staged in " + stage.string());
-  seconds["total"] = seconds_since(t_total);
-  report["seconds"] = seconds;
-  result.exit_code = result.warnings.empty() ? kExitDone : kExitPartly;
-  report["warnings"] = result.warnings;
-  report["exit_code"] = result.exit_code;
-  write_file_atomic(stage / "report.json", json_text(report, 2));
-  result.written = ws.publish(o.out);
-  if (!ws.removed_at_exit()) result.workspace = ws.root().string();
-  if (!o.quiet)
-    std::fprintf(stderr, "lc2wf-reconstruct: wrote %zu files to %s (%.1f s in total)%s\n", result.written.size(), o.out.string().c_str(),
-                 seconds["total"].get<double>(), result.workspace.empty() ? "" : (", workspace kept: " + result.workspace).c_str());
-  return result;
+
+  const ReconstructOptions& o_;
+  Workspace ws_;
+  StageLog log_;
+  ReconstructResult result_;
+  Json report_;
+  Json seconds_ = Json::object();
+  std::optional<WireframePredictor> predictor_;
+  ImageFolder folder_;
+  CameraSet cams_;
+  std::vector<int> image_of_view_;  // registered images only
+  std::vector<TriangulationView> views_;
+  std::vector<TriangulatedLine> lines_;
+  std::vector<Camera> registered_;
+  MetricFrame frame_;
+  std::optional<ScaleSearchResult> search_;
+  LineCloud cloud_;
+  InferenceResult inference_;
+};
+
+}  // namespace
+
+ReconstructResult reconstruct(const ReconstructOptions& o) {
+  o.Check();
+  const auto t_total = Clock::now();
+  set_num_threads(o.threads);
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  ReconstructRun run(o);
+  run.load_weights();
+  run.read_images();
+  run.register_cameras();
+  run.detect_lines();
+  run.triangulate();
+  run.estimate_frame();
+  run.confirm_lines();
+  run.infer();
+  return run.write_outputs(t_total);
 }
 
 }  // namespace lc2wf
