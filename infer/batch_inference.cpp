@@ -83,7 +83,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     write_prediction(out_dir, name, r.wireframe, r.notes, o.raw_units ? &cloud.units : nullptr);
     if (o.write_surfaces) {
       const auto t0 = std::chrono::steady_clock::now();
-      const SurfaceModel surfaces = surfaces_from_wireframe(r.wireframe.wireframe, o.surfaces);
+      const SurfaceModel surfaces = surfaces_from_wireframe(r.wireframe.wireframe, r.wireframe.edge_scores, o.surfaces);
       s.surface_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       s.closed_solids += surfaces.closed_solid() ? 1 : 0;
       SurfaceOutputOptions so;

@@ -321,7 +321,7 @@ int run(const Args& a) {
     }
     evaluator.add(name, pred, gt.wireframe, missing);
     SurfaceModel surfaces;  // LoD2 surfaces (infer/surfaces/), also drawn in the HTML report
-    faces.buildings.push_back(evaluate_faces(name, pred.wireframe, gt.mesh, &surfaces));
+    faces.buildings.push_back(evaluate_faces(name, pred.wireframe, pred.edge_scores, gt.mesh, &surfaces));
     faces.gt_has_faces = faces.gt_has_faces && !gt.mesh.faces.empty();
     const NormalisationFrame frame =
         cloud_segments.empty() ? frame_of_points(gt.wireframe.junctions) : frame_of_segments(cloud_segments);

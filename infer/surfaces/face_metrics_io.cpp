@@ -45,12 +45,14 @@ FaceSummary summarize_faces(const FaceReport& r) {
   return s;
 }
 
-FaceBuilding evaluate_faces(const std::string& name, const Wireframe& prediction, const PolyMesh& gt_mesh, SurfaceModel* surfaces,
-                            const SurfaceOptions& surface_options, const FaceMatchOptions& match_options) {
+FaceBuilding evaluate_faces(const std::string& name, const Wireframe& prediction, const std::vector<double>& edge_scores,
+                            const PolyMesh& gt_mesh, SurfaceModel* surfaces, const SurfaceOptions& surface_options,
+                            const FaceMatchOptions& match_options) {
   FaceBuilding b;
   b.name = name;
   const auto t0 = std::chrono::steady_clock::now();
-  SurfaceModel m = surfaces_from_wireframe(prediction, surface_options);
+  SurfaceModel m = edge_scores.empty() ? surfaces_from_wireframe(prediction, surface_options)
+                                        : surfaces_from_wireframe(prediction, edge_scores, surface_options);
   b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   b.status = to_string(m.status);
   b.reasons = m.reasons;

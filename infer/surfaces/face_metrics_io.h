@@ -38,9 +38,10 @@ FaceSummary summarize_faces(const FaceReport& report);
 
 // One building for the report: the surfaces of `prediction` (timed; returned in `surfaces` when given), checked,
 // and scored against the faces of `gt_mesh` when it has any.
-FaceBuilding evaluate_faces(const std::string& name, const Wireframe& prediction, const PolyMesh& gt_mesh,
-                            SurfaceModel* surfaces = nullptr, const SurfaceOptions& surface_options = {},
-                            const FaceMatchOptions& match_options = {});
+// `edge_scores`: the prediction's edge probabilities (one per edge) or empty (surfaces_from_wireframe.h).
+FaceBuilding evaluate_faces(const std::string& name, const Wireframe& prediction, const std::vector<double>& edge_scores,
+                            const PolyMesh& gt_mesh, SurfaceModel* surfaces = nullptr,
+                            const SurfaceOptions& surface_options = {}, const FaceMatchOptions& match_options = {});
 
 std::string faces_markdown(const FaceReport& report, const std::string& method);
 nlohmann::json faces_json(const FaceReport& report);

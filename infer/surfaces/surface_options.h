@@ -12,6 +12,7 @@ struct SurfaceOptions {
   double wall_tilt_deg = 15;        // a face within this of vertical is a wall
   double planarity_tolerance_m = 0.01;  // the shell checks: a face vertex farther from the face's plane is non-planar
   bool complete_walls = true;       // walls down from eave corners to the ground level of the vertical edges
+  double min_edge_score = 0.9;      // scored wireframes: faces from the edges this confident first (0: every edge)
   bool prism_walls = true;          // an open shell: walls extruded from the roof outline, ground = footprint
   int max_edges = 2000;             // larger graphs are not searched (bounded time); the model says why
   // Throws std::invalid_argument naming the setting ("surfaces.plane_distance_m must be > 0").

@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 #include "infer/surfaces/face_labels.h"
 #include "infer/surfaces/plane_faces.h"
@@ -256,6 +257,25 @@ SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOp
     if (std::optional<Attempt> prism = closed_prism(second, *ground, o)) return std::move(prism->model);
   const bool take_second = !second.model.faces.empty() && second.defects() < first.defects();
   return std::move(take_second ? second.model : first.model);
+}
+
+}  // namespace lc2wf
+
+namespace lc2wf {
+
+SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const std::vector<double>& scores, const SurfaceOptions& o) {
+  if (scores.size() != wireframe.edges.size())
+    throw std::invalid_argument("surfaces: " + std::to_string(scores.size()) + " edge scores for " +
+                                std::to_string(wireframe.edges.size()) + " edges");
+  Wireframe confident;
+  confident.junctions = wireframe.junctions;
+  for (size_t e = 0; e < scores.size(); ++e)
+    if (scores[e] >= o.min_edge_score) confident.edges.push_back(wireframe.edges[e]);
+  if (confident.edges.size() == wireframe.edges.size()) return surfaces_from_wireframe(wireframe, o);
+  SurfaceModel m = surfaces_from_wireframe(confident, o);
+  if (m.closed_solid()) return m;
+  SurfaceModel all = surfaces_from_wireframe(wireframe, o);
+  return all.closed_solid() ? all : m;
 }
 
 }  // namespace lc2wf

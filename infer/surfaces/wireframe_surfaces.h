@@ -6,6 +6,8 @@
 // more with walls completed down to the ground when the first shell is open.
 #pragma once
 
+#include <vector>
+
 #include "infer/surfaces/surface_model.h"
 #include "infer/surfaces/surface_options.h"
 #include "infer/surfaces/shell_checks.h"
@@ -15,5 +17,11 @@ namespace lc2wf {
 // Deterministic; time grows with the edges of the graph and is bounded by options.max_edges (larger graphs
 // give a model without faces whose reason says so). Throws std::invalid_argument on bad options.
 SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& options = {});
+
+// The same for a predicted wireframe with its edge probabilities (`edge_scores`, one per edge): the faces of
+// the confident edges (score >= options.min_edge_score) when they close into a valid solid, else of all the
+// edges when those do, else of the confident ones. Throws std::invalid_argument when the counts differ.
+SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const std::vector<double>& edge_scores,
+                                     const SurfaceOptions& options = {});
 
 }  // namespace lc2wf

@@ -1,8 +1,9 @@
 // The prism rule of the face finder (infer/surfaces/prism_shell.h): walls extruded from the roof outline
-// down to the ground level, the ground as the footprint, hidden faces dropped, parts and failures; and
-// surfaces_from_wireframe closing predicted-like wireframes with it.
+// down to the ground level, the ground as the footprint, hidden faces dropped, parts and failures;
+// surfaces_from_wireframe closing predicted-like wireframes with it; faces from the confident edges first.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -148,6 +149,45 @@ TEST(PrismShell, NoisyPredictedLikeWireframesBecomeTheHouseNotALidOnTheRoof) {
   }
   EXPECT_EQ(houses, 10);
   EXPECT_EQ(houses_without, 0);
+}
+
+// The box with unconfident edges from its roof corners to a tip above the roof: a pyramid roof they would make.
+Wireframe box_with_tip(std::vector<double>* scores) {
+  Wireframe w = testing::box_building().wireframe;
+  w.junctions.push_back({2, 1.5, 3.5});
+  scores->assign(w.edges.size(), 0.99);
+  for (int corner : {4, 5, 6, 7}) w.edges.push_back({corner, 8}), scores->push_back(0.4);
+  return w;
+}
+
+TEST(ScoredSurfaces, FacesComeFromTheConfidentEdgesWhenTheyClose) {
+  std::vector<double> scores;
+  const Wireframe w = box_with_tip(&scores);
+  const SurfaceModel m = surfaces_from_wireframe(w, scores);
+  EXPECT_TRUE(m.closed_solid());
+  EXPECT_EQ(m.faces.size(), 6u);
+  for (const Vec3& p : m.vertices) EXPECT_LT(p.z(), 3) << "the tip of the unconfident edges is in a face";
+  // Unscored, the pyramid is the roof.
+  const SurfaceModel unscored = surfaces_from_wireframe(w);
+  EXPECT_TRUE(std::any_of(unscored.vertices.begin(), unscored.vertices.end(), [](const Vec3& p) { return p.z() > 3; }));
+  // min_edge_score 0 uses every edge, as unscored.
+  SurfaceOptions every;
+  every.min_edge_score = 0;
+  EXPECT_EQ(surfaces_from_wireframe(w, scores, every).faces.size(), unscored.faces.size());
+}
+
+TEST(ScoredSurfaces, AllEdgesWhenTheConfidentOnesDoNotClose) {
+  // The walls' vertical edges unconfident: roof and ground alone are no solid, all the edges are.
+  Wireframe w = testing::box_building().wireframe;
+  std::vector<double> scores(w.edges.size(), 0.99);
+  for (size_t e = 8; e < 12; ++e) scores[e] = 0.5;  // {0,4}, {1,5}, {2,6}, {3,7}
+  const SurfaceModel m = surfaces_from_wireframe(w, scores);
+  EXPECT_TRUE(m.closed_solid());
+  EXPECT_EQ(m.faces.size(), 6u);
+  EXPECT_THROW(surfaces_from_wireframe(w, std::vector<double>(3, 1.0)), std::invalid_argument);
+  SurfaceOptions bad;
+  bad.min_edge_score = 1.5;
+  EXPECT_THROW(surfaces_from_wireframe(w, scores, bad), std::invalid_argument);
 }
 
 }  // namespace
