@@ -24,8 +24,9 @@ std::vector<Polygon2> subtract_convex(const Polygon2& p, const Polygon2& cut, do
 // out counter-clockwise, holes clockwise; loops touching at a point are kept apart.
 std::vector<Polygon2> union_outline(const std::vector<Polygon2>& tiles, double tol = 1e-7);
 
-// The same, but a region with holes is cut by the line x = (centre of the hole) until no loop is a hole:
-// a polygon face cannot carry a hole, so a courtyard's base becomes two faces.
+// The same, but a polygon face cannot carry a hole: each hole is joined to the rest of the outline by two
+// bridges between existing corners (the shortest that stay inside and cross nothing), so a courtyard's
+// base becomes two faces and no new point is made. Throws std::logic_error when no such bridges exist.
 std::vector<Polygon2> union_outline_without_holes(const std::vector<Polygon2>& tiles, double tol = 1e-7);
 
 }  // namespace lc2wf

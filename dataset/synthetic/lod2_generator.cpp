@@ -196,7 +196,7 @@ Blocks u_shape(Draw& d) {
 }
 
 // Flat courtyards get two heights (the wings along x, the wings along y): one flat ring would be a roof
-// face with a hole.
+// face with a hole, split by two edges no one would draw.
 Blocks courtyard(Draw& d) {
   const double w = d.length(7, 13), a = d.length(2 * w + 6, 60), b = d.length(2 * w + 6, 50), eave = d.length(3, 14);
   const WingRoof roof = wing_roof(d, 0.5, 0.2);

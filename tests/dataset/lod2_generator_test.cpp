@@ -109,8 +109,14 @@ TEST(Lod2Generator, EveryKindAtSeveralSeedsIsClosedWithItsRoof) {
           EXPECT_EQ(b.mesh.faces[base[0]].size(), kind == Lod2Kind::LShape ? 6u : 8u) << what;
           break;
         }
-        case Lod2Kind::Courtyard:  // a face cannot hold the hole: the base is cut in two
-          EXPECT_EQ(faces_labelled(b.mesh, FaceLabel::Base).size(), 2u) << what; break;
+        case Lod2Kind::Courtyard: {  // a face cannot hold the hole: the base is split in two at its own corners
+          const auto base = faces_labelled(b.mesh, FaceLabel::Base);
+          EXPECT_EQ(base.size(), 2u) << what;
+          size_t corners = 0;
+          for (int f : base) corners += b.mesh.faces[f].size();
+          EXPECT_EQ(corners, 12u) << what << ": 8 footprint corners, the two shared by both pieces twice";
+          break;
+        }
         case Lod2Kind::MultiPart: EXPECT_GE(roofs.size(), 2u) << what; break;
       }
     }
@@ -221,6 +227,20 @@ TEST(Polygon2d, OutlinesSubtractionAndHoles) {
     total += signed_area(p);
   }
   EXPECT_NEAR(total, 16.0, 1e-9);
+  // Two holes in a 7 x 3 plate of unit tiles: joined at existing corners, three pieces, no new point.
+  std::vector<Polygon2> plate;
+  for (int x = 0; x < 7; ++x)
+    for (int y = 0; y < 3; ++y)
+      if (!(y == 1 && (x == 1 || x == 4))) plate.push_back({{x, y}, {x + 1.0, y}, {x + 1.0, y + 1.0}, {x, y + 1.0}});
+  const auto pieces = union_outline_without_holes(plate);
+  EXPECT_EQ(pieces.size(), 3u);
+  total = 0;
+  for (const Polygon2& p : pieces) {
+    EXPECT_GT(signed_area(p), 0);
+    total += signed_area(p);
+    for (const Vec2& v : p) EXPECT_EQ(v, Vec2(std::round(v.x()), std::round(v.y()))) << "a new point";
+  }
+  EXPECT_NEAR(total, 19.0, 1e-9);
 }
 
 TEST(Lod2Kinds, NamesWeightsAndChecks) {
