@@ -35,6 +35,20 @@ bool segment_pierces(const Vec3& p, const Vec3& q, const FaceGeometry& g, double
   return true;
 }
 
+// For each vertex, the first vertex within `tol` of it (itself when none is).
+std::vector<int> weld(const std::vector<Vec3>& v, double tol) {
+  std::vector<int> out(v.size());
+  for (size_t i = 0; i < v.size(); ++i) {
+    out[i] = static_cast<int>(i);
+    for (size_t j = 0; j < i; ++j)
+      if (out[j] == static_cast<int>(j) && (v[i] - v[j]).norm() <= tol) {
+        out[i] = static_cast<int>(j);
+        break;
+      }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> ShellCheck::problems() const {
@@ -73,11 +87,14 @@ ShellCheck check_shell(const SurfaceModel& m, double tol) {
     if (polygon_self_intersects(g.polygon, tol)) ++c.self_intersecting_faces;
     geo.push_back(std::move(g));
   }
-  // Sides: how many faces use each, and in which directions.
+  // Sides: how many faces use each, and in which directions. Vertices within the tolerance are one point (as a
+  // file with rounded coordinates stores them), so two ids at one place cannot hide a side shared by 4 faces.
+  const std::vector<int> point = weld(m.vertices, tol);
   std::map<std::pair<int, int>, std::pair<int, int>> sides;  // (min, max) -> (runs min->max, runs max->min)
   for (const SurfaceFace& f : m.faces)
     for (size_t i = 0; i < f.ring.size(); ++i) {
-      const int a = f.ring[i], b = f.ring[(i + 1) % f.ring.size()];
+      const int a = point[f.ring[i]], b = point[f.ring[(i + 1) % f.ring.size()]];
+      if (a == b) continue;  // a side shorter than the tolerance: the ring's simplicity check reports it
       auto& s = sides[{std::min(a, b), std::max(a, b)}];
       (a < b ? s.first : s.second) += 1;
     }

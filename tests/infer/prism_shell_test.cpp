@@ -97,6 +97,26 @@ TEST(PrismShell, SeparatePartsArePrismsEachAndCanBeLeftOut) {
   for (const Vec3& p : one->vertices) EXPECT_GE(p.x(), 10);
 }
 
+TEST(PrismShell, PrismsTouchingAlongAWallCornerAreNoValidSolidTogether) {
+  // Two flat roofs meeting at one corner: each part's prism has its own ground vertex under the shared corner,
+  // at one place, so the vertical side there bounds four faces (what a file with rounded coordinates shows).
+  testing::FixtureBuilding b;
+  b.wireframe.junctions = {{0, 0, 3}, {2, 0, 3}, {2, 2, 3}, {0, 2, 3}, {4, 2, 3}, {4, 4, 3}, {2, 4, 3}};
+  const auto both = extrude_roof_to_ground(sheet(b, {{0, 1, 2, 3}, {2, 4, 5, 6}}), PrismOptions{});
+  ASSERT_TRUE(both);
+  const ShellCheck c = check_shell(*both, 0.01);
+  EXPECT_EQ(c.overused_edges, 1);
+  EXPECT_FALSE(c.valid_solid());
+  // surfaces_from_wireframe keeps the parts that stay valid: one prism of 6 faces.
+  Wireframe w = b.wireframe;
+  w.junctions.push_back({0, 0, 0});
+  w.edges = {{0, 1}, {1, 2}, {2, 3}, {0, 3}, {2, 4}, {4, 5}, {5, 6}, {2, 6}, {0, 7}};
+  const SurfaceModel m = surfaces_from_wireframe(w);
+  EXPECT_TRUE(m.closed_solid());
+  EXPECT_TRUE(check_shell(m, 0.01).valid_solid());
+  EXPECT_EQ(m.faces.size(), 6u);
+}
+
 TEST(PrismShell, SheetsThatAreNoFootprintSayWhy) {
   std::string why;
   // A side in three faces: two roof facets and a wall standing on their ridge.
