@@ -1,6 +1,6 @@
 // Writes the CityJSON (and faces OBJ) of the hand-made buildings into a folder, for the schema test
 // (cityjson_schema_test.sh): every shape closed, one with a missing edge, a roof without walls (MultiSurface),
-// raw units with a source transform, and a wireframe without faces.
+// raw units with a source transform, a wireframe without faces and a roof closed by the prism rule.
 #include <cstdio>
 #include <exception>
 
@@ -31,6 +31,12 @@ int main(int argc, char** argv) {
                                                                           {{4, 5}, {7, 6}, {4, 8}, {7, 8}, {5, 9}, {6, 9}, {8, 9}})),
                           raw);
     write_surface_outputs(out, "no_faces", surfaces_from_wireframe(Wireframe{}));
+    // A hipped roof with vertical edges at two corners only and no ground edges: closed by the prism rule.
+    const testing::FixtureBuilding h = testing::hipped_building();
+    write_surface_outputs(out, "hipped_prism",
+                          surfaces_from_wireframe(testing::make_wireframe(h.wireframe.junctions,
+                                                                          {{4, 5}, {5, 6}, {6, 7}, {4, 7}, {4, 8}, {7, 8}, {5, 9},
+                                                                           {6, 9}, {8, 9}, {0, 4}, {2, 6}})));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 3;
