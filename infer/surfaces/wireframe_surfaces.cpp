@@ -197,9 +197,11 @@ std::optional<Attempt> closed_prism(const Attempt& a, double ground, const Surfa
   std::optional<Attempt> all = prism_attempt(a, ground, o, {}, &count);
   if (all && all->model.closed_solid()) return all;
   if (count < 2) return std::nullopt;
+  // Each try re-checks the whole shell: the largest parts only, so the time stays a few checks, not one per part.
+  constexpr int kMaxGreedyParts = 16;
   std::vector<bool> parts(count, false);
   std::optional<Attempt> best;
-  for (int k = 0; k < count; ++k) {
+  for (int k = 0; k < std::min(count, kMaxGreedyParts); ++k) {
     parts[k] = true;
     std::optional<Attempt> p = prism_attempt(a, ground, o, parts);
     if (p && p->model.closed_solid()) best = std::move(p);
@@ -241,6 +243,13 @@ SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOp
                  "), not searched"};
     return m;
   }
+  for (const auto& e : wireframe.edges)
+    for (int j : e)
+      if (j < 0 || j >= static_cast<int>(wireframe.junctions.size()) || !wireframe.junctions[j].allFinite()) {
+        SurfaceModel m;  // the geometry below (sorting by height, plane fits) needs finite, existing junctions
+        m.reasons = {"an edge has a junction that does not exist or is not finite: not searched"};
+        return m;
+      }
   const Wireframe cleaned = clean_wireframe(wireframe, o.merge_distance_m);
   Attempt first = build(cleaned, o);
   if (!o.complete_walls) return std::move(first.model);

@@ -130,6 +130,18 @@ TEST(PrismShell, SheetsThatAreNoFootprintSayWhy) {
   EXPECT_FALSE(extrude_roof_to_ground(SurfaceModel{}, PrismOptions{}, &why));
 }
 
+TEST(PrismShell, JunctionsThatAreNotFiniteOrMissingGiveNoFacesWithAReason) {
+  Wireframe w = testing::hipped_building().wireframe;
+  w.junctions[6].z() = std::nan("");
+  const SurfaceModel m = surfaces_from_wireframe(w);
+  EXPECT_EQ(m.status, ShellStatus::kNoFaces);
+  ASSERT_FALSE(m.reasons.empty());
+  EXPECT_NE(m.reasons[0].find("not finite"), std::string::npos) << m.reasons[0];
+  Wireframe dangling = testing::hipped_building().wireframe;
+  dangling.edges.push_back({3, 42});
+  EXPECT_EQ(surfaces_from_wireframe(dangling).status, ShellStatus::kNoFaces);
+}
+
 TEST(PrismShell, ARoofWithAHoleIsNoSheet) {
   // Four flat frames around a missing middle square: the outline is two loops.
   testing::FixtureBuilding b;
