@@ -1,4 +1,4 @@
-// The command-line contract of every lc2wf command (README.md, "Command-line conventions"), checked by
+// The command-line contract of every lc2wf command (README.md, "Commands"), checked by
 // running each binary: --help and --version, -o/--out, -j/--threads, -q/--quiet, the exit codes, errors on
 // stderr naming what the user wrote, the environment variables listed in --help, and nothing written
 // when the arguments or inputs are bad. The list of binaries comes from CMake (lc2wf_add_command), so a new
