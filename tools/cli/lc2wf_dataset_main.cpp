@@ -1,4 +1,5 @@
 // lc2wf-dataset: Roof-Image meshes -> labelled 3D line clouds (render, LSD, triangulation, labels).
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <stdexcept>
@@ -38,8 +39,17 @@ options:
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
   --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased)
-  --textures paper|sfm        paper-like textures (default) or non-repeating noise for structure
-                              from motion (lc2wf-colmap-poses on the kept views)
+  --textures paper|sfm|photo  paper-like textures (default), non-repeating noise for structure
+                              from motion (lc2wf-colmap-poses on the kept views), or photo-like scenes:
+                              windows and doors by storey, roof tiles, gutters, balconies, chimneys,
+                              a road with cars, trees, neighbouring buildings (clutter: never GT), a
+                              sun per building, per-view exposure, noise and blur
+  --photo-without LIST        photo elements left out, comma-separated: windows, doors, balconies,
+                              tiles, gutters, chimneys, ground, trees, neighbours, sun (fixed sun),
+                              exposure, noise, blur (per-view changes)
+  --photo-storey M            target storey height of the photo facades in metres (default 3; each
+                              wall holds a whole number of storeys)
+  --photo-exposure STOPS      per-view exposure change of photo renders, +-STOPS (default 0.5)
   --blender PATH              Blender executable (default: blender on PATH)
   --blender-batch N           buildings per Blender process (default 16)
   --lsd-min-length F          min 2D segment length, fraction of the image diagonal (default 0.005)
@@ -64,6 +74,32 @@ std::pair<int, int> split_pair(const std::string& flag, const std::string& v, ch
   const size_t p = v.find(sep);
   if (p == std::string::npos) throw UsageError(flag + " expects A" + sep + "B, got '" + v + "'");
   return {lc2wf::int_flag(flag, v.substr(0, p)), lc2wf::int_flag(flag, v.substr(p + 1))};
+}
+
+// --photo-without: each named element off; an unknown name is a usage error naming the flag.
+void leave_out_photo_elements(const std::string& flag, const std::string& list, lc2wf::PhotoOptions& p) {
+  size_t start = 0;
+  while (start <= list.size()) {
+    const size_t end = std::min(list.find(',', start), list.size());
+    const std::string e = list.substr(start, end - start);
+    if (e == "windows") p.facades.windows = false;
+    else if (e == "doors") p.facades.doors = false;
+    else if (e == "balconies") p.balconies = false;
+    else if (e == "tiles") p.roof_tiles = false;
+    else if (e == "gutters") p.gutters = false;
+    else if (e == "chimneys") p.chimneys = false;
+    else if (e == "ground") p.ground = false;
+    else if (e == "trees") p.trees = false;
+    else if (e == "neighbours") p.neighbours = false;
+    else if (e == "sun") p.vary_sun = false;
+    else if (e == "exposure") p.exposure_stops = 0;
+    else if (e == "noise") p.noise_gain = 1;
+    else if (e == "blur") p.blur_gain = 1;
+    else
+      throw UsageError(flag + ": unknown element '" + e + "' (windows, doors, balconies, tiles, gutters, chimneys, ground, trees, "
+                       "neighbours, sun, exposure, noise, blur)");
+    start = end + 1;
+  }
 }
 
 lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
@@ -112,8 +148,14 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       o.blender.samples = lc2wf::int_flag(a, value());
     } else if (a == "--textures") {
       o.blender.textures = o.raster.textures = value();
-      if (o.blender.textures != "paper" && o.blender.textures != "sfm")
-        throw UsageError("--textures must be paper or sfm, got '" + o.blender.textures + "'");
+      if (o.blender.textures != "paper" && o.blender.textures != "sfm" && o.blender.textures != "photo")
+        throw UsageError("--textures must be paper, sfm or photo, got '" + o.blender.textures + "'");
+    } else if (a == "--photo-without") {
+      leave_out_photo_elements(a, value(), o.photo);
+    } else if (a == "--photo-storey") {
+      o.photo.facades.storey_height_m = lc2wf::number_flag(a, value());
+    } else if (a == "--photo-exposure") {
+      o.photo.exposure_stops = lc2wf::number_flag(a, value());
     } else if (a == "--blender") {
       o.blender.executable = value();
     } else if (a == "--blender-batch") {
@@ -153,6 +195,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
                                             {"RasterOptions.supersample", "--supersample"},
                                             {"RasterOptions.blur_sigma_px", "--blur"},
                                             {"BlenderOptions.engine", "--engine"},
+                                            {"FacadeOptions.storey_height_m", "--photo-storey"},
+                                            {"PhotoOptions.exposure_stops", "--photo-exposure"},
                                             {"BlenderOptions.samples", "--samples"},
                                             {"BlenderOptions.executable", "--blender"},
                                             {"DatasetRunOptions.blender_batch", "--blender-batch"},

@@ -14,7 +14,7 @@ void CloudBuilderOptions::Check() const {
 }
 
 LineCloud build_line_cloud(const Building& building, const std::vector<RenderedView>& views, const CloudBuilderOptions& options,
-                           CloudBuildStats* stats) {
+                           CloudBuildStats* stats, const PolyMesh* occluders) {
   options.Check();
   CloudBuildStats local;
   CloudBuildStats& st = stats ? *stats : local;
@@ -55,7 +55,7 @@ LineCloud build_line_cloud(const Building& building, const std::vector<RenderedV
     for (const SupportingSegment& s : l.support) obs.push_back({s.ref.view, tv[s.ref.view].segments[s.ref.segment]});
     cloud.support.push_back(std::move(obs));
   }
-  cloud.labels = label_by_support(cloud, building.mesh, options.labels);
+  cloud.labels = label_by_support(cloud, occluders ? *occluders : building.mesh, options.labels);
   st.seconds_labelling = seconds_since(t);
   return cloud;
 }

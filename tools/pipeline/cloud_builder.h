@@ -41,7 +41,9 @@ struct CloudBuildStats {
 };
 
 // Throws DataError naming the building when no view yields any 2D segment or no 3D line results.
+// `occluders`: the rendered scene when it holds more than the building (photo clutter), so GT edges that
+// clutter hides get no votes; default the building's mesh.
 LineCloud build_line_cloud(const Building& building, const std::vector<RenderedView>& views, const CloudBuilderOptions& options,
-                           CloudBuildStats* stats = nullptr);
+                           CloudBuildStats* stats = nullptr, const PolyMesh* occluders = nullptr);
 
 }  // namespace lc2wf

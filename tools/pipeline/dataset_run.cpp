@@ -151,6 +151,8 @@ struct Job {
   std::vector<Camera> cameras;
   std::vector<RenderedView> views;
   fs::path render_dir;  // Blender's output folder of this building
+  PhotoScene scene;      // textures "photo": the clutter around the building
+  PolyMesh scene_mesh;   // the building and that clutter (empty otherwise)
   Json status;
   bool failed = false;
 };
@@ -173,6 +175,14 @@ void load_job(Job& job, const DatasetRunOptions& o, const BuildingCatalog& sourc
     CameraRingOptions ring = o.cameras;
     ring.seed = building_seed(job.name, o.seed);
     job.cameras = make_camera_ring(job.building.mesh.vertices, ring);
+    const std::string& textures = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
+    if (textures == "photo") {
+      std::vector<Vec3> centres;
+      for (const Camera& c : job.cameras) centres.push_back(c.center());
+      job.scene = make_photo_scene(job.building.mesh, centres, o.photo, building_seed(job.name, o.seed));
+      job.scene_mesh = scene_mesh(job.building.mesh, job.scene);
+      job.status["clutter_faces"] = job.scene.clutter.faces.size();
+    }
   } catch (const std::exception& e) {
     fail(job, std::string("load: ") + e.what());
   }
@@ -184,7 +194,7 @@ void render_raster(Job& job, const DatasetRunOptions& o) {
   try {
     RasterOptions ro = o.raster;
     ro.seed = building_seed(job.name, o.seed);
-    const RasterRenderer renderer(job.building.mesh, ro);
+    const RasterRenderer renderer(job.building.mesh, ro, job.scene);
     for (size_t v = 0; v < job.cameras.size(); ++v) job.views.push_back({renderer.render(job.cameras[v], v).image, job.cameras[v]});
   } catch (const std::exception& e) {
     fail(job, std::string("render: ") + e.what());
@@ -197,7 +207,7 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
     try {
       if (o.keep_views && o.renderer == RendererKind::Raster) write_views(o.out / "views" / job.name, job.building, job.views);
       CloudBuildStats cs;
-      const LineCloud cloud = build_line_cloud(job.building, job.views, o.cloud, &cs);
+      const LineCloud cloud = build_line_cloud(job.building, job.views, o.cloud, &cs, job.scene_mesh.faces.empty() ? nullptr : &job.scene_mesh);
       const auto t = Clock::now();
       write_line_cloud(cloud_path(o.out, job.name), cloud);
       job.status["seconds"]["write"] = seconds_since(t);
@@ -234,6 +244,7 @@ void DatasetRunOptions::Check() const {
   cameras.Check();
   raster.Check();
   if (renderer == RendererKind::Blender) blender.Check();
+  photo.Check();
   cloud.Check();
   building.Check();
   sources.Check();
@@ -388,7 +399,7 @@ Json run_dataset(const DatasetRunOptions& o) {
         for (size_t i = 0; i < jobs.size(); ++i) {
           if (jobs[i].failed) continue;
           jobs[i].render_dir = o.keep_views ? o.out / "views" / jobs[i].name : scratch.root() / "renders" / jobs[i].name;
-          batch.push_back({&jobs[i].building, jobs[i].cameras, jobs[i].render_dir, building_seed(jobs[i].name, o.seed)});
+          batch.push_back({&jobs[i].building, jobs[i].cameras, jobs[i].render_dir, building_seed(jobs[i].name, o.seed), &jobs[i].scene});
           index.push_back(i);
         }
         const auto t = Clock::now();

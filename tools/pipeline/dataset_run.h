@@ -26,6 +26,7 @@ struct DatasetRunOptions {
   CameraRingOptions cameras;
   RasterOptions raster;
   BlenderOptions blender;
+  PhotoOptions photo;            // the scene of `--textures photo` (both renderers)
   int blender_batch = 16;        // buildings per Blender process (its start-up is shared)
   CloudBuilderOptions cloud;
   BuildingOptions building;

@@ -26,6 +26,45 @@ std::string last_line(const fs::path& p) {
   return last;
 }
 
+// The photo scene as the script reads it: clutter faces with their kind and object, facade rectangles per
+// face, the ground layout, the sun and each view's exposure.
+Json photo_scene_json(const PhotoScene& scene, size_t views, uint64_t seed) {
+  static const char* kKinds[] = {"chimney", "balcony", "car_body", "car_cabin", "trunk", "foliage", "neighbour_wall", "neighbour_roof"};
+  Json p;
+  Json verts = Json::array(), kinds = Json::array(), facades = Json::array(), paths = Json::array(), exposure = Json::array();
+  for (const Vec3& v : scene.clutter.vertices) verts.push_back({v.x(), v.y(), v.z()});
+  for (ClutterKind k : scene.kinds) kinds.push_back(kKinds[static_cast<int>(k)]);
+  auto rects = [](const std::vector<FacadeRect>& rs) {
+    Json a = Json::array();
+    for (const FacadeRect& r : rs) a.push_back({r.u0, r.u1, r.z0, r.z1});
+    return a;
+  };
+  for (const FacadeLayout& f : scene.facades)
+    facades.push_back({{"wall", f.wall}, {"storey_height", f.storey_height}, {"ground_z", f.ground_z}, {"top_z", f.top_z},
+                       {"peak_z", f.peak_z}, {"windows", rects(f.windows)}, {"doors", rects(f.doors)}});
+  for (const auto& path : scene.ground.paths) paths.push_back({path[0].x(), path[0].y(), path[1].x(), path[1].y()});
+  for (size_t v = 0; v < views; ++v) exposure.push_back(view_photometry(scene.options, seed, v).exposure);
+  p["clutter_vertices"] = verts;
+  p["clutter_faces"] = scene.clutter.faces;
+  p["clutter_kinds"] = kinds;
+  p["clutter_objects"] = scene.objects;
+  p["facades"] = facades;
+  p["storey_height"] = scene.storey_height;
+  p["road"] = scene.ground.road ? Json{{"point", {scene.ground.road_point.x(), scene.ground.road_point.y()}},
+                                       {"dir", {scene.ground.road_dir.x(), scene.ground.road_dir.y()}},
+                                       {"half_width", scene.ground.road_half_width}}
+                                 : Json();
+  p["paths"] = paths;
+  p["path_half_width"] = scene.ground.path_half_width;
+  p["sun_azimuth_deg"] = scene.sun_azimuth_deg;
+  p["sun_elevation_deg"] = scene.sun_elevation_deg;
+  p["vary_sun"] = scene.options.vary_sun;
+  p["roof_tiles"] = scene.options.roof_tiles;
+  p["gutters"] = scene.options.gutters;
+  p["exposure"] = exposure;
+  return p;
+}
+
 }  // namespace
 
 void BlenderOptions::Check() const {
@@ -33,7 +72,8 @@ void BlenderOptions::Check() const {
   if (engine != "BLENDER_WORKBENCH" && engine != "BLENDER_EEVEE" && engine != "CYCLES")
     throw std::invalid_argument("BlenderOptions.engine must be BLENDER_WORKBENCH, BLENDER_EEVEE or CYCLES, not " + engine);
   if (samples < 1) throw std::invalid_argument("BlenderOptions.samples must be >= 1");
-  if (textures != "paper" && textures != "sfm") throw std::invalid_argument("BlenderOptions.textures must be paper or sfm, not " + textures);
+  if (textures != "paper" && textures != "sfm" && textures != "photo")
+    throw std::invalid_argument("BlenderOptions.textures must be paper, sfm or photo, not " + textures);
   if (threads < 0) throw std::invalid_argument("BlenderOptions.threads must be >= 0");
   if (sun_elevation_deg <= 0 || sun_elevation_deg > 90) throw std::invalid_argument("BlenderOptions.sun_elevation_deg must be in (0, 90]");
 }
@@ -104,6 +144,7 @@ std::vector<BlenderResult> render_with_blender(const std::vector<BlenderBuilding
     j["edges"] = edges;
     j["gt_junctions"] = gt_junctions;
     j["cameras"] = cams;
+    if (options.textures == "photo" && b.scene) j["photo"] = photo_scene_json(*b.scene, b.cameras.size(), b.seed);
     job["buildings"].push_back(j);
   }
   const fs::path job_path = work_dir / "job.json", log_path = work_dir / "blender.log";

@@ -9,6 +9,7 @@
 
 #include "dataset/geometry/building.h"
 #include "tools/pipeline/cloud_builder.h"
+#include "tools/render/photo_scene.h"
 
 namespace lc2wf {
 
@@ -20,7 +21,7 @@ struct BlenderOptions {
   // whole Blender path for +3 points GT-edge coverage (tools/README.md).
   int samples = 1;
   bool shadows = true;
-  std::string textures = "paper";               // or "sfm": non-repeating noise that COLMAP can match
+  std::string textures = "paper";               // or "sfm": non-repeating noise that COLMAP can match; or "photo"
   double sun_azimuth_deg = 140.0;
   double sun_elevation_deg = 55.0;
   int threads = 0;                              // Blender's -t (0 = all cores)
@@ -33,6 +34,7 @@ struct BlenderBuilding {
   std::vector<Camera> cameras;
   std::filesystem::path out_dir;  // renders and metadata go here
   uint64_t seed = 0;
+  const PhotoScene* scene = nullptr;  // textures "photo": windows, clutter objects, sun, per-view exposure
 };
 
 struct BlenderResult {

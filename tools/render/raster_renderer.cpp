@@ -97,7 +97,8 @@ void RasterOptions::Check() const {
     throw std::invalid_argument("RasterOptions.sun_elevation_deg must be in (0, 90]");
   if (ambient < 0 || ambient > 1) throw std::invalid_argument("RasterOptions.ambient must be in [0, 1]");
   if (noise_sigma < 0) throw std::invalid_argument("RasterOptions.noise_sigma must be >= 0");
-  if (textures != "paper" && textures != "sfm") throw std::invalid_argument("RasterOptions.textures must be paper or sfm, not " + textures);
+  if (textures != "paper" && textures != "sfm" && textures != "photo")
+    throw std::invalid_argument("RasterOptions.textures must be paper, sfm or photo, not " + textures);
   if (blur_sigma_px < 0 || blur_sigma_px > 10) throw std::invalid_argument("RasterOptions.blur_sigma_px must be in [0, 10]");
   if (shadow_map_size < 16 || shadow_map_size > 8192)
     throw std::invalid_argument("RasterOptions.shadow_map_size must be in [16, 8192]");
@@ -116,12 +117,24 @@ Camera supersampled_camera(const Camera& camera, int factor) {
   return c;
 }
 
-RasterRenderer::RasterRenderer(const PolyMesh& mesh, const RasterOptions& options)
-    : mesh_(build_faced_mesh(mesh)), options_(options) {
+RasterRenderer::RasterRenderer(const PolyMesh& mesh, const RasterOptions& options, const PhotoScene& scene)
+    : mesh_(build_faced_mesh(options.textures == "photo" ? scene_mesh(mesh, scene) : mesh)),
+      options_(options),
+      building_faces_(static_cast<int>(mesh.faces.size())) {
   options_.Check();
   style_.seed = options_.seed;
   style_.wall = (options_.seed >> 3) % 3 == 0 ? WallStyle::Brick : WallStyle::Siding;
-  const double az = options_.sun_azimuth_deg * kDegToRad, el = options_.sun_elevation_deg * kDegToRad;
+  ground_z_ = std::numeric_limits<double>::infinity();
+  for (const Vec3& v : mesh.vertices) ground_z_ = std::min(ground_z_, v.z());
+  double az = options_.sun_azimuth_deg * kDegToRad, el = options_.sun_elevation_deg * kDegToRad;
+  if (options_.textures == "photo") {
+    scene.options.Check();
+    if (scene.facades.size() != mesh.faces.size() && !scene.facades.empty())
+      throw std::invalid_argument("RasterRenderer: the photo scene was made for another mesh");
+    photo_options_ = scene.options;
+    photo_ = std::make_shared<const PhotoTextures>(scene, options_.seed);
+    if (scene.options.vary_sun) az = scene.sun_azimuth_deg * kDegToRad, el = scene.sun_elevation_deg * kDegToRad;
+  }
   sun_ = Vec3(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
   if (options_.shadows) build_shadow_map();
 }
@@ -136,7 +149,19 @@ void RasterRenderer::build_shadow_map() {
     min_b = std::min(min_b, v.dot(sun_b_));
     max_b = std::max(max_b, v.dot(sun_b_));
   }
-  const int n = options_.shadow_map_size;
+  int n = options_.shadow_map_size;
+  if (photo_) {
+    // Clutter widens the map: keep the building's texel size (up to 4096 texels a side).
+    double lo_a = 1e300, hi_a = -1e300, lo_b = 1e300, hi_b = -1e300;
+    for (const MeshTriangle& tri : mesh_.triangles)
+      if (tri.face < building_faces_)
+        for (int k : tri.v) {
+          lo_a = std::min(lo_a, mesh_.vertices[k].dot(sun_a_)), hi_a = std::max(hi_a, mesh_.vertices[k].dot(sun_a_));
+          lo_b = std::min(lo_b, mesh_.vertices[k].dot(sun_b_)), hi_b = std::max(hi_b, mesh_.vertices[k].dot(sun_b_));
+        }
+    const double building_span = std::max(hi_a - lo_a, hi_b - lo_b), span = std::max(max_a - min_a, max_b - min_b);
+    if (building_span > 0) n = static_cast<int>(std::min(4096.0, std::ceil(n * std::max(1.0, span / building_span))));
+  }
   shadow_texel_ = std::max(max_a - min_a, max_b - min_b) / (n - 4) + 1e-9;
   shadow_min_a_ = min_a - 2 * shadow_texel_;
   shadow_min_b_ = min_b - 2 * shadow_texel_;
@@ -217,9 +242,13 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
   const Eigen::Matrix3d Rt = cam.R.transpose();
   const Vec3 C = cam.center();
   const double fx = cam.K(0, 0), fy = cam.K(1, 1), cx = cam.K(0, 2), cy = cam.K(1, 2);
-  const double ground_z = mesh_.box_min.z();
+  const double ground_z = ground_z_;
   cv::Mat linear(cam.height, cam.width, CV_32FC3);
   const bool sfm = options_.textures == "sfm";
+  const ViewPhotometry photometry = photo_ ? view_photometry(photo_options_, options_.seed, view_seed) : ViewPhotometry{};
+  const Rgb sky = photo_ ? Rgb{static_cast<float>(sky_colour().r * photometry.exposure), static_cast<float>(sky_colour().g * photometry.exposure),
+                               static_cast<float>(sky_colour().b * photometry.exposure)}
+                         : sky_colour();
   for (int y = 0; y < cam.height; ++y) {
     const float* drow = depth.ptr<float>(y);
     const int* irow = ids.ptr<int>(y);
@@ -232,25 +261,32 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
         const FaceFrame& frame = mesh_.frames[irow[x]];
         X = Rt * (m * drow[x] - cam.t);
         n = frame.normal.dot(C - X) >= 0 ? frame.normal : Vec3(-frame.normal);
-        colour = sfm ? sfm_surface_colour(frame, X, options_.seed) : surface_colour(frame, X, style_);
+        if (photo_)
+          colour = irow[x] < building_faces_ ? photo_->building(irow[x], frame, X) : photo_->clutter(irow[x] - building_faces_, frame, X);
+        else
+          colour = sfm ? sfm_surface_colour(frame, X, options_.seed) : surface_colour(frame, X, style_);
       } else {
         const Vec3 r = Rt * m;
         if (r.z() >= -1e-9 || C.z() <= ground_z) {
-          out[x] = cv::Vec3f(sky_colour().b, sky_colour().g, sky_colour().r);
+          out[x] = cv::Vec3f(sky.b, sky.g, sky.r);
           continue;
         }
         X = C + r * ((ground_z - C.z()) / r.z());
         n = Vec3::UnitZ();
-        colour = sfm ? sfm_ground_colour(X.x(), X.y(), options_.seed) : ground_colour(X.x(), X.y(), style_);
+        if (photo_)
+          colour = photo_->ground(X.x(), X.y());
+        else
+          colour = sfm ? sfm_ground_colour(X.x(), X.y(), options_.seed) : ground_colour(X.x(), X.y(), style_);
       }
       double direct = std::max(0.0, n.dot(sun_));
       if (direct > 0 && options_.shadows && in_shadow(X)) direct = 0;
-      const double light = options_.ambient + (1.0 - options_.ambient) * direct;
+      double light = options_.ambient + (1.0 - options_.ambient) * direct;
+      if (photo_) light *= photometry.exposure;
       out[x] = cv::Vec3f(colour.b * light, colour.g * light, colour.r * light);
     }
   }
   if (options_.supersample > 1) cv::resize(linear, linear, cv::Size(camera.width, camera.height), 0, 0, cv::INTER_AREA);
-  if (options_.blur_sigma_px > 0) cv::GaussianBlur(linear, linear, cv::Size(), options_.blur_sigma_px);
+  if (options_.blur_sigma_px > 0) cv::GaussianBlur(linear, linear, cv::Size(), options_.blur_sigma_px * photometry.blur_gain);
   RasterImage result;
   result.image = cv::Mat(camera.height, camera.width, CV_8UC3);
   // Gaussian noise from a seeded table of Box-Muller draws (raw engine bits: identical on every platform,
@@ -258,10 +294,11 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
   std::mt19937_64 gen(options_.seed * 0x9E3779B97F4A7C15ull ^ (view_seed + 0x632BE59BD9B4E019ull));
   constexpr int kNoise = 1 << 14;
   std::vector<float> noise(kNoise, 0.0f);
-  if (options_.noise_sigma > 0) {
+  const double noise_sigma = options_.noise_sigma * photometry.noise_gain;
+  if (noise_sigma > 0) {
     for (int i = 0; i < kNoise; ++i) {
       const double u1 = (static_cast<double>(gen() >> 11) + 0.5) * 0x1.0p-53, u2 = static_cast<double>(gen() >> 11) * 0x1.0p-53;
-      noise[i] = static_cast<float>(options_.noise_sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2));
+      noise[i] = static_cast<float>(noise_sigma * std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2));
     }
   }
   const SrgbTable& srgb = srgb_table();

@@ -4,10 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <opencv2/core.hpp>
 #include <string>
 
 #include "tools/render/face_frames.h"
+#include "tools/render/photo_scene.h"
+#include "tools/render/photo_textures.h"
 #include "tools/render/procedural_textures.h"
 
 namespace lc2wf {
@@ -25,7 +28,9 @@ struct RasterOptions {
   double blur_sigma_px = 1.0;
   int shadow_map_size = 1024;
   uint64_t seed = 0;                 // texture variation and noise
-  std::string textures = "paper";    // or "sfm": non-repeating noise that COLMAP can match (sfm_textures.h)
+  // or "sfm": non-repeating noise that COLMAP can match (sfm_textures.h); or "photo": windows, clutter
+  // objects and per-view exposure (photo_scene.h, photo_textures.h)
+  std::string textures = "paper";
   void Check() const;
 };
 
@@ -35,13 +40,15 @@ struct RasterImage {
 
 class RasterRenderer {
  public:
-  // Throws std::invalid_argument for a bad mesh or bad options.
-  RasterRenderer(const PolyMesh& mesh, const RasterOptions& options);
+  // Throws std::invalid_argument for a bad mesh or bad options. `scene` is used with textures "photo"
+  // (its clutter is drawn and casts shadows; the default scene has none).
+  RasterRenderer(const PolyMesh& mesh, const RasterOptions& options, const PhotoScene& scene = {});
 
   // view_seed varies the sensor noise per view. Deterministic; safe to call from several threads.
   RasterImage render(const Camera& camera, uint64_t view_seed) const;
 
-  // Camera-space depth (z) of the building per pixel, +inf where no face is hit; face ids (-1 = none).
+  // Camera-space depth (z) of the building per pixel, +inf where no face is hit; face ids (-1 = none; ids
+  // from the building's face count on are the photo scene's clutter faces).
   void depth_map(const Camera& camera, cv::Mat& depth, cv::Mat& face_ids) const;
 
   const FacedMesh& mesh() const { return mesh_; }
@@ -50,8 +57,12 @@ class RasterRenderer {
   bool in_shadow(const Vec3& X) const;
   void build_shadow_map();
 
-  FacedMesh mesh_;
+  FacedMesh mesh_;  // the building's faces, then (photo) the clutter's
   RasterOptions options_;
+  int building_faces_ = 0;
+  double ground_z_ = 0;
+  PhotoOptions photo_options_;
+  std::shared_ptr<const PhotoTextures> photo_;  // set with textures "photo"
   TextureStyle style_;
   Vec3 sun_ = Vec3::UnitZ();  // unit vector towards the sun
   Vec3 sun_a_ = Vec3::UnitX(), sun_b_ = Vec3::UnitY();
