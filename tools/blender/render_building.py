@@ -4,7 +4,9 @@ Run:  blender -b --factory-startup --python-exit-code 1 --python render_building
 
 JOB.json (written by lc2wf-dataset --renderer blender; coordinates in metres, z up):
   {"engine": "BLENDER_WORKBENCH" | "BLENDER_EEVEE" | "CYCLES", "samples": 1, "shadows": true, "gt_views": true,
-   "textures": "paper" (default: the paper-like look) | "sfm" (non-repeating noise for structure from motion),
+   "textures": "paper" (default: the paper-like look) | "sfm" (non-repeating noise for structure from motion)
+               | "photo" (each building then has "photo": windows and doors per face, clutter objects,
+               road and paths, sun, per-view exposure; written by tools/render/blender_renderer.cpp),
    "sun_azimuth_deg": 140, "sun_elevation_deg": 55,
    "buildings": [{"name": str, "out_dir": str, "seed": int, "vertices": [[x,y,z]...], "faces": [[i,...]...],
                   "labels": [1|2|3 ...], "edges": [[i,j]...] (into "gt_junctions": [[x,y,z]...], default the vertices),
@@ -218,6 +220,140 @@ def apply_sfm_textures(b, obj, ground, verts):
     for li in gme.polygons[0].loop_indices:
         p = gme.vertices[gme.loops[li].vertex_index].co
         guv.data[li].uv = ((p.x - c.x) / SFM_GROUND_TILE_M + 0.5, (p.y - c.y) / SFM_GROUND_TILE_M + 0.5)
+
+
+# ----------------------------------------------------------------------------- photo scene ("textures": "photo")
+# The C++ side (tools/render/photo_scene.*) lays out the windows, doors and clutter; here they are painted
+# into one image per wall and added as flat-coloured objects. Roof tiles and grass keep the paper look.
+PHOTO_PX_PER_M = 24
+PHOTO_PLASTERS = [(0.78, 0.74, 0.64), (0.82, 0.81, 0.78), (0.62, 0.62, 0.60), (0.75, 0.58, 0.36), (0.55, 0.30, 0.22)]
+PHOTO_CARS = [(0.55, 0.05, 0.04), (0.06, 0.12, 0.40), (0.55, 0.56, 0.58), (0.03, 0.03, 0.03), (0.85, 0.85, 0.83)]
+PHOTO_CLUTTER = {"chimney": (0.45, 0.20, 0.13), "balcony": (0.72, 0.72, 0.70), "car_cabin": (0.06, 0.07, 0.08),
+                 "trunk": (0.20, 0.13, 0.08), "foliage": (0.09, 0.19, 0.05), "neighbour_wall": (0.70, 0.68, 0.62),
+                 "neighbour_roof": (0.30, 0.30, 0.31)}
+
+
+def flat_material(name, rgb):
+    m = bpy.data.materials.new(name)
+    m.diffuse_color = tuple(rgb) + (1.0,)
+    m.use_nodes = True
+    m.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = tuple(rgb) + (1.0,)
+    return m
+
+
+def facade_image(f, umin, zmin, w, h, plaster, frame_rgb, gutters, seed):
+    """Wall image of w x h texels from (umin, zmin): plaster, sills, framed windows, doors, gutter."""
+    u = umin + (np.arange(w) + 0.5) / PHOTO_PX_PER_M
+    z = zmin + (np.arange(h) + 0.5) / PHOTO_PX_PER_M
+    img = np.empty((h, w, 3))
+    img[:] = plaster
+    img *= (0.92 + 0.08 * _hash01(np.floor(u / 0.5).astype(np.int64)[None, :], np.floor(z / 0.5).astype(np.int64)[:, None], seed))[..., None]
+    hs = f["storey_height"]
+    img[z < f["ground_z"] + 0.15 * hs] *= 0.7
+
+    def paint(u0, u1, z0, z1, rgb):
+        cols, rows = (u >= u0) & (u <= u1), (z >= z0) & (z <= z1)
+        img[np.ix_(rows, cols)] = rgb
+
+    for u0, u1, z0, z1 in f["windows"]:
+        paint(u0 - 0.06 * hs, u1 + 0.06 * hs, z0 - 0.06 * hs, z0, (0.70, 0.70, 0.68))
+        paint(u0, u1, z0, z1, frame_rgb)
+        paint(u0 + 0.04 * hs, u1 - 0.04 * hs, z0 + 0.04 * hs, z1 - 0.04 * hs, (0.07, 0.09, 0.12))
+        mid, transom = 0.5 * (u0 + u1), z0 + 0.7 * (z1 - z0)
+        paint(mid - 0.012 * hs, mid + 0.012 * hs, z0, z1, frame_rgb)
+        paint(u0, u1, transom - 0.012 * hs, transom + 0.012 * hs, frame_rgb)
+    for u0, u1, z0, z1 in f["doors"]:
+        paint(u0 - 0.04 * hs, u1 + 0.04 * hs, z0, z1 + 0.04 * hs, frame_rgb)
+        paint(u0, u1, z0, z1, (0.22, 0.12, 0.06))
+    if gutters and f["peak_z"] - f["top_z"] < 0.05 * hs:
+        img[z > f["top_z"] - 0.07 * hs] = (0.10, 0.10, 0.10)
+    return img
+
+
+def add_flat_object(scene, name, verts, faces, materials, indices, z_lift=0.0):
+    me = bpy.data.meshes.new(name)
+    me.from_pydata([(x, y, zz + z_lift) for x, y, zz in verts], [], [list(f) for f in faces])
+    me.validate(clean_customdata=False)
+    for m in materials:
+        me.materials.append(m)
+    for poly, k in zip(me.polygons, indices):
+        poly.material_index = k
+    obj = bpy.data.objects.new(name, me)
+    scene.collection.objects.link(obj)
+    return obj
+
+
+def apply_photo_scene(b, scene, obj, verts):
+    """Windows and doors painted per wall, the road and paths on the ground, the clutter objects."""
+    p = b["photo"]
+    seed = int(b.get("seed", 0))
+    rng = np.random.default_rng(seed + 7000003)
+    plaster = PHOTO_PLASTERS[int(rng.integers(len(PHOTO_PLASTERS)))]
+    frame_rgb = (0.12, 0.12, 0.12) if rng.random() < 1 / 3 else (0.86, 0.86, 0.84)
+    me = obj.data
+    uv = me.uv_layers.active
+    gable = None  # vertical faces without storeys (gable triangles): plain plaster, as in the rasteriser
+    for poly in me.polygons:
+        f = p["facades"][poly.index]
+        pts = [verts[i] for i in poly.vertices]
+        n, uax, _ = face_frame(pts)
+        if not f["wall"]:
+            if surface_kind(b["labels"][poly.index], n) == "wall":
+                if gable is None:
+                    me.materials.append(flat_material("gable", tuple(0.9 * c for c in plaster)))
+                    gable = len(me.materials) - 1
+                poly.material_index = gable
+            continue
+        us = [(q - pts[0]).dot(uax) for q in pts]
+        zs = [q.z for q in pts]
+        umin, zmin = min(us), min(zs)
+        w = max(2, min(4096, int(math.ceil((max(us) - umin) * PHOTO_PX_PER_M))))
+        h = max(2, min(4096, int(math.ceil((max(zs) - zmin) * PHOTO_PX_PER_M))))
+        img = facade_image(f, umin, zmin, w, h, plaster, frame_rgb, p.get("gutters", True), seed + poly.index)
+        mat, _ = make_material(f"facade_{poly.index}", img, (w / PHOTO_PX_PER_M, h / PHOTO_PX_PER_M))
+        me.materials.append(mat)
+        poly.material_index = len(me.materials) - 1
+        for li, uu, zz in zip(poly.loop_indices, us, zs):
+            uv.data[li].uv = ((uu - umin) * PHOTO_PX_PER_M / w, (zz - zmin) * PHOTO_PX_PER_M / h)
+    zground = min(v.z for v in verts)
+    # Ground marks: quads 3 cm above the grass (less fights with the ground's depth at llvmpipe precision).
+    quads, mats, idx = [], [flat_material("asphalt", (0.10, 0.10, 0.11)), flat_material("kerb", (0.60, 0.60, 0.58)),
+                           flat_material("paving", (0.50, 0.49, 0.46))], []
+
+    def strip(a, d, half, length, k):
+        d = Vector((d[0], d[1], 0)).normalized()
+        s = Vector((-d.y, d.x, 0)) * half
+        a = Vector((a[0], a[1], 0))
+        pieces = max(1, int(math.ceil(length / 4.0)))  # short pieces: Workbench streaks long thin polygons
+        for i in range(pieces):
+            p0, p1 = a + d * (length * i / pieces), a + d * (length * (i + 1) / pieces)
+            quads.append([tuple(p0 - s), tuple(p0 + s), tuple(p1 + s), tuple(p1 - s)])
+            idx.append(k)
+
+    road = p.get("road")
+    if road:
+        d, c, hw = Vector((road["dir"][0], road["dir"][1], 0)), road["point"], road["half_width"]
+        side = Vector((-d.y, d.x, 0))
+        start = Vector((c[0], c[1], 0)) - d * 150.0
+        hs = p["storey_height"]
+        strip((start + side * (hw + 0.33 * hs)), d, 0.27 * hs, 300.0, 2)
+        strip((start - side * (hw + 0.33 * hs)), d, 0.27 * hs, 300.0, 2)
+        strip((start + side * (hw + 0.03 * hs)), d, 0.03 * hs, 300.0, 1)
+        strip((start - side * (hw + 0.03 * hs)), d, 0.03 * hs, 300.0, 1)
+        strip(start, d, hw, 300.0, 0)
+    for x0, y0, x1, y1 in p.get("paths", []):
+        strip((x0, y0), (x1 - x0, y1 - y0), p["path_half_width"], math.hypot(x1 - x0, y1 - y0), 2)
+    if quads:
+        qv = [q for quad in quads for q in quad]
+        add_flat_object(scene, "ground_marks", qv, [[4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 3] for i in range(len(quads))], mats, idx,
+                        zground + 0.03)
+    kinds, objects = p["clutter_kinds"], p["clutter_objects"]
+    if kinds:
+        names = sorted(set(kinds) - {"car_body"})
+        cmats = [flat_material("clutter_" + k, PHOTO_CLUTTER[k]) for k in names]
+        cmats += [flat_material(f"car_{i}", c) for i, c in enumerate(PHOTO_CARS)]
+        index = [names.index(k) if k != "car_body" else len(names) + int(o) % len(PHOTO_CARS) for k, o in zip(kinds, objects)]
+        add_flat_object(scene, "clutter", p["clutter_vertices"], p["clutter_faces"], cmats, index)
 
 
 # ----------------------------------------------------------------------------- scene
@@ -445,9 +581,14 @@ def render_building(b, job):
         raise ValueError("no cameras")
     width, height = int(cams[0]["width"]), int(cams[0]["height"])
     scene, obj, verts = build_scene(b, job)
+    photo = b.get("photo") if job.get("textures", "paper") == "photo" else None
+    if photo and photo.get("vary_sun", False):
+        job = dict(job, sun_azimuth_deg=photo["sun_azimuth_deg"], sun_elevation_deg=photo["sun_elevation_deg"])
     setup_render(scene, job, width, height)
     if job.get("textures", "paper") == "sfm":
         apply_sfm_textures(b, obj, bpy.data.objects["ground"], verts)
+    if photo:
+        apply_photo_scene(b, scene, obj, verts)
     cam_obj = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
     scene.collection.objects.link(cam_obj)
     scene.camera = cam_obj
@@ -465,6 +606,8 @@ def render_building(b, job):
         R = [c["R"][0:3], c["R"][3:6], c["R"][6:9]]
         place_camera(scene, cam_obj, K, R, c["t"], width, height)
         scene.render.filepath = os.path.join(out, f"view_{i:03d}.png")
+        if photo:
+            scene.view_settings.exposure = math.log2(photo["exposure"][i])  # per-view exposure change
         t1 = time.time()
         bpy.ops.render.render(write_still=True)
         t_render += time.time() - t1
