@@ -38,6 +38,14 @@ wireframe and a note, never a failure.
   --pair-support S    classify only pairs of junctions whose straight line is covered by the cloud's
                       segments for at least S of its length (0-1; segments within 0.35 m and 20 degrees
                       of it; pairs shorter than 1 m always); default 0 = every pair, as the release
+  --edge-support S    after post-processing keep only edges the cloud's segments cover for at least S
+                      of their length (0-1; segments within 0.35 m and 20 degrees of it) or, in a cloud
+                      with cameras, that --edge-cameras of them had in view; junctions left without an
+                      edge go: nothing is drawn on sides no photo saw (default 0.2; 0 keeps every edge,
+                      as the release)
+  --edge-cameras N    cameras that must have had an edge in view (in front, inside the image, not behind
+                      the block over the wireframe's footprint) to keep it without line support
+                      (default 2; 0 = the lines alone decide)
   --max-pairs N       at most N junction pairs go to the edge model (default 2080, every pair of 65
                       junctions; 0 = no cap): above N, the pairs with the most line support within 2 m of
                       their junctions, each junction in at most --max-pairs-per-junction K of them

@@ -18,6 +18,8 @@ struct PostProcessFlags {
   bool no_junction_refine = false;          // --no-junction-refine
   std::optional<double> min_confidence;     // --min-confidence C
   std::optional<double> pair_support;       // --pair-support S
+  std::optional<double> edge_support;       // --edge-support S
+  std::optional<int64_t> edge_cameras;      // --edge-cameras N
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
@@ -30,7 +32,7 @@ struct PostProcessFlags {
   std::optional<int64_t> max_pairs_per_junction; // --max-pairs-per-junction N
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || nms_radius || max_offset || sampling_passes ||
+    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_cameras || nms_radius || max_offset || sampling_passes ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
            max_pairs || max_pairs_per_junction;
   }
@@ -41,6 +43,8 @@ struct PostProcessFlags {
     else if (flag == "--no-junction-refine") no_junction_refine = true;
     else if (flag == "--min-confidence") min_confidence = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--edge-support") edge_support = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--edge-cameras") edge_cameras = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
@@ -65,6 +69,8 @@ struct PostProcessFlags {
     if (no_junction_refine) o.selection.refine.radius = 0.0;
     if (min_confidence) o.selection.min_confidence = *min_confidence;
     if (pair_support) o.pair_support.min_support = *pair_support;
+    if (edge_support) o.edge_support.min_support = *edge_support;
+    if (edge_cameras) o.edge_support.min_cameras = static_cast<int>(std::min<int64_t>(*edge_cameras, 1 << 30));
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
@@ -88,6 +94,7 @@ struct PostProcessFlags {
       o.pair_cap.max_pairs_per_junction = static_cast<int>(std::clamp<int64_t>(*max_pairs_per_junction, -1, 1 << 30));
     check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
+                                       {"EdgeSupportOptions.min_support", "--edge-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
                                        {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},

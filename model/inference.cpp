@@ -8,6 +8,7 @@
 #include "core/tensor.h"
 #include "dataset/selection/pair_cap.h"
 #include "dataset/selection/pair_support.h"
+#include "model/edge_support.h"
 #include "dataset/geometry/segment_split.h"
 #include "model/patch_tensors.h"
 #include "model/test_time_symmetry.h"
@@ -189,9 +190,18 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   for (size_t p = 0; p < r.pairs.size(); ++p)
     in.pairs.push_back({r.pairs[p].i, r.pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
   PostProcessResult post = post_process(in, options);
-  r.wireframe = std::move(post.wireframe);
+  SupportedEdges seen = keep_supported_edges(post.wireframe, cloud.segments, cloud.cameras, options.edge_support);
+  r.wireframe = std::move(seen.wireframe);
   r.candidates = std::move(post.candidates);
   r.notes.insert(r.notes.end(), post.notes.begin(), post.notes.end());
+  if (seen.dropped_edges > 0)
+    r.notes.push_back(std::to_string(seen.dropped_edges) + " edge(s) with line support < " +
+                      format_number("%g", options.edge_support.min_support) + " of their length" +
+                      (cloud.cameras.empty() || options.edge_support.min_cameras == 0
+                           ? std::string()
+                           : " and seen by < " + std::to_string(options.edge_support.min_cameras) + " cameras") +
+                      " dropped, and " +
+                      std::to_string(seen.dropped_junctions) + " junction(s) left without an edge");
   if (r.wireframe.wireframe.edges.empty()) r.notes.push_back("no edge survived post-processing: empty wireframe");
   r.post_seconds += seconds_since(t0);
   return r;

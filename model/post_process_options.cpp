@@ -21,6 +21,7 @@ void PostProcessOptions::Check() const {
   selection.Check();
   pair_support.Check();
   pair_cap.Check();
+  edge_support.Check();
   require(max_segment_length_m == 0.0 || (max_segment_length_m >= 0.05 && max_segment_length_m <= 100.0),
           "max_segment_length_m", "0 (off) or in [0.05, 100] metres", max_segment_length_m);
   require(cut_sampling_passes >= 1 && cut_sampling_passes <= 8, "cut_sampling_passes", "in [1, 8]", cut_sampling_passes);
@@ -47,6 +48,8 @@ PostProcessOptions PostProcessOptions::release_quirks() {
   o.pruned_junctions_in_merge = true;
   o.line_nms_keep_higher = false;
   o.max_segment_length_m = 0.0;  // the release runs on the cloud as it is
+  o.edge_support.min_support = 0.0;  // the release keeps every edge the post-processing leaves
+  o.edge_support.min_cameras = 0;
   return o;
 }
 

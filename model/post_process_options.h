@@ -7,6 +7,7 @@
 #include "dataset/selection/pair_cap.h"
 #include "dataset/selection/pair_support.h"
 #include "dataset/geometry/segment_split.h"
+#include "model/edge_support.h"
 
 namespace lc2wf {
 
@@ -56,6 +57,10 @@ struct PostProcessOptions {
   // Line NMS (step 7): edges whose summed endpoint distance (best orientation) is < line_nms_distance.
   double line_nms_distance = 1.0;    // metres (release: 20 raw)
   bool line_nms_keep_higher = true;  // release false: edges are visited by ascending score, so the lower one stays
+
+  // Not in the release (keeps every edge): after the clean-up, edges the cloud's lines do not run along are
+  // dropped, with the junctions left without an edge (model/edge_support.h): nothing on unphotographed sides.
+  EdgeSupportOptions edge_support;
 
   void Check() const;  // throws std::invalid_argument naming the bad field
   static PostProcessOptions release_quirks();

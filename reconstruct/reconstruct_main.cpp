@@ -81,6 +81,9 @@ Options:
   --no-junction-refine   keep the regressed junction positions (see lc2wf-infer --help)
   --min-confidence C     junctions paired by the edge model: confidence > C (default 0.05)
   --pair-support S       classify only pairs with line support >= S (0-1; see lc2wf-infer --help)
+  --edge-support S       keep only edges covered by the cloud's segments for >= S of their length or seen
+                         by --edge-cameras cameras (0-1; default 0.2; 0 keeps every edge; see lc2wf-infer --help)
+  --edge-cameras N       cameras that must have had an edge in view to keep it without line support (default 2)
   --max-pairs N          at most N pairs for the edge model (default 2080; see lc2wf-infer --help)
   --max-pairs-per-junction K  and at most K per junction when the cap bites (default 64)
   --nms-radius M         point-NMS radius of the candidate junctions (default 0.5 m; see lc2wf-infer --help)

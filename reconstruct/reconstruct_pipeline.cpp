@@ -16,6 +16,7 @@
 #include "dataset/formats/line_cloud_io.h"
 #include "dataset/formats/line_obj_io.h"
 #include "core/util/number_format.h"
+#include "dataset/photo/camera_coverage.h"
 #include "dataset/photo/exif_gps.h"
 #include "dataset/photo/local_enu.h"
 #include "model/inference.h"
@@ -308,6 +309,10 @@ class ReconstructRun {
     report_["notes"] = inference_.notes;
     if (w.edges.empty()) result_.warnings.push_back("empty wireframe: " + Json(inference_.notes).dump());
     log_.done(seconds_, std::to_string(w.junctions.size()) + " junctions, " + std::to_string(w.edges.size()) + " edges");
+    // Photos from the street see one or two sides: say which, so the wireframe is not taken for the whole.
+    const CameraCoverage coverage = camera_coverage(cloud_.cameras, w, cloud_.segments);
+    report_["coverage"] = coverage_json(coverage);
+    if (!o_.quiet) std::fprintf(stderr, "lc2wf-reconstruct: coverage: %s\n", coverage.summary().c_str());
   }
 
   ReconstructResult write_outputs(Clock::time_point t_total) {

@@ -5,10 +5,10 @@
 
 namespace lc2wf {
 
-std::pair<double, double> footprint_sides(const std::vector<Vec3>& points) {
+std::vector<Vec2> convex_hull_xy(const std::vector<Vec3>& points) {
   std::vector<Vec2> p;
   for (const Vec3& v : points) p.push_back(v.head<2>());
-  if (p.size() < 2) return {0.0, 0.0};
+  if (p.size() < 2) return p;
   std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) { return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y()); });
   auto cross = [](const Vec2& o, const Vec2& a, const Vec2& b) { return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x(); };
   std::vector<Vec2> hull(2 * p.size());
@@ -22,7 +22,15 @@ std::pair<double, double> footprint_sides(const std::vector<Vec3>& points) {
     hull[k++] = p[i];
   }
   hull.resize(k > 1 ? k - 1 : k);
-  double best_area = std::numeric_limits<double>::infinity(), lo_side = 0, hi_side = 0;
+  if (hull.size() == 2 && hull[0] == hull[1]) hull.pop_back();
+  return hull;
+}
+
+std::vector<Vec2> footprint_rectangle(const std::vector<Vec3>& points) {
+  const std::vector<Vec2> hull = convex_hull_xy(points);
+  if (hull.size() < 2) return {};
+  double best_area = std::numeric_limits<double>::infinity();
+  std::vector<Vec2> best;
   for (size_t i = 0; i < hull.size(); ++i) {
     const Vec2 d = hull[(i + 1) % hull.size()] - hull[i];
     if (d.norm() <= 0) continue;
@@ -34,11 +42,17 @@ std::pair<double, double> footprint_sides(const std::vector<Vec3>& points) {
     }
     if ((a1 - a0) * (b1 - b0) < best_area) {
       best_area = (a1 - a0) * (b1 - b0);
-      hi_side = std::max(a1 - a0, b1 - b0);
-      lo_side = std::min(a1 - a0, b1 - b0);
+      best = {a0 * u + b0 * n, a1 * u + b0 * n, a1 * u + b1 * n, a0 * u + b1 * n};
     }
   }
-  return {hi_side, lo_side};
+  return best;
+}
+
+std::pair<double, double> footprint_sides(const std::vector<Vec3>& points) {
+  const std::vector<Vec2> r = footprint_rectangle(points);
+  if (r.empty()) return {0.0, 0.0};
+  const double u = (r[1] - r[0]).norm(), v = (r[2] - r[1]).norm();
+  return {std::max(u, v), std::min(u, v)};
 }
 
 }  // namespace lc2wf

@@ -1,0 +1,41 @@
+// Edges something was seen of: after post-processing, an edge is kept when the cloud's segments run along
+// enough of its length (the measure of dataset/selection/pair_support.h) or, when the cloud has cameras, when
+// enough cameras had it in view (model/edge_visibility.h); junctions left without an edge go. On a capture
+// of one or two sides the networks still propose corners and edges of the sides nobody photographed: no line
+// supports those and no camera faced them. The cameras' half keeps the few outer edges a full orbit sees but
+// draws no line along (low contrast between a wall and its roof).
+#pragma once
+
+#include <vector>
+
+#include "dataset/geometry/geometry.h"
+#include "dataset/selection/pair_support.h"
+#include "model/scored_wireframe.h"
+
+namespace lc2wf {
+
+struct EdgeSupportOptions {
+  double min_support = 0.2;  // keep edges whose length the segments cover at least this share of; 0 keeps all
+  // Which segment counts, as for pairs (pair_support.h): one rule for "a line runs along it".
+  double radius_m = PairSupportOptions{}.radius_m;
+  double max_angle_deg = PairSupportOptions{}.max_angle_deg;
+  // Or kept when at least this many of the cloud's cameras saw where it is; 0: the lines alone decide.
+  int min_cameras = 2;
+  double occlusion_tolerance_m = 0.5;  // a point this close behind the building's outer surface is still seen
+
+  bool enabled() const { return min_support > 0; }
+  void Check() const;  // throws std::invalid_argument naming the bad field
+};
+
+struct SupportedEdges {
+  ScoredWireframe wireframe;  // the kept edges, in their order, and the junctions they use
+  int dropped_edges = 0;
+  int dropped_junctions = 0;
+  int kept_by_cameras = 0;  // kept for the cameras alone (too little line support)
+};
+
+// The edges of `in` that pass the test (all of them when the option is off), junctions without an edge dropped.
+SupportedEdges keep_supported_edges(const ScoredWireframe& in, const std::vector<Segment3>& segments,
+                                    const std::vector<Camera>& cameras, const EdgeSupportOptions& options);
+
+}  // namespace lc2wf
