@@ -73,6 +73,8 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
                   (default 0.75; 0 = every candidate; see lc2wf-infer --help)
   --sampling-passes N  with --weights: the junction model's sample points in N passes (default 1; see
                   lc2wf-infer --help)
+  --metres-per-pass M  with --weights: at least one pass per M metres of a cloud's longer side (default 40;
+                  0 = off; see lc2wf-infer --help)
   --density-seeds S  with --weights: which endpoints seed the sample points, loose (default), release or
                   MIN_COUNT,MIN_RATIO,NMS_M (see lc2wf-infer --help)
   --test-time-views N  with --weights: the junction model's mean over N views of each patch (default 1;

@@ -59,6 +59,9 @@ wireframe and a note, never a failure.
   --sampling-passes N run the junction model on N x 256 sample points, 256 at a time (default 1, the
                       release): more GT junctions get a sample point near them, and more candidates
                       are paired
+  --metres-per-pass M at least one pass per M metres of the cloud's longer horizontal side (2nd-98th
+                      percentile of its endpoints), at most 8, so a large building gets sample points for
+                      its size (default 40; 0 = only --sampling-passes)
   --density-seeds S   which segment endpoints seed the sample points before the farthest-point
                       sampling: loose (default: more than 4 endpoints within 0.3 m, one seed per 0.3 m),
                       release (more than 12, one per 0.075 m; --release-quirks) or MIN_COUNT,MIN_RATIO,

@@ -23,6 +23,7 @@ struct PostProcessFlags {
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
+  std::optional<double> metres_per_pass;    // --metres-per-pass M
   std::optional<std::string> density_seeds; // --density-seeds release|loose|A,C,R
   std::optional<int64_t> test_time_views;   // --test-time-views N
   std::optional<int64_t> edge_test_time_views;   // --edge-test-time-views N
@@ -32,7 +33,7 @@ struct PostProcessFlags {
   std::optional<int64_t> max_pairs_per_junction; // --max-pairs-per-junction N
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_cameras || nms_radius || max_offset || sampling_passes ||
+    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
            max_pairs || max_pairs_per_junction;
   }
@@ -48,6 +49,7 @@ struct PostProcessFlags {
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--metres-per-pass") metres_per_pass = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--density-seeds") density_seeds = flag_value(argc, argv, i);
     else if (flag == "--test-time-views") test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
@@ -75,6 +77,7 @@ struct PostProcessFlags {
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
     if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
+    if (metres_per_pass) o.selection.metres_per_pass = *metres_per_pass;
     if (density_seeds) {
       try {
         o.selection.density_seeds = DensitySeedRule::parse(*density_seeds);
@@ -98,6 +101,7 @@ struct PostProcessFlags {
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
                                        {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},
+                                       {"JunctionSelectionOptions.metres_per_pass", "--metres-per-pass"},
                                        {"JunctionSelectionOptions.test_time_views", "--test-time-views"},
                                        {"PostProcessOptions.edge_test_time_views", "--edge-test-time-views"},
                                        {"PostProcessOptions.max_segment_length_m", "--max-segment-length"},

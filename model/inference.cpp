@@ -7,6 +7,7 @@
 
 #include "core/tensor.h"
 #include "dataset/selection/pair_cap.h"
+#include "dataset/sampling/sampling.h"
 #include "dataset/selection/pair_support.h"
 #include "model/edge_support.h"
 #include "dataset/geometry/segment_split.h"
@@ -68,7 +69,8 @@ PredictedJunctions predict_junction_candidates(JunctionNet& net, const LineCloud
                                                const JunctionSelectionOptions& selection) {
   selection.Check();
   if (cloud.segments.empty()) return {};
-  const int passes = selection.sampling_passes;
+  // A large cloud gets more sample points: the one rule for inference, validation and the hand-off.
+  const int passes = std::max(selection.sampling_passes, passes_for_extent(cloud.segments, selection.metres_per_pass));
   const std::vector<PlaneSymmetry> views = test_time_symmetries(selection.test_time_views);
   JunctionSampleOptions options = junction_sample_options(net.config());
   options.sampling.passes = passes;
@@ -226,12 +228,17 @@ InferenceResult WireframePredictor::predict(const LineCloud& input, const PostPr
   const LineCloud& cloud = cut_it ? split : input;
   JunctionSelectionOptions sampling = options.selection;
   if (cut_it) sampling.sampling_passes = std::max(sampling.sampling_passes, options.cut_sampling_passes);
+  const int by_extent = passes_for_extent(cloud.segments, sampling.metres_per_pass);  // for the note only
+  const bool widened = by_extent > sampling.sampling_passes;
   const PredictedJunctions junctions = predict_junction_candidates(*junction_, cloud, sampling);
   const double junction_seconds = seconds_since(t0);
   InferenceResult r = predict_wireframe(*edge_, cloud, junctions, options);
   r.junction_seconds = junction_seconds;
   if (cloud.segments.empty()) r.notes.insert(r.notes.begin(), "line cloud has no segments: no junction candidates");
   r.segments_cut = cut_it;
+  if (widened)
+    r.notes.insert(r.notes.begin(), "a large cloud: sampled in " + std::to_string(by_extent) + " passes (one per " +
+                                        format_number("%g", sampling.metres_per_pass) + " m of its longer side)");
   if (cut_it)
     r.notes.insert(r.notes.begin(),
                    (options.merged_maps_only ? "a merged line map (" + format_number("%.0f", 100 * overlapped) +

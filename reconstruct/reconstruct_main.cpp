@@ -90,6 +90,7 @@ Options:
   --max-offset M         ignore candidates regressed more than M metres from their sample point (default 0.75;
                          0 = every candidate; see lc2wf-infer --help)
   --sampling-passes N    the junction model's sample points in N passes of 256 (default 1; see lc2wf-infer --help)
+  --metres-per-pass M    at least one pass per M metres of the cloud's longer side (default 40; 0 = off)
   --density-seeds S      which endpoints seed the sample points: loose (default), release or
                          MIN_COUNT,MIN_RATIO,NMS_M (see lc2wf-infer --help)
   --test-time-views N    the junction model's mean over N views of each patch (default 1; see lc2wf-infer --help)

@@ -1,6 +1,7 @@
 #include "dataset/sampling/sampling.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
@@ -80,6 +81,25 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
   std::vector<int> out;
   for (int k : point_nms(cp, cs, o.seeds.nms_m, PointNmsRule::kSuppressor)) out.push_back(cand[k]);
   return out;
+}
+
+int passes_for_extent(const std::vector<Segment3>& segments, double metres_per_pass, int max_passes) {
+  if (!(metres_per_pass > 0) || segments.empty()) return 1;
+  double extent = 0;
+  for (int axis : {0, 1}) {
+    std::vector<double> v;
+    v.reserve(2 * segments.size());
+    for (const Segment3& s : segments) v.push_back(s.a[axis]), v.push_back(s.b[axis]);
+    const auto at = [&](double q) {
+      const size_t k = static_cast<size_t>(q * static_cast<double>(v.size() - 1));
+      std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+      return v[k];
+    };
+    const double lo = at(0.02), hi = at(0.98);
+    extent = std::max(extent, hi - lo);
+  }
+  const double passes = std::ceil(extent / metres_per_pass);
+  return static_cast<int>(std::clamp(passes, 1.0, static_cast<double>(std::max(1, max_passes))));
 }
 
 std::vector<int> farthest_point_sampling(const std::vector<Vec3>& p, int count, const std::vector<int>& seeds) {

@@ -54,6 +54,11 @@ std::vector<int> farthest_point_sampling(const std::vector<Vec3>& points, int co
 
 // The full rule: [near-GT picks] + density seeds, then FPS to num_samples; with passes > 1, more points
 // after those. `gt_junctions` and `rng` are only used when near_gt_samples > 0.
+// The sampling passes a cloud needs so its size sets the budget of sample points, not a fixed count: one pass
+// per `metres_per_pass` of the longer horizontal side of its segments' endpoint box (2nd-98th percentile, so a
+// few stray lines do not count), at least 1 and at most `max_passes`; 1 when metres_per_pass <= 0.
+int passes_for_extent(const std::vector<Segment3>& segments, double metres_per_pass, int max_passes = 8);
+
 std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const SamplingOptions& options,
                                   const std::vector<Vec3>* gt_junctions = nullptr, DataRng* rng = nullptr);
 

@@ -13,6 +13,7 @@ void JunctionSelectionOptions::Check() const {
   if (!(min_confidence >= 0 && min_confidence <= 1)) fail("min_confidence must be in [0, 1]");
   if (top_k < 2) fail("top_k must be >= 2");
   if (sampling_passes < 1 || sampling_passes > 8) fail("sampling_passes must be in [1, 8]");
+  if (!(metres_per_pass >= 0) || !std::isfinite(metres_per_pass)) fail("metres_per_pass must be >= 0 (0: off)");
   if (!valid_view_count(test_time_views)) fail("test_time_views must be 1, 2, 4 or 8");
   density_seeds.Check();
   refine.Check();
@@ -25,6 +26,7 @@ JunctionSelectionOptions JunctionSelectionOptions::release() {
   o.min_confidence = 0.85;
   o.max_offset_m = std::numeric_limits<double>::infinity();
   o.sampling_passes = 1;
+  o.metres_per_pass = 0;
   o.test_time_views = 1;
   o.density_seeds = DensitySeedRule::release();
   o.refine.radius = 0.0;

@@ -44,6 +44,11 @@ struct JunctionSelectionOptions {
   // first G points leave uncovered get a patch too: with G = 256, 87 % of the GT junctions have a sample
   // point within 0.35 m, 97 % with 512 (experiments/README.md, "Sampling passes").
   int sampling_passes = 1;
+  // Not in the release (a fixed 256 points): a large cloud gets more passes, one per this many metres of its
+  // longer horizontal side (dataset/sampling/sampling.h, passes_for_extent); 0 = off. Every Roof-Image cloud
+  // spans less than 40 m, so it changes nothing there; a 150 m block gets 4 passes (experiments/README.md,
+  // "Large buildings: the sample budget").
+  double metres_per_pass = 40.0;
   // Not in the release (one view): each candidate is the junction model's mean answer over this many views
   // of its patch, rotated by 90° steps or mirrored about the vertical axis (1, 2, 4 or 8; see
   // model/test_time_symmetry.h). Costs views x the junction model's time.

@@ -19,6 +19,7 @@
 #include "core/rng.h"
 #include "core/util/cli.h"
 #include "infer/batch_inference.h"
+#include "dataset/sampling/sampling.h"
 #include "model/inference.h"
 #include "infer/preview.h"
 #include "model/test_time_symmetry.h"
@@ -82,6 +83,26 @@ TEST_F(Inference, SamplingPassesAppendCandidatesToTheFirstPass) {
   o.selection.sampling_passes = 2;
   EXPECT_EQ(predictor.predict(cloud_, o).junctions.positions.size(), 64u);
   EXPECT_THROW(predict_junction_candidates(predictor.junction_net(), cloud_, run_as(0)), std::invalid_argument);
+}
+
+// A large cloud gets sample points for its size: 12 times the house's footprint is sampled in one pass per
+// 40 m of its longer side (the first pass as before), the house itself in one; --metres-per-pass 0 turns it off.
+TEST_F(Inference, ALargeCloudIsSampledInMorePasses) {
+  const WireframePredictor predictor(dir_);
+  LineCloud large = cloud_;
+  for (Segment3& s : large.segments) s.a.head<2>() *= 12.0, s.b.head<2>() *= 12.0;
+  const int passes = passes_for_extent(large.segments, 40.0);
+  ASSERT_GE(passes, 3);
+  EXPECT_EQ(passes_for_extent(cloud_.segments, 40.0), 1);
+  EXPECT_EQ(predict_junction_candidates(predictor.junction_net(), cloud_, run_as(1)).positions.size(), 32u);
+  EXPECT_EQ(predict_junction_candidates(predictor.junction_net(), large, run_as(1)).positions.size(), 32u * passes);
+  JunctionSelectionOptions off = run_as(1);
+  off.metres_per_pass = 0;
+  EXPECT_EQ(predict_junction_candidates(predictor.junction_net(), large, off).positions.size(), 32u);
+  const InferenceResult r = predictor.predict(large, keep_every_junction());
+  EXPECT_EQ(r.junctions.positions.size(), 32u * passes);
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes.front().find("large cloud"), std::string::npos) << r.notes.front();
 }
 
 // The cloud turned about the vertical through the network frame's centre by `view`.
