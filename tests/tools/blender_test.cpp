@@ -6,6 +6,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <opencv2/core.hpp>
 
 #include "dataset/synthetic/synthetic_building.h"
 #include "tools/pipeline/cloud_builder.h"
@@ -57,6 +58,32 @@ TEST(BlenderPipeline, RendersTwoBuildingsIntoLabelledClouds) {
         if ((wf.edges[e][0] == l.i1 && wf.edges[e][1] == l.i2) || (wf.edges[e][0] == l.i2 && wf.edges[e][1] == l.i1)) covered[e] = 1;
     EXPECT_GE(std::count(covered.begin(), covered.end(), 1), static_cast<long>(0.6 * wf.edges.size())) << buildings[i].name;
   }
+}
+
+// The photo scene reaches Blender: walls with windows, clutter objects, the per-view exposure.
+TEST(BlenderPipeline, PhotoScenesRenderWithClutterAndWindows) {
+  if (!have_blender()) GTEST_SKIP() << "blender not found on PATH (install the Debian package: apt-get install blender python3-numpy)";
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_blender_photo_test_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  RectBuildingSpec spec;
+  spec.eave_height = 6.5;
+  const Building b = make_rect_building("photo", spec);
+  CameraRingOptions ring;
+  ring.views = 3;
+  const auto cams = make_camera_ring(b.mesh.vertices, ring);
+  std::vector<Vec3> centres;
+  for (const Camera& c : cams) centres.push_back(c.center());
+  const PhotoScene scene = make_photo_scene(b.mesh, centres, PhotoOptions{}, 11);
+  ASSERT_FALSE(scene.clutter.faces.empty());
+  BlenderOptions photo;
+  photo.textures = "photo";
+  const auto with_scene = render_with_blender({{&b, cams, dir / "photo", 11, &scene}}, photo, dir);
+  const auto paper = render_with_blender({{&b, cams, dir / "paper", 11}}, BlenderOptions{}, dir);
+  ASSERT_TRUE(with_scene[0].error.empty()) << with_scene[0].error;
+  ASSERT_TRUE(paper[0].error.empty()) << paper[0].error;
+  for (size_t v = 0; v < cams.size(); ++v)
+    EXPECT_GT(cv::norm(with_scene[0].views[v].image, paper[0].views[v].image, cv::NORM_L1), 0.0) << v;
+  fs::remove_all(dir);
 }
 
 TEST(BlenderPipeline, AFailingBlenderIsReportedPerBuilding) {
