@@ -10,6 +10,7 @@
 #include "core/util/cli.h"
 #include "core/util/atomic_file.h"
 #include "core/util/progress.h"
+#include "dataset/photo/camera_coverage.h"
 #include "infer/prediction_io.h"
 #include "infer/preview.h"
 #include "infer/surfaces/surface_writers.h"
@@ -80,6 +81,9 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
     if (r.wireframe.wireframe.edges.empty()) ++s.empty;
     if (r.segments_cut) ++s.cut;
     s.names.push_back(name);
+    // A cloud with cameras says which sides they saw, as lc2wf-reconstruct's report does.
+    if (!cloud.cameras.empty())
+      r.notes.push_back("coverage: " + camera_coverage(cloud.cameras, r.wireframe.wireframe, cloud.segments).summary());
     write_prediction(out_dir, name, r.wireframe, r.notes, o.raw_units ? &cloud.units : nullptr);
     if (o.write_surfaces) {
       const auto t0 = std::chrono::steady_clock::now();

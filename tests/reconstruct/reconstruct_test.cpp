@@ -82,6 +82,11 @@ TEST_F(Reconstruct, KnownCamerasGiveEveryOutputInTheirFrame) {
   EXPECT_EQ(report["frame"]["up_source"], "input z");
   EXPECT_EQ(report["frame"]["scale_source"], "given");
   EXPECT_EQ(report["commit"], lc2wf_git_commit());
+  // A ring of 12 views covers the building all round.
+  EXPECT_EQ(report["coverage"]["cameras"], 12);
+  EXPECT_GT(report["coverage"]["azimuth_span_deg"].get<double>(), 270.0);
+  EXPECT_EQ(report["coverage"]["sides"].size(), 4u);
+  EXPECT_FALSE(report["coverage"]["summary"].get<std::string>().empty());
   for (const char* stage : {"weights", "images", "cameras", "lsd", "triangulation", "frame", "inference", "outputs", "total"})
     EXPECT_TRUE(report["seconds"].contains(stage)) << stage;
   // The cloud, taken back to the building frame, lies on the building's edges.
