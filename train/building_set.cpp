@@ -37,10 +37,10 @@ BuildingSet load_building_set(const DataConfig& data, const std::filesystem::pat
       continue;
     }
     cloud.name = name;
-    // Training reads segments, labels and the wireframe only; a rendered cloud's 2D observations and cameras
-    // are most of its memory (1.1 of 1.4 GB for the 2,626 training clouds rendered from 30 views).
+    // Training reads segments, labels and the wireframe only; a rendered cloud's 2D observations are most of
+    // its memory (1.1 of 1.4 GB for the 2,626 training clouds rendered from 30 views). The cameras (a few kB)
+    // stay: validation's edge-support rule asks them, as lc2wf-eval's does (model/edge_support.h).
     cloud.support = std::vector<std::vector<Observation>>();
-    cloud.cameras = std::vector<Camera>();
     set.clouds.push_back(std::move(cloud));
     if (progress) progress->step();
   }
