@@ -41,8 +41,10 @@ wireframe and a note, never a failure.
   --edge-support S    after post-processing keep only edges the cloud's segments cover for at least S
                       of their length (0-1; segments within 0.35 m and 20 degrees of it) or, in a cloud
                       with cameras, that --edge-cameras of them had in view; junctions left without an
-                      edge go: nothing is drawn on sides no photo saw (default 0.2; 0 keeps every edge,
-                      as the release)
+                      edge go: nothing is drawn on sides no photo saw. Applied when the cloud's cameras
+                      leave a side of the building unseen (default 0.2; 0 keeps every edge, as the
+                      release)
+  --edge-support-everywhere  apply --edge-support to every cloud, also full orbits and clouds without cameras
   --edge-cameras N    cameras that must have had an edge in view (in front, inside the image, not behind
                       the block over the wireframe's footprint) to keep it without line support
                       (default 2; 0 = the lines alone decide)

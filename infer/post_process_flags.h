@@ -19,6 +19,7 @@ struct PostProcessFlags {
   std::optional<double> min_confidence;     // --min-confidence C
   std::optional<double> pair_support;       // --pair-support S
   std::optional<double> edge_support;       // --edge-support S
+  bool edge_support_everywhere = false;     // --edge-support-everywhere
   std::optional<int64_t> edge_cameras;      // --edge-cameras N
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
@@ -33,7 +34,7 @@ struct PostProcessFlags {
   std::optional<int64_t> max_pairs_per_junction; // --max-pairs-per-junction N
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
+    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
            max_pairs || max_pairs_per_junction;
   }
@@ -45,6 +46,7 @@ struct PostProcessFlags {
     else if (flag == "--min-confidence") min_confidence = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-support") edge_support = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--edge-support-everywhere") edge_support_everywhere = true;
     else if (flag == "--edge-cameras") edge_cameras = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
@@ -72,6 +74,7 @@ struct PostProcessFlags {
     if (min_confidence) o.selection.min_confidence = *min_confidence;
     if (pair_support) o.pair_support.min_support = *pair_support;
     if (edge_support) o.edge_support.min_support = *edge_support;
+    if (edge_support_everywhere) o.edge_support.partial_captures_only = false;
     if (edge_cameras) o.edge_support.min_cameras = static_cast<int>(std::min<int64_t>(*edge_cameras, 1 << 30));
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).

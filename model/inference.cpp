@@ -9,6 +9,7 @@
 #include "dataset/selection/pair_cap.h"
 #include "dataset/sampling/sampling.h"
 #include "dataset/selection/pair_support.h"
+#include "dataset/photo/camera_coverage.h"
 #include "model/edge_support.h"
 #include "dataset/geometry/segment_split.h"
 #include "model/patch_tensors.h"
@@ -192,7 +193,15 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   for (size_t p = 0; p < r.pairs.size(); ++p)
     in.pairs.push_back({r.pairs[p].i, r.pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
   PostProcessResult post = post_process(in, options);
-  SupportedEdges seen = keep_supported_edges(post.wireframe, cloud.segments, cloud.cameras, options.edge_support);
+  EdgeSupportOptions support = options.edge_support;
+  if (support.partial_captures_only && support.enabled()) {
+    const bool partial = !cloud.cameras.empty() && [&] {
+      const CameraCoverage c = camera_coverage(cloud.cameras, post.wireframe.wireframe, cloud.segments);
+      return std::any_of(c.sides.begin(), c.sides.end(), [](const SideCoverage& s) { return !s.seen; });
+    }();
+    if (!partial) support.min_support = 0;  // off: nothing to tell the unseen from
+  }
+  SupportedEdges seen = keep_supported_edges(post.wireframe, cloud.segments, cloud.cameras, support);
   r.wireframe = std::move(seen.wireframe);
   r.candidates = std::move(post.candidates);
   r.notes.insert(r.notes.end(), post.notes.begin(), post.notes.end());

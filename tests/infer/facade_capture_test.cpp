@@ -95,5 +95,36 @@ TEST(FacadeCapture, AGabledHouseSeenFromOneSideGivesThatSideOnlyAndSaysSo) {
   EXPECT_TRUE(front_seen) << coverage.summary();
 }
 
+// A full orbit sees every side: the rule leaves its wireframe as the networks drew it, unless asked to apply
+// everywhere; the facade capture above is where it acts.
+TEST(FacadeCapture, AFullOrbitKeepsWhatTheNetworksDrew) {
+  RectBuildingSpec spec;
+  spec.west = spec.east = RoofEnd::Gable;
+  const Building building = make_rect_building("orbit", spec);
+  SyntheticCloudOptions o;
+  o.cameras.num_views = 16;
+  o.cameras.elevation_deg = 30;
+  LineCloud cloud = make_synthetic_line_cloud(building, 11, o);
+  // Thin the lines so some drawn edge has too little support for the rule to keep it on lines alone.
+  std::vector<bool> keep(cloud.segments.size());
+  for (size_t i = 0; i < keep.size(); ++i) keep[i] = i % 3 != 0;
+  cloud = keep_segments(cloud, keep);
+  const WireframePredictor predictor(std::filesystem::path(LC2WF_SOURCE_DIR) / "models" / "dense");
+  PostProcessOptions off;
+  off.edge_support.min_support = 0;
+  const Wireframe drawn = predictor.predict(cloud, off).wireframe.wireframe;
+  const Wireframe gated = predictor.predict(cloud, PostProcessOptions{}).wireframe.wireframe;
+  EXPECT_EQ(gated.edges, drawn.edges);
+  EXPECT_EQ(gated.junctions.size(), drawn.junctions.size());
+  const CameraCoverage coverage = camera_coverage(cloud.cameras, drawn, cloud.segments);
+  for (const SideCoverage& side : coverage.sides) EXPECT_TRUE(side.seen) << coverage.summary();
+  // Everywhere, with the cameras ignored, the lines alone decide and thin lines lose edges.
+  PostProcessOptions everywhere;
+  everywhere.edge_support.partial_captures_only = false;
+  everywhere.edge_support.min_cameras = 0;
+  everywhere.edge_support.min_support = 0.9;
+  EXPECT_LT(predictor.predict(cloud, everywhere).wireframe.wireframe.edges.size(), drawn.edges.size());
+}
+
 }  // namespace
 }  // namespace lc2wf
