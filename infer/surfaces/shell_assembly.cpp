@@ -173,7 +173,9 @@ std::vector<CandidateFace> merge_coplanar_faces(const std::vector<CandidateFace>
       int v = next.begin()->first;
       do {
         ring.push_back(v);
-        v = next[v][0];
+        const auto out_of = next.find(v);  // a side may end at a vertex no side leaves: no single loop then
+        if (out_of == next.end()) break;
+        v = out_of->second[0];
       } while (v != ring.front() && ring.size() <= static_cast<size_t>(boundary));
       single = v == ring.front() && static_cast<int>(ring.size()) == boundary;
     }

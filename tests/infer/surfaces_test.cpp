@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "infer/prediction_io.h"
 #include "infer/surfaces/face_metrics.h"
 #include "infer/surfaces/face_metrics_io.h"
 #include "infer/surfaces/polygon_geometry.h"
@@ -351,6 +352,26 @@ TEST(FaceMetrics, ReportPoolsBuildingsAndSaysWhenTheGroundTruthHasNoFaces) {
   r.gt_has_faces = false;
   EXPECT_NE(faces_markdown(r, "m").find("line cloud's wireframe"), std::string::npos);
   EXPECT_FALSE(faces_json(r).contains("roof_recall"));
+}
+
+}  // namespace
+}  // namespace lc2wf
+
+namespace lc2wf {
+namespace {
+
+// A predicted wireframe of a real 3D BAG building (models/dense, 8 test-time views) whose coplanar faces
+// merge into sides that end at a vertex no side leaves: the merge once followed such a side out of its map
+// and crashed lc2wf-eval. Now it keeps those faces apart and the result passes its own checks or says why.
+TEST(Surfaces, AMergeWhoseSidesDoNotCloseKeepsTheFacesApart) {
+  const std::filesystem::path obj = std::filesystem::path(LC2WF_SOURCE_DIR) / "tests" / "data" / "surfaces" / "open_boundary_merge.obj";
+  const ScoredWireframe prediction = read_prediction(obj);
+  ASSERT_EQ(prediction.wireframe.edges.size(), 70u);
+  for (const SurfaceModel& m : {surfaces_from_wireframe(prediction.wireframe),
+                                surfaces_from_wireframe(prediction.wireframe, prediction.edge_scores)}) {
+    EXPECT_FALSE(m.faces.empty());
+    if (!m.closed_solid()) EXPECT_FALSE(m.reasons.empty());
+  }
 }
 
 }  // namespace
