@@ -376,3 +376,52 @@ TEST(Surfaces, AMergeWhoseSidesDoNotCloseKeepsTheFacesApart) {
 
 }  // namespace
 }  // namespace lc2wf
+
+namespace lc2wf {
+namespace {
+
+// Predicted wireframes are noisy graphs: hundreds of seeded random ones (junctions in a building-sized box,
+// edges between near junctions, and the real prediction above with edges dropped, added and junctions
+// moved) never crash the faces, and an open result always says why.
+TEST(Surfaces, RandomAndPerturbedWireframesNeverCrash) {
+  const ScoredWireframe real =
+      read_prediction(std::filesystem::path(LC2WF_SOURCE_DIR) / "tests" / "data" / "surfaces" / "open_boundary_merge.obj");
+  uint64_t state = 12345;
+  auto next = [&] {  // splitmix64: the same numbers on every compiler
+    uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  };
+  auto uniform = [&] { return static_cast<double>(next() >> 11) * 0x1.0p-53; };
+  for (int trial = 0; trial < 600; ++trial) {
+    Wireframe w;
+    if (trial % 2 == 0) {
+      const int n = 4 + static_cast<int>(next() % 30);
+      for (int i = 0; i < n; ++i) w.junctions.push_back(Vec3(20 * uniform(), 15 * uniform(), 10 * uniform()));
+      for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j)
+          if ((w.junctions[i] - w.junctions[j]).norm() < 9 && uniform() < 0.35) w.edges.push_back({i, j});
+    } else {
+      w = real.wireframe;
+      for (Vec3& j : w.junctions)
+        if (uniform() < 0.2) j += Vec3(uniform() - 0.5, uniform() - 0.5, uniform() - 0.5) * 0.6;
+      std::vector<std::array<int, 2>> kept;
+      for (const auto& e : w.edges)
+        if (uniform() > 0.15) kept.push_back(e);
+      const int n = static_cast<int>(w.junctions.size());
+      for (int k = 0; k < 5; ++k) {
+        const int a = static_cast<int>(next() % n), b = static_cast<int>(next() % n);
+        if (a != b) kept.push_back({std::min(a, b), std::max(a, b)});
+      }
+      std::sort(kept.begin(), kept.end());
+      kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+      w.edges = kept;
+    }
+    const SurfaceModel m = surfaces_from_wireframe(w);
+    if (!m.closed_solid()) EXPECT_FALSE(m.reasons.empty()) << "trial " << trial;
+  }
+}
+
+}  // namespace
+}  // namespace lc2wf
