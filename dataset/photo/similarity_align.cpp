@@ -17,17 +17,6 @@ void SimilarityFitOptions::Check() const {
 
 namespace {
 
-Similarity umeyama_fit(const std::vector<Vec3>& src, const std::vector<Vec3>& dst, const std::vector<int>& ids) {
-  Eigen::Matrix3Xd a(3, ids.size()), b(3, ids.size());
-  for (size_t k = 0; k < ids.size(); ++k) a.col(k) = src[ids[k]], b.col(k) = dst[ids[k]];
-  const Eigen::Matrix4d T = Eigen::umeyama(a, b, true);
-  const Eigen::Matrix3d sR = T.topLeftCorner<3, 3>();
-  Similarity s;
-  s.scale = std::cbrt(sR.determinant());
-  s.R = sR / s.scale;
-  s.t = T.topRightCorner<3, 1>();
-  return s;
-}
 
 // Second over first singular value of the centred points: ~0 for points on one line.
 double spread_ratio(const std::vector<Vec3>& p, const std::vector<int>& ids) {
@@ -47,6 +36,18 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
+Similarity least_squares_similarity(const std::vector<Vec3>& src, const std::vector<Vec3>& dst, const std::vector<int>& ids) {
+  Eigen::Matrix3Xd a(3, ids.size()), b(3, ids.size());
+  for (size_t k = 0; k < ids.size(); ++k) a.col(k) = src[ids[k]], b.col(k) = dst[ids[k]];
+  const Eigen::Matrix4d T = Eigen::umeyama(a, b, true);
+  const Eigen::Matrix3d sR = T.topLeftCorner<3, 3>();
+  Similarity s;
+  s.scale = std::cbrt(sR.determinant());
+  s.R = sR / s.scale;
+  s.t = T.topRightCorner<3, 1>();
+  return s;
+}
+
 SimilarityFit fit_similarity(const std::vector<Vec3>& src, const std::vector<Vec3>& dst, const SimilarityFitOptions& o) {
   o.Check();
   if (src.size() != dst.size()) throw std::invalid_argument("fit_similarity: " + std::to_string(src.size()) + " source points for " + std::to_string(dst.size()));
@@ -62,7 +63,7 @@ SimilarityFit fit_similarity(const std::vector<Vec3>& src, const std::vector<Vec
   check_spread(fit.inliers);
   std::vector<double> residual(src.size());
   for (int round = 0;; ++round) {
-    fit.transform = umeyama_fit(src, dst, fit.inliers);
+    fit.transform = least_squares_similarity(src, dst, fit.inliers);
     for (size_t k = 0; k < src.size(); ++k) residual[k] = (fit.transform.apply(src[k]) - dst[k]).norm();
     fit.median_residual = median(residual);
     if (round + 1 >= o.rounds || o.outlier_factor == 0) break;

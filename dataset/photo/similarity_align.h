@@ -29,6 +29,10 @@ struct SimilarityFit {
 
 // Throws std::invalid_argument when the sizes differ, there are < 3 points, a point is not finite, or the
 // source points lie on one line (or in one point).
+// The plain least-squares similarity (Umeyama) of src[ids[k]] onto dst[ids[k]], no robust step: the one
+// implementation behind fit_similarity and the camera-pose comparison of tools/colmap.
+Similarity least_squares_similarity(const std::vector<Vec3>& src, const std::vector<Vec3>& dst, const std::vector<int>& ids);
+
 SimilarityFit fit_similarity(const std::vector<Vec3>& src, const std::vector<Vec3>& dst, const SimilarityFitOptions& options = {});
 
 }  // namespace lc2wf

@@ -1,5 +1,7 @@
 #include "tools/colmap/colmap_poses.h"
 
+#include "dataset/photo/similarity_align.h"
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <Eigen/SVD>
@@ -37,27 +39,12 @@ void AlignOptions::Check() const {
 
 namespace {
 
-struct Similarity {
-  double s = 1;
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Vec3 t = Vec3::Zero();
-};
-
-// dst ~ s R src + t over the listed views.
-Similarity fit_similarity(const std::vector<Camera>& reference, const std::vector<std::optional<Camera>>& estimated,
-                          const std::vector<int>& ids) {
-  Eigen::Matrix3Xd src(3, ids.size()), dst(3, ids.size());
-  for (size_t k = 0; k < ids.size(); ++k) {
-    src.col(k) = estimated[ids[k]]->center();
-    dst.col(k) = reference[ids[k]].center();
-  }
-  const Eigen::Matrix4d T = Eigen::umeyama(src, dst, true);
-  const Eigen::Matrix3d sR = T.topLeftCorner<3, 3>();
-  Similarity sim;
-  sim.s = std::cbrt(sR.determinant());
-  sim.R = sR / sim.s;
-  sim.t = T.topRightCorner<3, 1>();
-  return sim;
+// Reference camera centres ~ s R (estimated centres) + t over the listed views.
+Similarity similarity_of_centres(const std::vector<Camera>& reference, const std::vector<std::optional<Camera>>& estimated,
+                                 const std::vector<int>& ids) {
+  std::vector<Vec3> src(estimated.size(), Vec3::Zero()), dst(reference.size(), Vec3::Zero());
+  for (int k : ids) src[k] = estimated[k]->center(), dst[k] = reference[k].center();
+  return least_squares_similarity(src, dst, ids);
 }
 
 // Via the quaternion (atan2) rather than acos of the trace, which cannot resolve angles below ~0.001 deg.
@@ -80,9 +67,9 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
   for (const Camera& c : reference) distances.push_back((c.center() - aim).norm());
   const double camera_distance = median(distances);
   std::vector<int> inliers = ids;
-  Similarity sim = fit_similarity(reference, estimated, inliers);
+  Similarity sim = similarity_of_centres(reference, estimated, inliers);
   for (int round = 1; round < options.rounds && options.outlier_factor > 0; ++round) {
-    auto error = [&](int i) { return (sim.s * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm(); };
+    auto error = [&](int i) { return (sim.scale * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm(); };
     std::vector<double> inlier_errors;
     for (int i : inliers) inlier_errors.push_back(error(i));
     const double threshold = std::max(options.outlier_factor * median(inlier_errors), 0.01 * camera_distance);
@@ -91,13 +78,13 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
       if (error(i) <= threshold) kept.push_back(i);
     if (kept == inliers || kept.size() < 3) break;
     inliers = kept;
-    sim = fit_similarity(reference, estimated, inliers);
+    sim = similarity_of_centres(reference, estimated, inliers);
   }
   PoseComparison pc;
   pc.reference = static_cast<int>(reference.size());
   pc.registered = static_cast<int>(ids.size());
   pc.inliers = static_cast<int>(inliers.size());
-  pc.scale = sim.s;
+  pc.scale = sim.scale;
   pc.rotation = sim.R;
   pc.translation = sim.t;
   pc.camera_distance = camera_distance;
@@ -107,7 +94,7 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
   for (int i : ids) {
     Camera& c = *estimated[i];
     // X_ref = s Ra X_est + ta  =>  R_ref-frame = R_est Ra^T, centre mapped by the similarity.
-    const Vec3 C = sim.s * sim.R * c.center() + sim.t;
+    const Vec3 C = sim.scale * sim.R * c.center() + sim.t;
     c.R = c.R * sim.R.transpose();
     c.t = -c.R * C;
     pc.centre_error[i] = (c.center() - reference[i].center()).norm();
