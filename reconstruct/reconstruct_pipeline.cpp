@@ -205,6 +205,11 @@ class ReconstructRun {
     log_.done(seconds_, std::to_string(image_of_view_.size()) + "/" + std::to_string(folder_.paths.size()) + " registered (" + cams_.source + ")");
   }
 
+  // Where the poses came from, for errors that bad poses cause downstream (a wrong model, not a wrong flag).
+  std::string pose_origin() const {
+    return o_.cameras.empty() ? "COLMAP's model in " + (ws_.root() / "colmap").string() : o_.cameras.string();
+  }
+
   void detect_lines() {
     log_.start("lsd");
     views_.resize(image_of_view_.size());
@@ -227,7 +232,7 @@ class ReconstructRun {
     report_["lines_3d"] = lines_.size();
     if (lines_.empty())
       throw StageError("triangulation", "no 3D line from " + std::to_string(report_["segments_2d"].get<long long>()) + " 2D segments in " +
-                                            std::to_string(views_.size()) + " views (too little overlap between the images, or poses too inaccurate)");
+                                            std::to_string(views_.size()) + " views (too little overlap between the images, or poses too inaccurate: " + pose_origin() + ")");
     log_.done(seconds_, std::to_string(lines_.size()) + " 3D lines");
   }
 
@@ -296,7 +301,7 @@ class ReconstructRun {
     if (cloud_.segments.empty())
       throw StageError("confirmation", "none of the " + std::to_string(triangulated) + " 3D lines is overlapped by a line of " +
                                            std::to_string(o_.confirmation.min_other_views) +
-                                           " other view(s) (--min-confirming-views; 0 keeps every line)");
+                                           " other view(s) (--min-confirming-views; 0 keeps every line; poses: " + pose_origin() + ")");
     log_.done(seconds_, std::to_string(cloud_.segments.size()) + " of " + std::to_string(triangulated) + " lines confirmed by another view");
   }
 
