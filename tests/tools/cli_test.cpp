@@ -53,6 +53,10 @@ TEST(DatasetCli, HelpAndArgumentErrors) {
   r = run(kDataset + " --meshes m --out o --textures photo --photo-without trees,cows");
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.out, HasSubstr("--photo-without: unknown element 'cows'")) << r.out;
+  r = run(kDataset + " --meshes m --out o --capture street-3");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.out, HasSubstr("--capture must be orbit, street-1 or street-2, got 'street-3'")) << r.out;
+  EXPECT_THAT(r.out, Not(HasSubstr("DatasetRunOptions"))) << r.out;
   r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out_" + std::to_string(getpid()));
   EXPECT_EQ(r.code, 3);
   EXPECT_THAT(r.out, HasSubstr("/nonexistent/meshes")) << r.out;
@@ -110,6 +114,29 @@ TEST(DatasetCli, AValidMeshWhoseNameIsNotUtf8IsProcessed) {
                           " --views 6 --size 128x96 -j 1 -q");
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_GT(fs::file_size(dir / "out" / "clouds" / (name + ".lcloud")), 0u);
+  fs::remove_all(dir);
+}
+
+// What was captured is in the summary and every status; a building done with another capture is redone.
+TEST(DatasetCli, StreetCaptureIsRecordedAndAnotherCaptureRedoesTheBuilding) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_cli_capture_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  std::ifstream seed(std::string(LC2WF_SOURCE_DIR) + "/tests/fuzz/corpus/polyshape/gable_box.seed");
+  std::ofstream(dir / "meshes" / "box.polyshape") << seed.rdbuf();
+  const std::string cmd = kDataset + " --meshes " + (dir / "meshes").string() + " --out " + (dir / "out").string() +
+                          " --views 8 --size 160x120 -j 1 -q --capture ";
+  CliResult r = run(cmd + "street-2");
+  EXPECT_THAT(r.out, HasSubstr("\"capture\": \"street-2\"")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("\"processed_this_run\": 1")) << r.out;
+  std::ifstream status(dir / "out" / "status" / "box.json");
+  const std::string text((std::istreambuf_iterator<char>(status)), std::istreambuf_iterator<char>());
+  EXPECT_THAT(text, HasSubstr("\"capture\": \"street-2\"")) << text;
+  r = run(cmd + "street-2");
+  EXPECT_THAT(r.out, HasSubstr("\"skipped_already_done\": 1")) << r.out;
+  r = run(cmd + "orbit");
+  EXPECT_THAT(r.out, HasSubstr("\"capture\": \"orbit\"")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("\"processed_this_run\": 1")) << r.out;
   fs::remove_all(dir);
 }
 

@@ -15,7 +15,7 @@ constexpr const char* kUsage = R"(Usage: lc2wf-dataset --meshes DIR -o OUT [opti
 
 Renders every building of DIR (a folder or one file: Roof-Image *.polyshape, or real LoD2 city models in
 CityJSON *.city.json/*.json, CityJSONSeq *.jsonl, CityGML *.gml/*.gml.gz, see dataset/README.md) from a
-ring of oblique views, detects 2D
+ring of oblique views (or from the street: --capture), detects 2D
 segments (LSD), triangulates a 3D line cloud across the views and labels each 3D segment (f, i1, d1, i2,
 d2) against the GT wireframe. Writes OUT/clouds/<name>.lcloud, OUT/status/<name>.json and a summary
 (OUT/summary.json, or OUT/summary-shard-<i>-of-<n>.json). Finished buildings are skipped on re-runs.
@@ -26,6 +26,13 @@ options:
                               building's highest); buildings without it are not listed
   --renderer raster|blender   built-in software rasteriser (default) or Blender 3.4
   --views N                   views per building (default 20)
+  --capture KIND              where the cameras stand: orbit (default: rings of oblique views all around,
+                              20-45 degrees up, like a drone), street-1 (every view in a 90 degree sector
+                              in front of one long facade) or street-2 (a 180 degree sector around one
+                              corner: two facades); street views from 1.5-3 m above the ground, looking
+                              at the building's centre, as far back as it takes to frame the building.
+                              The facade or corner comes from the seed; recorded in the summary and
+                              status; a building done with another capture is rendered again
   --size WxH                  image size (default 640x480)
   -j, --threads N             worker threads (default: all cores)
   --shard i/n                 process buildings k with k % n == i (for Slurm arrays, GNU parallel)
@@ -121,6 +128,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       else throw UsageError("--renderer must be raster or blender, got '" + r + "'");
     } else if (a == "--views") {
       o.cameras.views = lc2wf::int_flag(a, value());
+    } else if (a == "--capture") {
+      o.capture = value();
     } else if (a == "--size") {
       std::tie(o.cameras.width, o.cameras.height) = split_pair(a, value(), 'x');
     } else if (a == "-j" || a == "--threads") {
@@ -191,6 +200,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
   if (o.meshes.empty()) throw UsageError("--meshes DIR is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
   lc2wf::check_options([&] { o.Check(); }, {{"CameraRingOptions.views", "--views"},
+                                            {"DatasetRunOptions.capture", "--capture"},
                                             {"CameraRingOptions.width/height", "--size"},
                                             {"RasterOptions.supersample", "--supersample"},
                                             {"RasterOptions.blur_sigma_px", "--blur"},

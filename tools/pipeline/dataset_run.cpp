@@ -45,11 +45,13 @@ fs::path cloud_path(const fs::path& out, const std::string& name) { return out /
 
 fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
 
-bool is_done(const fs::path& out, const std::string& name) {
+// Done with the capture asked for (statuses without one are orbits): another capture is redone.
+bool is_done(const fs::path& out, const std::string& name, const std::string& capture) {
   const fs::path sp = status_path(out, name);
   if (!fs::exists(sp) || !fs::exists(cloud_path(out, name))) return false;
   try {
-    return Json::parse(read_file(sp)).value("ok", false);
+    const Json st = Json::parse(read_file(sp));
+    return st.value("ok", false) && st.value("capture", "orbit") == capture;
   } catch (const std::exception&) {
     return false;  // unreadable status: redo the building
   }
@@ -172,7 +174,7 @@ void load_job(Job& job, const DatasetRunOptions& o, const BuildingCatalog& sourc
       job.status["skip_reason"] = e.reason();  // counted per reason in the summary
       throw;
     }
-    CameraRingOptions ring = o.cameras;
+    CameraRingOptions ring = capture_ring(o.cameras, o.capture);
     ring.seed = building_seed(job.name, o.seed);
     job.cameras = make_camera_ring(job.building.mesh.vertices, ring);
     const std::string& textures = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
@@ -242,6 +244,9 @@ void DatasetRunOptions::Check() const {
   if (meshes.empty()) throw std::invalid_argument("DatasetRunOptions.meshes is empty");
   if (out.empty()) throw std::invalid_argument("DatasetRunOptions.out is empty");
   cameras.Check();
+  if (!is_capture_kind(capture))
+    throw std::invalid_argument("DatasetRunOptions.capture must be " + std::string(kCaptureKinds) + ", got '" + capture + "'");
+  capture_ring(cameras, capture).Check();
   raster.Check();
   if (renderer == RendererKind::Blender) blender.Check();
   photo.Check();
@@ -357,7 +362,7 @@ Json run_dataset(const DatasetRunOptions& o) {
 
   std::vector<std::string> todo;
   for (const auto& n : names)
-    if (!is_done(o.out, n)) todo.push_back(n);
+    if (!is_done(o.out, n, o.capture)) todo.push_back(n);
   const auto start = Clock::now();
   {
     std::mutex mu;
@@ -369,10 +374,11 @@ Json run_dataset(const DatasetRunOptions& o) {
       failed += job.failed;
       if (bar) bar->step(1, failed ? std::to_string(failed) + " failed" : "");
     };
-    auto make_job = [](const std::string& name) {
+    auto make_job = [&o](const std::string& name) {
       Job job;
       job.name = name;
       job.status["name"] = name;
+      job.status["capture"] = o.capture;
       job.status["seconds"] = Json::object();
       return job;
     };
@@ -447,6 +453,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["shard"] = std::to_string(o.shard_index) + "/" + std::to_string(o.shard_count);
   summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
   summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
+  summary["capture"] = o.capture;
   summary["command"] = o.command_line;
   add_version_fields(summary);
   summary["processed_this_run"] = todo.size();

@@ -13,6 +13,7 @@
 #include "tools/pipeline/cloud_builder.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"
+#include "tools/render/capture_kind.h"
 #include "tools/render/raster_renderer.h"
 
 namespace lc2wf {
@@ -24,6 +25,7 @@ struct DatasetRunOptions {
   std::filesystem::path out;
   RendererKind renderer = RendererKind::Raster;
   CameraRingOptions cameras;
+  std::string capture = "orbit";  // orbit, street-1 or street-2: the ring as set, or a street capture of it (render/capture_kind.h)
   RasterOptions raster;
   BlenderOptions blender;
   PhotoOptions photo;            // the scene of `--textures photo` (both renderers)

@@ -3,8 +3,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <random>
 #include <stdexcept>
+
+#include "dataset/geometry/footprint.h"
 
 namespace lc2wf {
 namespace {
@@ -25,6 +29,42 @@ bool all_inside(const Camera& cam, const std::vector<Vec3>& points, double margi
   return true;
 }
 
+// Azimuth (degrees) a sector faces: the outward normal of one of the two long sides of the footprint's
+// minimum-area rectangle (bit 0 of `pick`), or the corner between it and a neighbouring side (bit 1). nullopt
+// when the footprint has no area.
+std::optional<double> sector_centre_deg(const std::vector<Vec3>& points, bool on_corner, uint64_t pick) {
+  const std::vector<Vec2> r = footprint_rectangle(points);  // counter-clockwise
+  if (r.size() != 4) return std::nullopt;
+  auto side = [&](int k) { return Vec2(r[(k + 1) % 4] - r[k]); };
+  if (side(0).norm() < 1e-9 || side(1).norm() < 1e-9) return std::nullopt;
+  auto outward = [&](int k) {
+    const Vec2 d = side(k).normalized();
+    return Vec2(d.y(), -d.x());
+  };
+  const int k = (side(0).norm() >= side(1).norm() ? 0 : 1) + 2 * static_cast<int>(pick & 1);
+  Vec2 n = outward(k);
+  if (on_corner) n += outward((k + ((pick >> 1) & 1 ? 1 : 3)) % 4);
+  return std::atan2(n.y(), n.x()) * 180.0 / kPi;
+}
+
+// Smallest distance d at which place(d) frames every point: the framing test is monotone in the distance.
+Camera closest_framing(const std::function<Camera(double)>& place, const std::vector<Vec3>& points, double size, double margin_x,
+                       double margin_y) {
+  double near_d = 1e-3 * size, far_d = 2.0 * size;
+  while (!all_inside(place(far_d), points, margin_x, margin_y)) {
+    far_d *= 2.0;
+    if (far_d > 1e6 * size) throw std::invalid_argument("make_camera_ring: cannot frame the points");
+  }
+  for (int it = 0; it < 50; ++it) {
+    const double mid = 0.5 * (near_d + far_d);
+    if (all_inside(place(mid), points, margin_x, margin_y))
+      far_d = mid;
+    else
+      near_d = mid;
+  }
+  return place(far_d);
+}
+
 }  // namespace
 
 void CameraRingOptions::Check() const {
@@ -37,6 +77,11 @@ void CameraRingOptions::Check() const {
   if (azimuth_jitter_deg < 0 || elevation_jitter_deg < 0 || target_jitter < 0)
     throw std::invalid_argument("CameraRingOptions jitters must be >= 0");
   if (margin < 0 || margin >= 0.45) throw std::invalid_argument("CameraRingOptions.margin must be in [0, 0.45)");
+  if (!(azimuth_span_deg > 0 && azimuth_span_deg <= 360))
+    throw std::invalid_argument("CameraRingOptions.azimuth_span_deg must be in (0, 360]");
+  const bool rings_only = min_camera_height_m == 0 && max_camera_height_m == 0;
+  if (!rings_only && !(min_camera_height_m > 0 && min_camera_height_m <= max_camera_height_m && std::isfinite(max_camera_height_m)))
+    throw std::invalid_argument("CameraRingOptions.min/max_camera_height_m must both be 0 (elevation rings) or satisfy 0 < min <= max");
 }
 
 Camera look_at(const Vec3& center, const Vec3& target, const Eigen::Matrix3d& K, int width, int height) {
@@ -74,33 +119,45 @@ std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const Came
 
   std::mt19937_64 gen(options.seed * 0x9E3779B97F4A7C15ull + 0x1234567ull);
   const double phase = 360.0 * (static_cast<double>(gen() >> 11) * 0x1.0p-53);
+  const bool sector = options.azimuth_span_deg < 360.0;
+  const bool by_height = options.max_camera_height_m > 0;
+  // The whole ring draws nothing more here, so its cameras stay those of a ring without these options.
+  const double sector_centre = sector ? sector_centre_deg(points, options.sector_on_corner, gen()).value_or(phase) : phase;
+  const double margin_x = options.margin * options.width, margin_y = options.margin * options.height;
   std::vector<Camera> cams;
   for (int i = 0; i < options.views; ++i) {
-    const int ring = i % options.rings;
-    const double base_el = options.rings == 1 ? 0.5 * (options.min_elevation_deg + options.max_elevation_deg)
-                                              : options.min_elevation_deg + (options.max_elevation_deg - options.min_elevation_deg) * ring / (options.rings - 1);
-    const double el = std::clamp(base_el + options.elevation_jitter_deg * symmetric_uniform(gen), options.min_elevation_deg,
-                                 options.max_elevation_deg) * kPi / 180.0;
-    const double az = (phase + 360.0 * i / options.views + options.azimuth_jitter_deg * symmetric_uniform(gen)) * kPi / 180.0;
+    const double el_draw = symmetric_uniform(gen);
+    const double az_draw = symmetric_uniform(gen);
+    double az_deg;
+    if (sector) {
+      const double first = sector_centre - 0.5 * options.azimuth_span_deg;
+      az_deg = std::clamp(first + options.azimuth_span_deg * (i + 0.5) / options.views + options.azimuth_jitter_deg * az_draw, first,
+                          first + options.azimuth_span_deg);
+    } else {
+      az_deg = phase + 360.0 * i / options.views + options.azimuth_jitter_deg * az_draw;
+    }
+    const double az = az_deg * kPi / 180.0;
     Vec3 target = centre;
     for (int k = 0; k < 3; ++k) target[k] += options.target_jitter * size * symmetric_uniform(gen);
-    const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-    // Smallest distance that frames every point: the framing test is monotone in the distance.
-    double near_d = 1e-3 * size, far_d = 2.0 * size;
-    while (!all_inside(look_at(target + far_d * dir, target, K, options.width, options.height), points,
-                       options.margin * options.width, options.margin * options.height)) {
-      far_d *= 2.0;
-      if (far_d > 1e6 * size) throw std::invalid_argument("make_camera_ring: cannot frame the points");
+    std::function<Camera(double)> place;
+    if (by_height) {
+      // Street level: a fixed height above the lowest point, moved back horizontally until the building fits.
+      const double z = lo.z() + options.min_camera_height_m + (options.max_camera_height_m - options.min_camera_height_m) * 0.5 * (el_draw + 1.0);
+      const Vec3 dir(std::cos(az), std::sin(az), 0.0);
+      place = [&, z, dir](double d) {
+        Vec3 c = target + d * dir;
+        c.z() = z;
+        return look_at(c, target, K, options.width, options.height);
+      };
+    } else {
+      const int ring = i % options.rings;
+      const double base_el = options.rings == 1 ? 0.5 * (options.min_elevation_deg + options.max_elevation_deg)
+                                                : options.min_elevation_deg + (options.max_elevation_deg - options.min_elevation_deg) * ring / (options.rings - 1);
+      const double el = std::clamp(base_el + options.elevation_jitter_deg * el_draw, options.min_elevation_deg, options.max_elevation_deg) * kPi / 180.0;
+      const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
+      place = [&, dir](double d) { return look_at(target + d * dir, target, K, options.width, options.height); };
     }
-    for (int it = 0; it < 50; ++it) {
-      const double mid = 0.5 * (near_d + far_d);
-      if (all_inside(look_at(target + mid * dir, target, K, options.width, options.height), points,
-                     options.margin * options.width, options.margin * options.height))
-        far_d = mid;
-      else
-        near_d = mid;
-    }
-    cams.push_back(look_at(target + far_d * dir, target, K, options.width, options.height));
+    cams.push_back(closest_framing(place, points, size, margin_x, margin_y));
   }
   return cams;
 }

@@ -1,5 +1,7 @@
 // Oblique views around a building: cameras on rings at several elevations, all aimed near the building
-// centre, each placed at the smallest distance that keeps every mesh vertex inside the frame.
+// centre, each placed at the smallest distance that keeps every mesh vertex inside the frame. The same
+// ring, cut to a sector in front of one or two facades and lowered to a camera height, gives the street
+// captures (tools/render/capture_kind.h).
 #pragma once
 
 #include <cstdint>
@@ -21,6 +23,16 @@ struct CameraRingOptions {
   double elevation_jitter_deg = 3.0;
   double target_jitter = 0.03;       // aim-point jitter as a fraction of the building's size
   double margin = 0.06;              // keep vertices this fraction of the image size away from the border
+  // Azimuth sector the views share (360 = the whole ring, with a random phase). Below 360 the views are
+  // spread evenly over the sector (jitter kept inside it), centred on the outward normal of one of the two
+  // long sides of the footprint's minimum-area rectangle (`sector_on_corner` false) or on one of that side's
+  // corners (halfway between its normal and the neighbouring side's); which one comes from the seed.
+  double azimuth_span_deg = 360.0;
+  bool sector_on_corner = false;
+  // Both > 0: each camera stands this high above the lowest point (uniform in [min, max]) instead of on an
+  // elevation ring, at the smallest horizontal distance that frames every point. Both 0: elevation rings.
+  double min_camera_height_m = 0.0;
+  double max_camera_height_m = 0.0;
   uint64_t seed = 0;
   void Check() const;
 };
