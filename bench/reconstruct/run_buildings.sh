@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
-# Photos -> wireframe on held-out Roof-Image buildings (reconstruct/README.md, "End to end"):
-#   1. Blender renders with the SfM textures (lc2wf-dataset --keep-views); the labelled clouds it builds
-#      with the known cameras are the baseline;
+# Photos -> wireframe on held-out buildings (reconstruct/README.md, "End to end"; bench/README.md, "reconstruct"):
+#   1. renders with photo-like textures (lc2wf-dataset --keep-views); the labelled clouds it builds with the
+#      known cameras are the baseline;
 #   2. the images alone -> lc2wf-reconstruct (COLMAP poses), and the same with the render cameras given
 #      (--cameras), each aligned to the render cameras by a similarity for scoring;
-#   3. lc2wf-eval of the three against the GT meshes, and the per-stage seconds of every run.
-# usage: bench/reconstruct/run_buildings.sh WEIGHTS NAMES_FILE OUT [MESHES_DIR]
+#   3. lc2wf-eval of the three against the GT, the share of predicted edge length near a GT edge, the scale
+#      error and the per-stage seconds of every run (summarise.py).
+# usage: bench/reconstruct/run_buildings.sh WEIGHTS NAMES_FILE OUT [MESHES]
 # e.g.   bench/reconstruct/run_buildings.sh models/base bench/reconstruct/test-buildings.txt runs/recon-bench
+#        CAPTURE=street-2 TEXTURES=photo bench/reconstruct/run_buildings.sh models/dense \
+#          bench/reconstruct/real-test-buildings.txt runs/recon-real-street2 runs/real-test-meshes
+# MESHES: a folder of Roof-Image <name>.polyshape files (default ../shared/data/roof-image/res_building; the
+# named ones are linked into OUT/meshes) or of city models (CityJSON, CityJSONSeq, CityGML, read in place;
+# names <file stem>__<building id>, dataset/README.md).
+# TEXTURES=sfm|photo|paper (default sfm), CAPTURE=orbit|street-1|street-2 (default orbit),
+# RENDERER=blender|raster (default blender): lc2wf-dataset's --textures, --capture, --renderer.
 # POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
 # output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.
 # RECONSTRUCT_FLAGS="--max-features 1000" adds options to every lc2wf-reconstruct run.
@@ -17,18 +25,26 @@ bin=${BUILD_DIR:-build}
 threads=${THREADS:-2}
 read -r -a user_flags <<< "${RECONSTRUCT_FLAGS:-}"
 
-mkdir -p "$out/meshes"
-while read -r n; do
-  [ -n "$n" ] && ln -sf "$(realpath "$meshes/$n.polyshape")" "$out/meshes/$n.polyshape"
-done < "$names"
+# Roof-Image meshes are linked by name (the folder holds thousands); city models are read where they are.
+gt=$meshes
+first=$(grep -m1 . "$names")
+if [ -e "$meshes/$first.polyshape" ]; then
+  gt=$out/meshes
+  mkdir -p "$gt"
+  while read -r n; do
+    [ -n "$n" ] && ln -sf "$(realpath "$meshes/$n.polyshape")" "$gt/$n.polyshape"
+  done < "$names"
+fi
 
-"$bin/tools/lc2wf-dataset" --meshes "$out/meshes" --out "$out/dataset" --renderer blender --textures sfm --keep-views \
-  -j 1 -q
+"$bin/tools/lc2wf-dataset" --meshes "$gt" --names "$names" --out "$out/dataset" --renderer "${RENDERER:-blender}" \
+  --textures "${TEXTURES:-sfm}" --capture "${CAPTURE:-orbit}" --keep-views -j 1 -q > /dev/null \
+  || [ $? -eq 1 ]  # 1: some buildings failed (named on stderr); the others go on
 
 mkdir -p "$out/pred-photos" "$out/pred-given-cameras" "$out/logs"
 while read -r n; do
   [ -n "$n" ] || continue
   views="$out/dataset/views/$n"
+  [ -f "$views/cameras.json" ] || { echo "$n: no renders (lc2wf-dataset failed on it)" | tee -a "$out/logs/exit-codes.txt"; continue; }
   # The photo folder holds the images only: the cameras are thrown away.
   mkdir -p "$out/photos/$n"
   for f in "$views"/view_*.png; do ln -sf "$(realpath "$f")" "$out/photos/$n/"; done
@@ -36,7 +52,7 @@ while read -r n; do
     extra=()
     [ "$mode" = given-cameras ] && extra=(--cameras "$views/cameras.json")
     [ "$mode" = photos ] && [ -n "${POSES_FROM:-}" ] && extra=(--cameras "$POSES_FROM/recon-photos/$n/cameras.json")
-    rm -rf "$out/recon-$mode/$n"
+    rm -rf "$out/recon-$mode/$n" "$out/pred-$mode/$n.obj" "$out/pred-$mode/$n.json"  # nothing left from an earlier run
     code=0
     "$bin/reconstruct/lc2wf-reconstruct" "$out/photos/$n" --weights "$weights" -o "$out/recon-$mode/$n" \
       --reference-cameras "$views/cameras.json" -j "$threads" "${extra[@]}" "${user_flags[@]}" 2> "$out/logs/$mode-$n.log" || code=$?
@@ -49,9 +65,13 @@ while read -r n; do
 done < "$names"
 
 "$bin/infer/lc2wf-eval" --weights "$weights" --data "$out/dataset/clouds" --split "$names" --out "$out/eval-known-clouds" \
-  --method "known-camera clouds" --quiet > /dev/null
+  --method "known-camera clouds" --quiet > /dev/null || [ $? -eq 1 ]
 for mode in photos given-cameras; do
-  "$bin/infer/lc2wf-eval" --pred "$out/pred-$mode" --gt "$out/meshes" --split "$names" --out "$out/eval-$mode" \
-    --method "reconstruct ($mode)" --quiet > /dev/null || [ $? -eq 1 ]  # 1: failed reconstructions, scored as empty
+  code=0
+  rm -rf "$out/eval-$mode"
+  "$bin/infer/lc2wf-eval" --pred "$out/pred-$mode" --gt "$gt" --split "$names" --out "$out/eval-$mode" \
+    --method "reconstruct ($mode)" --quiet > /dev/null || code=$?
+  # 1: failed reconstructions, scored as empty; 3: every one failed, nothing to score (the summary says so).
+  [ $code -eq 0 ] || [ $code -eq 1 ] || [ $code -eq 3 ] || exit $code
 done
-python3 "$(dirname "$0")/summarise.py" "$out" "$names" | tee "$out/summary.md"
+/usr/bin/python3 "$(dirname "$0")/summarise.py" "$out" "$names" | tee "$out/summary.md"
