@@ -224,50 +224,157 @@ def apply_sfm_textures(b, obj, ground, verts):
 
 # ----------------------------------------------------------------------------- photo scene ("textures": "photo")
 # The C++ side (tools/render/photo_scene.*) lays out the windows, doors and clutter; here they are painted
-# into one image per wall and added as flat-coloured objects. Roof tiles and grass keep the paper look.
-PHOTO_PX_PER_M = 24
+# into images: one per wall and per roof face, the ground and the road around the building, and a tile per
+# kind of clutter object. Every surface carries the material detail of the rasteriser's photo textures
+# (tools/render/photo_textures.cpp): octave value noise from a few centimetres up (plaster grain and
+# stains, lichen on the tiles, grass tufts, asphalt grit, leaves), every tile, window and pane its own,
+# so SIFT finds features on them and can tell them apart, as on real photos.
+PHOTO_PX_PER_M = 32          # walls and clutter: 3 cm texels
+PHOTO_ROOF_PX_PER_M = 48     # tile joints of 2-3 cm
+PHOTO_GROUND_TILE_M = 96.0   # one tile centred on the building: nothing repeats near it
+PHOTO_GRASS_PX_PER_M = 16
+PHOTO_MARKS_PX_PER_M = 12    # asphalt, kerb and paving, in the same frame as the grass
+PHOTO_CLUTTER_TILE_M = 12.0  # per kind of object; each face reads its own patch
 PHOTO_PLASTERS = [(0.78, 0.74, 0.64), (0.82, 0.81, 0.78), (0.62, 0.62, 0.60), (0.75, 0.58, 0.36), (0.55, 0.30, 0.22)]
 PHOTO_CARS = [(0.55, 0.05, 0.04), (0.06, 0.12, 0.40), (0.55, 0.56, 0.58), (0.03, 0.03, 0.03), (0.85, 0.85, 0.83)]
-PHOTO_CLUTTER = {"chimney": (0.45, 0.20, 0.13), "balcony": (0.72, 0.72, 0.70), "car_cabin": (0.06, 0.07, 0.08),
-                 "trunk": (0.20, 0.13, 0.08), "foliage": (0.09, 0.19, 0.05), "neighbour_wall": (0.70, 0.68, 0.62),
-                 "neighbour_roof": (0.30, 0.30, 0.31)}
+PHOTO_CURTAINS = [(0.85, 0.84, 0.80), (0.75, 0.68, 0.55), (0.55, 0.20, 0.15), (0.45, 0.50, 0.55), (0.90, 0.90, 0.88)]
+PHOTO_GLASS = (0.07, 0.09, 0.12)
+PHOTO_SKY_REFLECTION = (0.42, 0.47, 0.55)
+# Per kind of clutter: its colour, and its detail's amount, finest period (m) and stretch along the face's v.
+PHOTO_CLUTTER = {"chimney": ((0.45, 0.20, 0.13), 0.25, 0.03, 1.0), "balcony": ((0.72, 0.72, 0.70), 0.15, 0.03, 1.0),
+                 "car_cabin": ((0.06, 0.07, 0.08), 0.5, 0.04, 1.0), "trunk": ((0.20, 0.13, 0.08), 0.35, 0.02, 4.0),
+                 "neighbour_roof": ((0.30, 0.30, 0.31), 0.2, 0.04, 1.0)}
+PHOTO_NEIGHBOUR_WALL = (0.70, 0.68, 0.62)  # plaster, as the building's walls
 
 
-def flat_material(name, rgb):
-    m = bpy.data.materials.new(name)
-    m.diffuse_color = tuple(rgb) + (1.0,)
-    m.use_nodes = True
-    m.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = tuple(rgb) + (1.0,)
-    return m
+def octave_field(h, w, px_per_m, finest_m, octaves, rng, stretch=1.0):
+    """Mean of `octaves` value-noise layers on an h x w texel grid, periods finest_m, 2 finest_m, ... metres
+    (at least 2 texels; `stretch` times longer along the rows' axis), random lattices and phases, no wrap:
+    nothing repeats inside the image. The numpy twin of value_noise.h's octave_noise."""
+    out = np.zeros((h, w), dtype=np.float32)
+    for k in range(octaves):
+        px = max(2.0, finest_m * (2 ** k) * px_per_m)
+        py = max(2.0, px * stretch)
+        lattice = rng.random((int(math.ceil(h / py)) + 2, int(math.ceil(w / px)) + 2)).astype(np.float32)
+        y, x = np.arange(h) / py + rng.random(), np.arange(w) / px + rng.random()
+        iy, ix = np.floor(y).astype(np.int64), np.floor(x).astype(np.int64)
+        fy, fx = (y - iy).astype(np.float32), (x - ix).astype(np.float32)
+        fy, fx = fy * fy * (3 - 2 * fy), fx * fx * (3 - 2 * fx)
+        rows = lattice[iy] * (1 - fy)[:, None] + lattice[iy + 1] * fy[:, None]
+        out += rows[:, ix] * (1 - fx)[None, :] + rows[:, ix + 1] * fx[None, :]
+    return out / octaves
 
 
-def facade_image(f, umin, zmin, w, h, plaster, frame_rgb, gutters, seed):
-    """Wall image of w x h texels from (umin, zmin): plaster, sills, framed windows, doors, gutter."""
-    u = umin + (np.arange(w) + 0.5) / PHOTO_PX_PER_M
-    z = zmin + (np.arange(h) + 0.5) / PHOTO_PX_PER_M
-    img = np.empty((h, w, 3))
-    img[:] = plaster
-    img *= (0.92 + 0.08 * _hash01(np.floor(u / 0.5).astype(np.int64)[None, :], np.floor(z / 0.5).astype(np.int64)[:, None], seed))[..., None]
+def photo_detail(h, w, px_per_m, finest_m, octaves, rng, stretch=1.0):
+    """Zero-mean detail in [-1, 1], stretched as photo_textures.cpp's detail() (standard deviation about 0.55)."""
+    sd = 0.2 / math.sqrt(octaves)
+    return np.clip(0.55 / sd * (octave_field(h, w, px_per_m, finest_m, octaves, rng, stretch) - 0.5), -1.0, 1.0)
+
+
+def grained(rgb, amount, detail):
+    """Colour(s) times (1 + amount x detail): an h x w x 3 image."""
+    return np.asarray(rgb, dtype=np.float32) * np.maximum(0.0, 1.0 + amount * detail)[..., None]
+
+
+def plaster_image(h, w, px, rgb, rng):
+    """Plaster: stains over metres, grain from 4 cm up and damp patches of 10-50 cm with soft edges."""
+    stains = 0.88 + 0.12 * octave_field(h, w, px, 1.6, 1, rng)
+    patches = np.clip((octave_field(h, w, px, 0.12, 3, rng) - 0.56) * 12, 0, 1)
+    return grained(rgb, 0.3, photo_detail(h, w, px, 0.04, 6, rng)) * (stains * (1 - 0.22 * patches))[..., None]
+
+
+def facade_image(f, umin, zmin, w, h, plaster, frame_rgb, gutters, rng):
+    """Wall image of w x h texels from (umin, zmin): grained plaster with stains and damp patches, sills,
+    framed windows each with its own glass, patches of mirrored sky and curtain, wooden doors, the gutter."""
+    px = PHOTO_PX_PER_M
+    u = umin + (np.arange(w) + 0.5) / px
+    z = zmin + (np.arange(h) + 0.5) / px
     hs = f["storey_height"]
+    img = plaster_image(h, w, px, plaster, rng)
     img[z < f["ground_z"] + 0.15 * hs] *= 0.7
+    glass = photo_detail(h, w, px, 0.04, 4, rng)  # every window shows its own part of it
+    reflections = octave_field(h, w, px, 0.08, 3, rng)  # bright patches of mirrored sky and clouds
+
+    def box(u0, u1, z0, z1):
+        cols, rows = np.nonzero((u >= u0) & (u <= u1))[0], np.nonzero((z >= z0) & (z <= z1))[0]
+        return (slice(rows[0], rows[-1] + 1), slice(cols[0], cols[-1] + 1)) if len(cols) and len(rows) else None
 
     def paint(u0, u1, z0, z1, rgb):
-        cols, rows = (u >= u0) & (u <= u1), (z >= z0) & (z <= z1)
-        img[np.ix_(rows, cols)] = rgb
+        b = box(u0, u1, z0, z1)
+        if b is not None:
+            img[b] = rgb
 
+    sill = grained((0.70, 0.70, 0.68), 0.1, photo_detail(h, w, px, 0.03, 3, rng))
     for u0, u1, z0, z1 in f["windows"]:
-        paint(u0 - 0.06 * hs, u1 + 0.06 * hs, z0 - 0.06 * hs, z0, (0.70, 0.70, 0.68))
+        b = box(u0 - 0.06 * hs, u1 + 0.06 * hs, z0 - 0.06 * hs, z0)
+        if b is not None:
+            img[b] = sill[b]
         paint(u0, u1, z0, z1, frame_rgb)
-        paint(u0 + 0.04 * hs, u1 - 0.04 * hs, z0 + 0.04 * hs, z1 - 0.04 * hs, (0.07, 0.09, 0.12))
+        b = box(u0 + 0.04 * hs, u1 - 0.04 * hs, z0 + 0.04 * hs, z1 - 0.04 * hs)
+        if b is not None:
+            s = ((u[b[1]] - u0) / (u1 - u0))[None, :]
+            t = ((z[b[0]] - z0) / (z1 - z0))[:, None]
+            sky = (0.8 + 0.6 * t) * (0.7 + 0.6 * rng.random()) * np.ones_like(s)
+            share = 0.5 * (rng.random() - 0.3)  # how much of this window mirrors the sky
+            mirror = 0.85 * np.clip((reflections[b] - 0.5) * 6 + share, 0, 1)[..., None]
+            img[b] = grained(PHOTO_GLASS, 0.45, glass[b]) * sky[..., None] * (1 - mirror) + np.asarray(PHOTO_SKY_REFLECTION, dtype=np.float32) * mirror
+            kind, cover = rng.random(), 0.15 + 0.3 * rng.random()
+            drawn = ((s < cover) | (s > 1 - cover)) if kind < 0.3 else (t < 0.25 + cover) if kind < 0.45 else (t > 1 - cover) if kind < 0.6 else None
+            if drawn is not None:
+                drawn = np.broadcast_to(drawn, sky.shape)
+                cloth = np.asarray(PHOTO_CURTAINS[int(rng.integers(len(PHOTO_CURTAINS)))], dtype=np.float32)
+                img[b] = np.where(drawn[..., None], cloth * (1 + 0.15 * glass[b])[..., None], img[b])
         mid, transom = 0.5 * (u0 + u1), z0 + 0.7 * (z1 - z0)
         paint(mid - 0.012 * hs, mid + 0.012 * hs, z0, z1, frame_rgb)
         paint(u0, u1, transom - 0.012 * hs, transom + 0.012 * hs, frame_rgb)
     for u0, u1, z0, z1 in f["doors"]:
         paint(u0 - 0.04 * hs, u1 + 0.04 * hs, z0, z1 + 0.04 * hs, frame_rgb)
-        paint(u0, u1, z0, z1, (0.22, 0.12, 0.06))
+        b = box(u0, u1, z0, z1)
+        if b is not None:  # wood, its grain along the height
+            img[b] = grained((0.22, 0.12, 0.06), 0.3, photo_detail(b[0].stop - b[0].start, b[1].stop - b[1].start, px, 0.01, 4, rng, 8.0))
+        mid = z0 + 0.5 * (z1 - z0)
+        paint(u0, u1, mid - 0.01 * hs, mid + 0.01 * hs, (0.05, 0.03, 0.02))
     if gutters and f["peak_z"] - f["top_z"] < 0.05 * hs:
-        img[z > f["top_z"] - 0.07 * hs] = (0.10, 0.10, 0.10)
+        top = z > f["top_z"] - 0.07 * hs
+        img[top] = grained((0.10, 0.10, 0.10), 0.2, photo_detail(int(top.sum()), w, px, 0.03, 4, rng))
     return img
+
+
+def roof_image(umin, vmin, w, h, rgb, tiles, rng):
+    """Roof face image of w x h texels from (umin, vmin) (u along the eave, v down the slope): the paper
+    look's tiles (grooves down the slope, weaker course lines), every tile its own shade, under weathering,
+    lichen and grit; without `tiles` a plain weathered roof."""
+    px = PHOTO_ROOF_PX_PER_M
+    u = umin + (np.arange(w) + 0.5) / px
+    v = vmin + (np.arange(h) + 0.5) / px
+    weather = (0.85 + 0.2 * octave_field(h, w, px, 2.5, 1, rng)) * (1 + 0.22 * photo_detail(h, w, px, 0.04, 6, rng))
+    if not tiles:
+        return np.asarray(rgb, dtype=np.float32) * (weather * (0.9 + 0.15 * octave_field(h, w, px, 0.11, 1, rng)))[..., None]
+    col, course_len = 0.32, 0.42  # as roof_tiles()
+    course = np.floor(v / course_len)[:, None]
+    cu = (u[None, :] + np.mod(course, 2) * 0.5 * col) / col
+    across, down = cu - np.floor(cu), v[:, None] / course_len - course
+    shade = 0.88 + 0.12 * np.sin(across * math.pi)
+    shade = np.where(across < 0.16, shade * 0.45, shade)
+    shade = np.where(down > 0.9, shade * 0.7, shade)
+    off = rng.integers(1 << 20, size=2)
+    shade *= 0.85 + 0.3 * _hash01(np.floor(cu).astype(np.int64) + off[0], course.astype(np.int64) + off[1], int(rng.integers(1 << 30)))
+    return np.asarray(rgb, dtype=np.float32) * (shade * weather)[..., None]
+
+
+def clutter_tile(kind, rng, car=None):
+    """One tile of a kind of clutter object (`car`: a car body's colour): its colour with detail; foliage
+    has leaf clumps and single leaves, neighbouring walls are plaster."""
+    px, n = PHOTO_PX_PER_M, int(PHOTO_CLUTTER_TILE_M * PHOTO_PX_PER_M)
+    if kind == "foliage":
+        clumps = 0.6 * octave_field(n, n, px, 0.4, 1, rng) + 0.4 * octave_field(n, n, px, 0.11, 1, rng)
+        return grained((0.10, 0.22, 0.06), 0.45, photo_detail(n, n, px, 0.03, 4, rng)) * (0.45 + 0.9 * clumps)[..., None]
+    if kind == "car_body":
+        return grained(car, 0.08, photo_detail(n, n, px, 0.05, 4, rng))
+    if kind == "neighbour_wall":
+        return plaster_image(n, n, px, PHOTO_NEIGHBOUR_WALL, rng)
+    rgb, amount, finest, stretch = PHOTO_CLUTTER[kind]
+    return grained(rgb, amount, photo_detail(n, n, px, finest, 5, rng, stretch)) * (0.9 + 0.1 * octave_field(n, n, px, 0.3, 1, rng))[..., None]
 
 
 def add_flat_object(scene, name, verts, faces, materials, indices, z_lift=0.0):
@@ -283,8 +390,19 @@ def add_flat_object(scene, name, verts, faces, materials, indices, z_lift=0.0):
     return obj
 
 
+def face_extent(pts, uax, vax):
+    """Face coordinates of the points (along uax, and along vax or world z when vax is None) and their minima."""
+    us = [(q - pts[0]).dot(uax) for q in pts]
+    vs = [q.z for q in pts] if vax is None else [(q - pts[0]).dot(vax) for q in pts]
+    return us, vs, min(us), min(vs), max(us) - min(us), max(vs) - min(vs)
+
+
+def texel_size(metres, px):
+    return max(2, min(4096, int(math.ceil(metres * px))))
+
+
 def apply_photo_scene(b, scene, obj, verts):
-    """Windows and doors painted per wall, the road and paths on the ground, the clutter objects."""
+    """Walls with windows and doors, roofs, the ground with the road and paths, the clutter objects."""
     p = b["photo"]
     seed = int(b.get("seed", 0))
     rng = np.random.default_rng(seed + 7000003)
@@ -292,33 +410,57 @@ def apply_photo_scene(b, scene, obj, verts):
     frame_rgb = (0.12, 0.12, 0.12) if rng.random() < 1 / 3 else (0.86, 0.86, 0.84)
     me = obj.data
     uv = me.uv_layers.active
-    gable = None  # vertical faces without storeys (gable triangles): plain plaster, as in the rasteriser
+
+    def own_material(poly, name, img, px, us, vs, umin, vmin, w, h):
+        me.materials.append(sfm_material(name, img))  # image texture, linear filtering
+        poly.material_index = len(me.materials) - 1
+        for li, uu, vv in zip(poly.loop_indices, us, vs):
+            uv.data[li].uv = ((uu - umin) * px / w, (vv - vmin) * px / h)
+
     for poly in me.polygons:
         f = p["facades"][poly.index]
         pts = [verts[i] for i in poly.vertices]
-        n, uax, _ = face_frame(pts)
-        if not f["wall"]:
-            if surface_kind(b["labels"][poly.index], n) == "wall":
-                if gable is None:
-                    me.materials.append(flat_material("gable", tuple(0.9 * c for c in plaster)))
-                    gable = len(me.materials) - 1
-                poly.material_index = gable
+        n, uax, vax = face_frame(pts)
+        kind = surface_kind(b["labels"][poly.index], n)
+        if kind in ("roof", "flat"):
+            us, vs, umin, vmin, wm, hm = face_extent(pts, uax, vax)
+            w, h = texel_size(wm, PHOTO_ROOF_PX_PER_M), texel_size(hm, PHOTO_ROOF_PX_PER_M)
+            img = roof_image(umin, vmin, w, h, (0.30, 0.29, 0.28) if kind == "flat" else (0.62, 0.22, 0.12),
+                             kind == "roof" and p.get("roof_tiles", True), rng)
+            own_material(poly, f"roof_{poly.index}", img, PHOTO_ROOF_PX_PER_M, us, vs, umin, vmin, w, h)
             continue
-        us = [(q - pts[0]).dot(uax) for q in pts]
-        zs = [q.z for q in pts]
-        umin, zmin = min(us), min(zs)
-        w = max(2, min(4096, int(math.ceil((max(us) - umin) * PHOTO_PX_PER_M))))
-        h = max(2, min(4096, int(math.ceil((max(zs) - zmin) * PHOTO_PX_PER_M))))
-        img = facade_image(f, umin, zmin, w, h, plaster, frame_rgb, p.get("gutters", True), seed + poly.index)
-        mat, _ = make_material(f"facade_{poly.index}", img, (w / PHOTO_PX_PER_M, h / PHOTO_PX_PER_M))
-        me.materials.append(mat)
-        poly.material_index = len(me.materials) - 1
-        for li, uu, zz in zip(poly.loop_indices, us, zs):
-            uv.data[li].uv = ((uu - umin) * PHOTO_PX_PER_M / w, (zz - zmin) * PHOTO_PX_PER_M / h)
+        if kind != "wall":
+            continue
+        us, zs, umin, zmin, wm, hm = face_extent(pts, uax, None)
+        w, h = texel_size(wm, PHOTO_PX_PER_M), texel_size(hm, PHOTO_PX_PER_M)
+        if f["wall"]:
+            img = facade_image(f, umin, zmin, w, h, plaster, frame_rgb, p.get("gutters", True), rng)
+        else:  # gable triangles and other walls without storeys: grained plaster, as in the rasteriser
+            img = plaster_image(h, w, PHOTO_PX_PER_M, tuple(0.9 * c for c in plaster), rng)
+        own_material(poly, f"facade_{poly.index}", img, PHOTO_PX_PER_M, us, zs, umin, zmin, w, h)
+
+    # The ground: one grass image centred on the building, and the road, kerbs and paving in the same frame.
     zground = min(v.z for v in verts)
-    # Ground marks: quads 3 cm above the grass (less fights with the ground's depth at llvmpipe precision).
-    quads, mats, idx = [], [flat_material("asphalt", (0.10, 0.10, 0.11)), flat_material("kerb", (0.60, 0.60, 0.58)),
-                           flat_material("paving", (0.50, 0.49, 0.46))], []
+    ground = bpy.data.objects["ground"].data
+    centre = ground.vertices[0].co + (ground.vertices[2].co - ground.vertices[0].co) / 2
+
+    def ground_uv(x, y):
+        return ((x - centre.x) / PHOTO_GROUND_TILE_M + 0.5, (y - centre.y) / PHOTO_GROUND_TILE_M + 0.5)
+
+    n = int(PHOTO_GROUND_TILE_M * PHOTO_GRASS_PX_PER_M)
+    patches = (0.5 * octave_field(n, n, PHOTO_GRASS_PX_PER_M, 2.0, 1, rng) + 0.3 * octave_field(n, n, PHOTO_GRASS_PX_PER_M, 0.45, 1, rng) +
+               0.2 * octave_field(n, n, PHOTO_GRASS_PX_PER_M, 0.125, 1, rng))
+    dry = np.clip((octave_field(n, n, PHOTO_GRASS_PX_PER_M, 0.25, 3, rng) - 0.56) * 12, 0, 1)[..., None]  # dry spots of 0.2-1 m
+    grass_img = (np.asarray((0.11, 0.20, 0.06), dtype=np.float32) + dry * np.asarray((0.12, 0.02, 0.03), dtype=np.float32)) * \
+        (np.maximum(0.0, 1.0 + 0.35 * photo_detail(n, n, PHOTO_GRASS_PX_PER_M, 0.03, 6, rng)) * (0.6 + 0.8 * patches))[..., None]
+    ground.materials.clear()
+    ground.materials.append(sfm_material("photo_grass", grass_img))
+    guv = ground.uv_layers.active
+    for li in ground.polygons[0].loop_indices:
+        co = ground.vertices[ground.loops[li].vertex_index].co
+        guv.data[li].uv = ground_uv(co.x, co.y)
+
+    quads, idx = [], []
 
     def strip(a, d, half, length, k):
         d = Vector((d[0], d[1], 0)).normalized()
@@ -331,6 +473,12 @@ def apply_photo_scene(b, scene, obj, verts):
             idx.append(k)
 
     road = p.get("road")
+    m = int(PHOTO_GROUND_TILE_M * PHOTO_MARKS_PX_PER_M)
+    asphalt = grained((0.10, 0.10, 0.11), 0.3, photo_detail(m, m, PHOTO_MARKS_PX_PER_M, 0.03, 7, rng)) * \
+        (0.9 + 0.2 * octave_field(m, m, PHOTO_MARKS_PX_PER_M, 0.33, 1, rng))[..., None]
+    kerb = grained((0.60, 0.60, 0.58), 0.15, photo_detail(m, m, PHOTO_MARKS_PX_PER_M, 0.03, 5, rng))
+    paving = grained((0.50, 0.49, 0.46), 0.15, photo_detail(m, m, PHOTO_MARKS_PX_PER_M, 0.03, 5, rng))
+    mats = [sfm_material("asphalt", asphalt), sfm_material("kerb", kerb), sfm_material("paving", paving)]
     if road:
         d, c, hw = Vector((road["dir"][0], road["dir"][1], 0)), road["point"], road["half_width"]
         side = Vector((-d.y, d.x, 0))
@@ -345,15 +493,33 @@ def apply_photo_scene(b, scene, obj, verts):
         strip((x0, y0), (x1 - x0, y1 - y0), p["path_half_width"], math.hypot(x1 - x0, y1 - y0), 2)
     if quads:
         qv = [q for quad in quads for q in quad]
-        add_flat_object(scene, "ground_marks", qv, [[4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 3] for i in range(len(quads))], mats, idx,
-                        zground + 0.03)
+        marks = add_flat_object(scene, "ground_marks", qv, [[4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 3] for i in range(len(quads))], mats, idx,
+                                zground + 0.03)
+        muv = marks.data.uv_layers.new(name="uv")
+        for poly in marks.data.polygons:
+            for li in poly.loop_indices:
+                co = marks.data.vertices[marks.data.loops[li].vertex_index].co
+                muv.data[li].uv = ground_uv(co.x, co.y)
+
     kinds, objects = p["clutter_kinds"], p["clutter_objects"]
     if kinds:
+        cverts = [Vector(v) for v in p["clutter_vertices"]]
         names = sorted(set(kinds) - {"car_body"})
-        cmats = [flat_material("clutter_" + k, PHOTO_CLUTTER[k]) for k in names]
-        cmats += [flat_material(f"car_{i}", c) for i, c in enumerate(PHOTO_CARS)]
-        index = [names.index(k) if k != "car_body" else len(names) + int(o) % len(PHOTO_CARS) for k, o in zip(kinds, objects)]
-        add_flat_object(scene, "clutter", p["clutter_vertices"], p["clutter_faces"], cmats, index)
+        cmats = [sfm_material("clutter_" + k, clutter_tile(k, rng)) for k in names]
+        cmats += [sfm_material(f"car_{i}", clutter_tile("car_body", rng, c)) for i, c in enumerate(PHOTO_CARS)]
+        index, face_uvs = [], []
+        for face, k, o in zip(p["clutter_faces"], kinds, objects):
+            pts = [cverts[i] for i in face]
+            _, uax, vax = face_frame(pts)
+            index.append(names.index(k) if k != "car_body" else len(names) + int(o) % len(PHOTO_CARS))
+            ou, ov = rng.random(2)  # each face its own patch of its kind's tile
+            face_uvs.append([((q - pts[0]).dot(uax) / PHOTO_CLUTTER_TILE_M + ou, (q - pts[0]).dot(vax) / PHOTO_CLUTTER_TILE_M + ov)
+                             for q in pts])
+        cobj = add_flat_object(scene, "clutter", p["clutter_vertices"], p["clutter_faces"], cmats, index)
+        cuv = cobj.data.uv_layers.new(name="uv")
+        for poly, uvs in zip(cobj.data.polygons, face_uvs):
+            for li, t in zip(poly.loop_indices, uvs):
+                cuv.data[li].uv = t
 
 
 # ----------------------------------------------------------------------------- scene

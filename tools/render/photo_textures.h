@@ -23,7 +23,7 @@ class PhotoTextures {
   Rgb ground(double x, double y) const;
 
  private:
-  Rgb wall(const FacadeLayout& L, const FaceFrame& frame, const Vec3& X) const;
+  Rgb wall(const FacadeLayout& L, int face, const FaceFrame& frame, const Vec3& X) const;
   Rgb roof(const FaceFrame& frame, const Vec3& X) const;
 
   PhotoScene scene_;

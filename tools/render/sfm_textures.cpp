@@ -11,10 +11,7 @@ namespace {
 // Equal-weight octaves (periods 0.09 m .. 5.76 m), stretched: the mean of 7 octaves has a standard
 // deviation near 0.08, so x3.5 about 0.5 spans [0, 1] with about 8% of the points clipped.
 double luminance(double u, double v, uint64_t seed) {
-  constexpr int kOctaves = 7;
-  double sum = 0, period = 0.09;
-  for (int k = 0; k < kOctaves; ++k, period *= 2) sum += value_noise(u / period, v / period, seed + 0x51ED27ull * k);
-  const double stretched = std::clamp(0.5 + 3.5 * (sum / kOctaves - 0.5), 0.0, 1.0);
+  const double stretched = std::clamp(0.5 + 3.5 * (octave_noise(u, v, 0.09, 7, seed) - 0.5), 0.0, 1.0);
   return 0.08 + 0.92 * stretched;
 }
 
