@@ -53,10 +53,14 @@
 #                 30-view clouds from models/base's junction model (fast first, ≈ 4 h; then the paper's,
 #                 ≈ 8 h) -> runs/fast-check/table.md
 # One model for real buildings (steps/general.sh; configs/splits/lod2/ and dataset/README.md, the generator):
-#   general-data  raster 30-view clouds of the mix: 900 generated LoD2 buildings, 800 real LoD2 training
-#                 buildings (all Vienna, 250 3D BAG, 475 NRW), 300 Roof-Image and 300 height/footprint-augmented
-#                 Roof-Image training buildings; validation 60 generated, 150 real, 100 Roof-Image -> runs/general
+#   general-data  raster 30-view clouds of the mix: 600 generated LoD2 buildings, 800 real LoD2 training
+#                 buildings (all Vienna, 250 3D BAG, 475 NRW), 250 Roof-Image and 200 height/footprint-augmented
+#                 Roof-Image training buildings, 123 of them also photo-like (Blender); validation 60 generated, 150 real (raster), 100 Roof-Image
+#                 (Blender) -> runs/general
 #   general-train configs/general.json: models/dense fine-tuned on it -> runs/general-model
+#   general-eval [MODEL...]  the real test split's raster clouds and Roof-Image's 30-view test clouds, each model
+#                 (default models/general, models/dense) scored by default and with 8 test-time views, the real
+#                 split per source, roof kind and height band -> runs/general-eval/MODEL-ttN/{real,ri}
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -76,7 +80,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train snapshot restore)
+       general-train general-eval snapshot restore)
 
 step=${1:-}
 case $step in

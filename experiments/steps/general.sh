@@ -14,18 +14,18 @@ general_meshes() {
   for f in "$general_lod2"/cityjson/* "$general_lod2"/citygml/nrw/* "$general_lod2"/citygml/plateau/*; do
     ln -sfn "$(realpath "$f")" "runs/lod2-all/$(basename "$f")"
   done
-  [[ -f runs/general/meshes-gen/buildings.json ]] || "$make" --count 900 --seed 11 -o runs/general/meshes-gen -q
+  [[ -f runs/general/meshes-gen/buildings.json ]] || "$make" --count 600 --seed 11 -o runs/general/meshes-gen -q
   if [[ ! -f runs/general/meshes-genval/buildings.json ]]; then
     "$make" --count 60 --seed 12 -o runs/general/meshes-genval -q
     (cd runs/general/meshes-genval && for f in gen_*.polyshape; do mv "$f" "val$f"; done)
   fi
-  # Roof-Image training buildings: 300 as they are, 300 others with height, footprint and turn augmented.
+  # Roof-Image training buildings: 250 as they are, 200 others with height, footprint and turn augmented.
   if [[ ! -d runs/general/ri-train-sub ]]; then
     shuf -n 1100 --random-source=<(yes) configs/splits/train.txt | sort > runs/general/ri-train-sub.txt
     mkdir -p runs/general/ri-train-sub runs/general/ri-aug-src
     local n
-    head -300 runs/general/ri-train-sub.txt | while read -r n; do ln -sfn "$(realpath "$meshes/$n.polyshape")" runs/general/ri-train-sub/; done
-    sed -n '551,850p' runs/general/ri-train-sub.txt | while read -r n; do ln -sfn "$(realpath "$meshes/$n.polyshape")" runs/general/ri-aug-src/; done
+    head -250 runs/general/ri-train-sub.txt | while read -r n; do ln -sfn "$(realpath "$meshes/$n.polyshape")" runs/general/ri-train-sub/; done
+    sed -n '551,750p' runs/general/ri-train-sub.txt | while read -r n; do ln -sfn "$(realpath "$meshes/$n.polyshape")" runs/general/ri-aug-src/; done
     "$make" --augment runs/general/ri-aug-src -o runs/general/meshes-riaug --seed 5 -q
   fi
   # Real training buildings: every Vienna one, 250 of 3D BAG, 475 of North Rhine-Westphalia (seeded).
@@ -52,19 +52,40 @@ step_general_data() {
     > runs/general/real.json || true
   "$dataset" --meshes runs/general/meshes-riaug --out runs/general/riaug-raster "${common[@]}" > runs/general/riaug.json || true
   "$dataset" --meshes runs/general/ri-train-sub --out runs/general/ri-raster "${common[@]}" > runs/general/ri.json || true
-  # Validation: generated (raster), real (the Blender clouds of lc2wf-dataset on configs/splits/lod2/val.txt,
-  # 150 of them) and Roof-Image (its validation split's 30-view Blender clouds, 100 of them).
+  # Photo-like clouds (Blender, --textures photo: facades with windows, clutter, sun, camera noise), so photo
+  # clutter is in the training distribution: every 10th generated and every 13th real training building,
+  # named photo_* (links with that prefix) beside their raster clouds.
+  if [[ ! -f runs/general/photo-names.txt ]]; then
+    mkdir -p runs/general/meshes-photo runs/general/lod2-photo
+    local g
+    for g in $(ls runs/general/meshes-gen/*.polyshape | awk 'NR % 10 == 1'); do
+      ln -sfn "$(realpath "$g")" "runs/general/meshes-photo/photo_$(basename "$g")"
+    done
+    for g in runs/lod2-all/*; do ln -sfn "$(realpath "$g")" "runs/general/lod2-photo/photo_$(basename "$g")"; done
+    awk 'NR % 13 == 1 { print "photo_" $0 }' runs/general/real-train-sub.txt > runs/general/photo-names.txt
+  fi
+  "$dataset" --meshes runs/general/meshes-photo --out runs/general/photo-blender --renderer blender --textures photo \
+    --views 30 -j 2 -q > runs/general/photo-gen.json || true
+  "$dataset" --meshes runs/general/lod2-photo --names runs/general/photo-names.txt --out runs/general/photo-blender \
+    --renderer blender --textures photo --views 30 -j 2 -q > runs/general/photo-real.json || true
+  # Validation: generated, real (the first 150 of configs/splits/lod2/val.txt) and Roof-Image (100 of its
+  # validation split, 30-view Blender clouds as in the paper's benchmark).
+  [[ -f runs/general/realval-names.txt ]] || head -150 configs/splits/lod2/val.txt > runs/general/realval-names.txt
+  "$dataset" --meshes runs/lod2-all --names runs/general/realval-names.txt --out runs/general/realval-raster "${common[@]}" \
+    > runs/general/realval.json || true
+  [[ -f runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
+  "$dataset" --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
+    --views 30 -j 2 -q > runs/general/rival.json || true
   mkdir -p runs/general/clouds
   : > runs/general/train.txt
   local part
-  for part in gen-raster real-raster riaug-raster ri-raster; do
+  for part in gen-raster real-raster riaug-raster ri-raster photo-blender; do
     for f in runs/general/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done >> runs/general/train.txt
   done
   : > runs/general/val.txt
-  for f in runs/general/genval-raster/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done >> runs/general/val.txt
-  for f in $(ls runs/lod2-30v/clouds/*.lcloud 2>/dev/null | head -150) $(ls runs/dataset-30v/clouds/*.lcloud 2>/dev/null | grep -F -f <(sed 's/$/.lcloud/' configs/splits/val.txt) | head -100); do
-    ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud
-  done >> runs/general/val.txt
+  for part in genval-raster realval-raster rival-blender; do
+    for f in runs/general/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done >> runs/general/val.txt
+  done
   sort -o runs/general/train.txt runs/general/train.txt
   sort -o runs/general/val.txt runs/general/val.txt
   echo "general-data: $(wc -l < runs/general/train.txt) training and $(wc -l < runs/general/val.txt) validation clouds in runs/general/clouds"
@@ -77,4 +98,30 @@ step_general_train() {
   local resume=()
   [[ -d runs/general-model/checkpoints ]] && resume=(--resume)
   "$build_dir/train/lc2wf-train" configs/general.json "${resume[@]}"
+}
+
+# general-eval [MODEL...]: the test clouds (real LoD2 test split, raster; Roof-Image test split, 30-view Blender)
+# and the scores of each model (default models/general models/dense), by default and with 8 test-time views:
+# the real split per source, roof kind and height band (bench/real/score_groups.sh), Roof-Image with lc2wf-eval.
+step_general_eval() {
+  local dataset=$build_dir/tools/lc2wf-dataset
+  need_binary "$dataset" lc2wf-dataset
+  general_meshes
+  "$dataset" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
+    --views 30 -j 2 -q > runs/lod2-raster-summary.json || true
+  LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
+  link_meshes runs/test-meshes configs/splits/test.txt
+  "$dataset" --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 -q \
+    > runs/dataset-30v-summary-test.json || true
+  local models=("$@") model views tag
+  [[ ${#models[@]} -gt 0 ]] || models=(models/general models/dense)
+  for model in "${models[@]}"; do
+    for views in 1 8; do
+      tag=$(basename "$model")-tt$views
+      bench/real/score_groups.sh "$model" runs/lod2-raster/clouds test "runs/general-eval/$tag/real" --test-time-views "$views"
+      [[ -f runs/general-eval/$tag/ri/metrics.json ]] ||
+        "$build_dir/infer/lc2wf-eval" --weights "$model" --data runs/dataset-30v/clouds --split configs/splits/test.txt \
+          --test-time-views "$views" -o "runs/general-eval/$tag/ri" -q --method "$tag"
+    done
+  done
 }
