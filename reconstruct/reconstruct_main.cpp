@@ -53,7 +53,7 @@ With --cameras FILE.json (the project's cameras: metres, z up) the frame is kept
 
 Options:
   --weights DIR          junction.safetensors + edge.safetensors written by lc2wf-train (required;
-                         models/merged-maps scores best on photo reconstructions, reconstruct/README.md)
+                         models/general for real buildings of any roof kind and height; models/README.md)
   -o, --out OUT          output folder (created; other files in it are left alone)
   --cameras PATH         known cameras instead of COLMAP: a COLMAP model folder (cameras/images .txt
                          or .bin, matched by image name) or a cameras JSON (one entry or null per image)

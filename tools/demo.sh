@@ -31,3 +31,7 @@ echo "Report (open in a browser; tables, buildings worst first, 3D viewer, plots
 echo "Wireframes (.obj + scores .json): $root/$out/eval/predictions/"
 echo "Previews (grey: line cloud, red: prediction, green: ground truth): $root/$out/eval/previews/"
 echo "Metrics: $root/$out/eval/metrics.md (also metrics.json, per_building.csv); training log: $root/$out/log.jsonl"
+echo
+echo "The demo model knows only its 64 toy buildings. For your own buildings use the shipped general model:"
+echo "  $build_dir/infer/lc2wf-infer --weights models/general CLOUD -o OUT --preview OUT/preview.png"
+echo "  $build_dir/reconstruct/lc2wf-reconstruct PHOTOS/ --weights models/general -o OUT"
