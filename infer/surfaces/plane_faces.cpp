@@ -58,7 +58,10 @@ int hops(const LocalGraph& g, int v, int w) {
 
 }  // namespace
 
-std::vector<std::vector<int>> plane_cycles(const Wireframe& wf, const CandidatePlane& cp, double eps) {
+std::vector<std::vector<int>> plane_cycles(const Wireframe& wf, const CandidatePlane& cp, double eps, WorkBudget* budget) {
+  constexpr const char* kStep = "faces per plane";
+  // The local graph (a map), the angular sorting (atan2) and the walks: about ten junction tests per edge.
+  if (budget && !budget->charge(10 * static_cast<long>(cp.edges.size()), kStep)) return {};
   LocalGraph g = local_graph(wf, cp);
   const int n = static_cast<int>(g.ids.size());
   // Prune dangling edges: they bound no face and would make a face walk out and back.
@@ -108,6 +111,7 @@ std::vector<std::vector<int>> plane_cycles(const Wireframe& wf, const CandidateP
         }
       }
       if (!ok || a != u || b != v0 || ring.size() < 3) continue;
+      if (budget && !budget->charge(static_cast<long>(ring.size() * ring.size()), kStep)) return out;
       std::vector<Vec2> poly;
       for (int v : ring) poly.push_back(g.pos[v]);
       if (signed_area(poly) <= eps * eps || polygon_self_intersects(poly, eps)) continue;
@@ -119,7 +123,9 @@ std::vector<std::vector<int>> plane_cycles(const Wireframe& wf, const CandidateP
   return out;
 }
 
-std::vector<ClosingEdge> closing_edges(const Wireframe& wf, const CandidatePlane& cp, double eps) {
+std::vector<ClosingEdge> closing_edges(const Wireframe& wf, const CandidatePlane& cp, double eps, WorkBudget* budget) {
+  constexpr const char* kStep = "gaps";
+  if (budget && !budget->charge(8 * static_cast<long>(cp.edges.size()), kStep)) return {};  // the local graph
   const LocalGraph g = local_graph(wf, cp);
   const int n = static_cast<int>(g.ids.size());
   std::vector<int> parent(n);
@@ -128,6 +134,8 @@ std::vector<ClosingEdge> closing_edges(const Wireframe& wf, const CandidatePlane
   std::vector<int> open;
   for (int v = 0; v < n; ++v)
     if (g.adj[v].size() == 1) open.push_back(v);
+  const long ends = static_cast<long>(open.size());
+  if (budget && !budget->charge(2 * ends * ends, kStep)) return {};  // nearest ends, partners of each end
   // Bounded work on graphs with many loose ends: only the nearest few partners of each end are tried.
   constexpr size_t kMaxPartners = 6;
   std::vector<ClosingEdge> out;
@@ -148,6 +156,8 @@ std::vector<ClosingEdge> closing_edges(const Wireframe& wf, const CandidatePlane
     if (partners.size() > kMaxPartners) partners.resize(kMaxPartners);
     for (int w : partners) {
       if (!tried.insert({std::min(v, w), std::max(v, w)}).second) continue;
+      // The crossing test against every edge of the plane and the path between the ends.
+      if (budget && !budget->charge(2 * static_cast<long>(g.edges.size()) + n, kStep)) return out;
       if (std::find(g.adj[v].begin(), g.adj[v].end(), w) != g.adj[v].end()) continue;
       bool crosses = false;
       for (const auto& e : g.edges)

@@ -12,7 +12,10 @@ namespace lc2wf {
 
 // Closed rings of junction ids (no vertex repeated, a simple polygon in the plane), counter-clockwise
 // around the plane's normal: the bounded faces of the plane's edges once dangling edges are pruned.
-std::vector<std::vector<int>> plane_cycles(const Wireframe& wireframe, const CandidatePlane& plane, double eps);
+// `budget` (when given) is charged with the plane's graph and each ring's simplicity test (its sides squared);
+// once it is exhausted the rings found so far are returned.
+std::vector<std::vector<int>> plane_cycles(const Wireframe& wireframe, const CandidatePlane& plane, double eps,
+                                           WorkBudget* budget = nullptr);
 
 struct ClosingEdge {
   std::array<int, 2> ends;  // junction ids, ends[0] < ends[1]
@@ -21,7 +24,10 @@ struct ClosingEdge {
 };
 
 // Pairs of open chain ends (junctions with one edge in the plane) of one connected chain system whose
-// straight join crosses no edge of the plane: the missing side that would close a face.
-std::vector<ClosingEdge> closing_edges(const Wireframe& wireframe, const CandidatePlane& plane, double eps);
+// straight join crosses no edge of the plane: the missing side that would close a face. `budget` (when given)
+// is charged with the pairs of open ends and, per join tried, the plane's graph; once it is exhausted the joins
+// found so far are returned.
+std::vector<ClosingEdge> closing_edges(const Wireframe& wireframe, const CandidatePlane& plane, double eps,
+                                       WorkBudget* budget = nullptr);
 
 }  // namespace lc2wf

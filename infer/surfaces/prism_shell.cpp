@@ -18,6 +18,11 @@ std::optional<SurfaceModel> fail(std::string* why, const std::string& reason) {
   return std::nullopt;
 }
 
+std::optional<RoofSheet> fail_sheet(std::string* why, const std::string& reason) {
+  if (why) *why = reason;
+  return std::nullopt;
+}
+
 Vec2 plan(const Vec3& p) { return {p.x(), p.y()}; }
 
 // The border of the sheet: its sides that one face uses, as loops in the faces' direction; nullopt when the
@@ -60,6 +65,7 @@ struct PlanFace {
   Plane plane;
   bool simple = false;
   double area = 0;
+  Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  // the plan's box
   double z_at(const Vec2& p) const { return (plane.offset - plane.normal.x() * p.x() - plane.normal.y() * p.y()) / plane.normal.z(); }
 };
 
@@ -73,35 +79,44 @@ double height_above(const PlanFace& a, const PlanFace& b) {
   return sum;
 }
 
-bool boxes_meet(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
-  Vec2 alo = a[0], ahi = a[0], blo = b[0], bhi = b[0];
-  for (const Vec2& p : a) alo = alo.cwiseMin(p), ahi = ahi.cwiseMax(p);
-  for (const Vec2& p : b) blo = blo.cwiseMin(p), bhi = bhi.cwiseMax(p);
-  return alo.x() < bhi.x() && blo.x() < ahi.x() && alo.y() < bhi.y() && blo.y() < ahi.y();
+bool boxes_meet(const PlanFace& a, const PlanFace& b) {
+  return a.lo.x() < b.hi.x() && b.lo.x() < a.hi.x() && a.lo.y() < b.hi.y() && b.lo.y() < a.hi.y();
 }
 
 // Seen from above, a roof hides what lies under it: of two faces whose plans overlap (by more than
 // `min_overlap` of the smaller), the lower one is no roof (the eave level's horizontal cycles, ceilings).
-std::vector<bool> hidden_faces(const std::vector<std::vector<int>>& rings, const std::vector<Vec3>& V, double min_overlap,
-                               double wall_tilt_deg) {
+// Stops (nullopt) when `budget` cannot pay for the pairs of faces compared.
+std::optional<std::vector<bool>> hidden_faces(const std::vector<std::vector<int>>& rings, const std::vector<Vec3>& V,
+                                              double min_overlap, double wall_tilt_deg, WorkBudget* budget) {
   const double min_nz = std::sin(wall_tilt_deg * M_PI / 180);  // walls have no plan to hide anything with
   std::vector<PlanFace> faces(rings.size());
   for (size_t f = 0; f < rings.size(); ++f) {
+    const long r = static_cast<long>(rings[f].size());
+    if (budget && !budget->charge(r * r, "roof sheet")) return std::nullopt;  // the plan's simplicity test
     std::vector<Vec3> pts;
     for (int v : rings[f]) pts.push_back(V[v]), faces[f].plan.push_back(plan(V[v]));
     faces[f].plane = fit_plane(pts);
     faces[f].area = std::abs(signed_area(faces[f].plan));
     faces[f].simple = std::abs(faces[f].plane.normal.z()) > min_nz && faces[f].area > 0 && !polygon_self_intersects(faces[f].plan, 1e-9);
+    if (!faces[f].plan.empty()) {
+      faces[f].lo = faces[f].hi = faces[f].plan[0];
+      for (const Vec2& p : faces[f].plan) faces[f].lo = faces[f].lo.cwiseMin(p), faces[f].hi = faces[f].hi.cwiseMax(p);
+    }
   }
   std::vector<bool> hidden(rings.size(), false);
-  for (size_t a = 0; a < faces.size(); ++a)
+  for (size_t a = 0; a < faces.size(); ++a) {
+    if (budget && !budget->charge(static_cast<long>(faces.size() - a), "roof sheet")) return std::nullopt;  // box tests
     for (size_t b = a + 1; b < faces.size(); ++b) {
-      if (!faces[a].simple || !faces[b].simple || !boxes_meet(faces[a].plan, faces[b].plan)) continue;
+      if (!faces[a].simple || !faces[b].simple || !boxes_meet(faces[a], faces[b])) continue;
+      // Triangulations (ear clipping), their pairs clipped against each other, the height samples.
+      const long ra = static_cast<long>(faces[a].plan.size()), rb = static_cast<long>(faces[b].plan.size());
+      if (budget && !budget->charge(4 * ra * rb + 2 * (ra * ra * ra + rb * rb * rb), "roof sheet")) return std::nullopt;
       const double overlap = intersection_area(faces[a].plan, faces[b].plan);
       if (overlap <= min_overlap * std::min(faces[a].area, faces[b].area)) continue;
       const double b_above = height_above(faces[a], faces[b]) - height_above(faces[b], faces[a]);
       hidden[b_above > 0 ? a : b] = true;
     }
+  }
   return hidden;
 }
 
@@ -227,10 +242,11 @@ bool extrude_outline(std::vector<int> loop, const PrismOptions& o, SurfaceModel&
 
 }  // namespace
 
-std::optional<SurfaceModel> extrude_roof_to_ground(const SurfaceModel& m, const PrismOptions& o, std::string* why, int* part_count) {
+std::optional<RoofSheet> roof_sheet(const SurfaceModel& m, const PrismOptions& o, std::string* why, WorkBudget* budget) {
   const auto& V = m.vertices;
-  std::vector<std::vector<int>> top;
-  std::vector<SurfaceLabel> top_labels;
+  RoofSheet sheet;
+  auto& top = sheet.faces;
+  auto& top_labels = sheet.labels;
   for (const SurfaceFace& f : m.faces) {
     if (f.label == SurfaceLabel::kGround || f.ring.size() < 3) continue;
     double low = INFINITY;
@@ -239,17 +255,19 @@ std::optional<SurfaceModel> extrude_roof_to_ground(const SurfaceModel& m, const 
     top.push_back(f.ring);
     top_labels.push_back(f.label);
   }
-  const std::vector<bool> hidden = hidden_faces(top, V, o.min_overlap, o.wall_tilt_deg);
+  const std::optional<std::vector<bool>> hidden_or_stopped = hidden_faces(top, V, o.min_overlap, o.wall_tilt_deg, budget);
+  if (!hidden_or_stopped) return fail_sheet(why, budget->reason());
+  const std::vector<bool>& hidden = *hidden_or_stopped;
   for (size_t f = top.size(); f-- > 0;)
     if (hidden[f]) top.erase(top.begin() + static_cast<long>(f)), top_labels.erase(top_labels.begin() + static_cast<long>(f));
-  if (top.empty()) return fail(why, "no roof face above the ground level");
+  if (top.empty()) return fail_sheet(why, "no roof face above the ground level");
   std::map<EdgeKey, int> uses;
   for (const auto& r : top)
     for (size_t i = 0; i < r.size(); ++i) {
       const int p = r[i], q = r[(i + 1) % r.size()];
-      if (++uses[{std::min(p, q), std::max(p, q)}] > 2) return fail(why, "a roof side bounds three or more roof faces");
+      if (++uses[{std::min(p, q), std::max(p, q)}] > 2) return fail_sheet(why, "a roof side bounds three or more roof faces");
     }
-  if (!orient_faces(top, V, nullptr)) return fail(why, "the roof faces cannot be oriented consistently");
+  if (!orient_faces(top, V, nullptr)) return fail_sheet(why, "the roof faces cannot be oriented consistently");
   double up = 0;  // the sheet faces upwards: its outline then runs counter-clockwise in plan
   for (const auto& r : top) {
     std::vector<Vec3> pts;
@@ -258,11 +276,17 @@ std::optional<SurfaceModel> extrude_roof_to_ground(const SurfaceModel& m, const 
   }
   if (up < 0)
     for (auto& r : top) std::reverse(r.begin(), r.end());
+  sheet.parts = sheet_parts(top, V);
+  return sheet;
+}
+
+std::optional<SurfaceModel> extrude_roof_sheet(const SurfaceModel& m, const RoofSheet& sheet, const PrismOptions& o, std::string* why) {
+  const auto& top = sheet.faces;
+  const auto& top_labels = sheet.labels;
+  const auto& parts = sheet.parts;
   SurfaceModel out;
-  out.vertices = V;
+  out.vertices = m.vertices;
   std::string reason;
-  const std::vector<std::vector<int>> parts = sheet_parts(top, V);
-  if (part_count) *part_count = static_cast<int>(parts.size());
   for (size_t k = 0; k < parts.size(); ++k) {
     if (!o.parts.empty() && (k >= o.parts.size() || !o.parts[k])) continue;
     const std::vector<int>& part = parts[k];
@@ -292,6 +316,13 @@ std::optional<SurfaceModel> extrude_roof_to_ground(const SurfaceModel& m, const 
     }
   out.vertices = std::move(used);
   return out;
+}
+
+std::optional<SurfaceModel> extrude_roof_to_ground(const SurfaceModel& m, const PrismOptions& o, std::string* why, int* part_count) {
+  const std::optional<RoofSheet> sheet = roof_sheet(m, o, why);
+  if (!sheet) return std::nullopt;
+  if (part_count) *part_count = static_cast<int>(sheet->parts.size());
+  return extrude_roof_sheet(m, *sheet, o, why);
 }
 
 }  // namespace lc2wf

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "infer/surfaces/surface_model.h"
+#include "infer/surfaces/work_budget.h"
 
 namespace lc2wf {
 
@@ -28,5 +29,19 @@ struct PrismOptions {
 // `part_count`, when given, receives the number of parts of the roof sheet.
 std::optional<SurfaceModel> extrude_roof_to_ground(const SurfaceModel& model, const PrismOptions& options,
                                                    std::string* why = nullptr, int* part_count = nullptr);
+
+// extrude_roof_to_ground in two steps, for extruding several choices of parts of one sheet: the sheet (the
+// faces above the ground level that no higher face hides, oriented upwards, and its parts, largest plan
+// first; options.parts is not used), then the prism of the parts options.parts selects.
+struct RoofSheet {
+  std::vector<std::vector<int>> faces;  // rings of model vertex ids
+  std::vector<SurfaceLabel> labels;
+  std::vector<std::vector<int>> parts;  // indices into faces
+};
+// `budget` (when given) is charged with the pairs of faces compared for hiding; once it is exhausted: nullopt.
+std::optional<RoofSheet> roof_sheet(const SurfaceModel& model, const PrismOptions& options, std::string* why = nullptr,
+                                    WorkBudget* budget = nullptr);
+std::optional<SurfaceModel> extrude_roof_sheet(const SurfaceModel& model, const RoofSheet& sheet, const PrismOptions& options,
+                                               std::string* why = nullptr);
 
 }  // namespace lc2wf

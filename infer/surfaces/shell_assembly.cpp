@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <queue>
 
 #include "infer/surfaces/polygon_geometry.h"
 
@@ -103,17 +104,31 @@ std::vector<int> select_shell_faces(const std::vector<CandidateFace>& faces, con
     }
     return g;
   };
-  for (;;) {
-    int best = -1, best_gain = 0;
-    // Later candidates come from planes with fewer votes: on ties they go first.
-    for (size_t f = faces.size(); f-- > 0;) {
-      if (!kept[f]) continue;
-      const int g = gain(f);
-      if (g > best_gain) best_gain = g, best = static_cast<int>(f);
-    }
-    if (best < 0) break;
+  // The face whose removal lowers the defects most goes first; on ties the later candidate (from a plane with
+  // fewer votes). A removal changes the gains of the faces sharing its sides only: a heap with the current
+  // gain of each face (stale entries skipped) finds the same face as a scan of all faces would.
+  std::vector<std::vector<int>> faces_of_edge(edge_id.size());
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int e : face_edges[f]) faces_of_edge[e].push_back(static_cast<int>(f));
+  std::vector<int> current(faces.size());
+  std::priority_queue<std::pair<int, int>> heap;  // (gain, face): largest gain, then largest index
+  for (size_t f = 0; f < faces.size(); ++f) {
+    current[f] = gain(f);
+    heap.push({current[f], static_cast<int>(f)});
+  }
+  while (!heap.empty()) {
+    const auto [g, best] = heap.top();
+    heap.pop();
+    if (!kept[best] || g != current[best]) continue;  // removed, or its gain changed since
+    if (g <= 0) break;
     kept[best] = false;
     for (int e : face_edges[best]) --count[e];
+    for (int e : face_edges[best])
+      for (int f : faces_of_edge[e])
+        if (kept[f]) {
+          const int now = gain(f);
+          if (now != current[f]) current[f] = now, heap.push({now, f});
+        }
   }
   std::vector<int> out;
   for (size_t f = 0; f < faces.size(); ++f)

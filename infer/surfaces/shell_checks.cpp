@@ -64,9 +64,14 @@ std::vector<std::string> ShellCheck::problems() const {
   return out;
 }
 
-ShellCheck check_shell(const SurfaceModel& m, double tol) {
+ShellCheck check_shell(const SurfaceModel& m, double tol, WorkBudget* budget) {
+  constexpr const char* kStep = "shell checks";
   ShellCheck c;
   std::vector<FaceGeometry> geo;
+  const long vertices = static_cast<long>(m.vertices.size());
+  long rings = 0;
+  for (const SurfaceFace& f : m.faces) rings += static_cast<long>(f.ring.size() * f.ring.size());
+  if (budget && !budget->charge(rings + vertices * (vertices - 1) / 2, kStep)) return c;  // ring tests, welding
   for (const SurfaceFace& f : m.faces) {
     const std::vector<Vec3> pts = m.polygon(f);
     FaceGeometry g;
@@ -110,9 +115,13 @@ ShellCheck check_shell(const SurfaceModel& m, double tol) {
       c.signed_volume += (m.vertices[f.ring[0]] - origin).dot((m.vertices[f.ring[i]] - origin).cross(m.vertices[f.ring[i + 1]] - origin)) / 6;
   // Face pairs: a side of one through the inside of the other, or two faces of one plane overlapping.
   for (size_t a = 0; a < m.faces.size(); ++a) {
+    if (budget && !budget->charge(static_cast<long>(m.faces.size() - a), kStep)) return c;  // box tests
     for (size_t b = a + 1; b < m.faces.size(); ++b) {
       const FaceGeometry &ga = geo[a], &gb = geo[b];
       if ((ga.lo.array() > gb.hi.array() + tol).any() || (gb.lo.array() > ga.hi.array() + tol).any()) continue;
+      // Each side of one face against the other's plane and polygon, or the overlap of two coplanar polygons.
+      const long ra = static_cast<long>(m.faces[a].ring.size()), rb = static_cast<long>(m.faces[b].ring.size());
+      if (budget && !budget->charge(2 * ra * rb + ra * ra + rb * rb, kStep)) return c;
       bool hit = false;
       if (plane_angle_deg(ga.plane.normal, gb.plane.normal) < 1 && std::abs(std::abs(ga.plane.offset) - std::abs(gb.plane.offset)) < tol &&
           std::abs(gb.plane.distance(m.vertices[m.faces[a].ring[0]])) < tol) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "infer/surfaces/surface_model.h"
+#include "infer/surfaces/work_budget.h"
 
 namespace lc2wf {
 
@@ -29,7 +30,9 @@ struct ShellCheck {
   std::vector<std::string> problems() const;
 };
 
-// `planarity_tolerance`: metres; also the distance below which two points count as one.
-ShellCheck check_shell(const SurfaceModel& model, double planarity_tolerance);
+// `planarity_tolerance`: metres; also the distance below which two points count as one. `budget` (when given)
+// is charged with the work (each ring's tests, every pair of vertices, every pair of faces and, for pairs whose
+// boxes meet, their sides against each other); once it is exhausted the check stops and its counts are partial.
+ShellCheck check_shell(const SurfaceModel& model, double planarity_tolerance, WorkBudget* budget = nullptr);
 
 }  // namespace lc2wf

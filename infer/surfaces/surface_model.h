@@ -31,6 +31,7 @@ struct SurfaceModel {
   std::vector<SurfaceFace> faces;
   ShellStatus status = ShellStatus::kNoFaces;
   std::vector<std::string> reasons;  // human-readable, one per problem found (empty for a closed solid)
+  long work_steps = 0;               // steps of the search charged to SurfaceOptions::max_work_steps (work_budget.h)
 
   bool closed_solid() const { return status == ShellStatus::kClosedSolid; }
   std::vector<Vec3> polygon(const SurfaceFace& face) const;

@@ -22,6 +22,7 @@ void SurfaceOptions::Check() const {
   require(std::isfinite(wall_tilt_deg) && wall_tilt_deg >= 0 && wall_tilt_deg < 90, "wall_tilt_deg must be in [0, 90)");
   require(std::isfinite(planarity_tolerance_m) && planarity_tolerance_m > 0, "planarity_tolerance_m must be > 0");
   require(max_edges > 0, "max_edges must be > 0");
+  require(max_work_steps > 0, "max_work_steps must be > 0");
   require(std::isfinite(min_edge_score) && min_edge_score >= 0 && min_edge_score <= 1, "min_edge_score must be in [0, 1]");
 }
 

@@ -15,6 +15,12 @@ struct SurfaceOptions {
   double min_edge_score = 0.9;      // scored wireframes: faces from the edges this confident first (0: every edge)
   bool prism_walls = true;          // an open shell: walls extruded from the roof outline, ground = footprint
   int max_edges = 2000;             // larger graphs are not searched (bounded time); the model says why
+  // Work budget of one building (both searches of a scored wireframe): the steps that can grow faster than the
+  // graph (edge pairs at junctions, junctions tested against candidate planes, the planes' graphs and rings,
+  // face pairs checked) stop here, and the model says so in its reasons (work_budget.h). A step is about 5 ns:
+  // the default stops after roughly 0.1-0.25 s. Predictions of real buildings take up to 20 million, but for
+  // the search of all the edges of the densest one (665 edges), which stops here.
+  long max_work_steps = 25'000'000;
   // Throws std::invalid_argument naming the setting ("surfaces.plane_distance_m must be > 0").
   void Check() const;
 };

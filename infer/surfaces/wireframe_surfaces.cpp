@@ -12,6 +12,7 @@
 #include "infer/surfaces/prism_shell.h"
 #include "infer/surfaces/shell_assembly.h"
 #include "infer/surfaces/wireframe_cleanup.h"
+#include "infer/surfaces/work_budget.h"
 
 namespace lc2wf {
 namespace {
@@ -22,22 +23,27 @@ struct Attempt {
   SurfaceModel model;
   ShellCheck check;
   std::vector<int> source;  // model vertex -> junction id of the wireframe it was built from
+  bool stopped = false;     // the work budget ran out: no model
   int defects() const { return check.open_edges + check.overused_edges + check.intersecting_face_pairs + check.self_intersecting_faces; }
 };
 
 double tiny(const SurfaceOptions& o) { return std::max(1e-6, 0.25 * o.merge_distance_m); }
 
-void set_status(Attempt& a, const std::vector<std::string>& reasons, const SurfaceOptions& o);
+bool set_status(Attempt& a, const std::vector<std::string>& reasons, const SurfaceOptions& o, WorkBudget& budget);
 
 // Adds the sides that close open chains: those two planes ask for, or one plane whose two chain ends are each
-// other's nearest and at least three edges apart. Two rounds, so a plane made only of closed sides (the ground under completed walls) closes too.
-void close_gaps(Wireframe& wf, std::set<EdgeKey>& added, const SurfaceOptions& o) {
+// other's nearest and at least three edges apart. Two rounds, so a plane made only of closed sides (the ground
+// under completed walls) closes too. Returns the candidate planes of the final graph when the last round
+// found them (it added nothing), so the caller need not search them again.
+std::optional<std::vector<CandidatePlane>> close_gaps(Wireframe& wf, std::set<EdgeKey>& added, const SurfaceOptions& o,
+                                                      WorkBudget& budget) {
   for (int round = 0; round < 2; ++round) {
     std::set<EdgeKey> existing;
     for (const auto& e : wf.edges) existing.insert({e[0], e[1]});
     std::map<EdgeKey, std::pair<int, bool>> votes;
-    for (const CandidatePlane& p : candidate_planes(wf, o))
-      for (const ClosingEdge& c : closing_edges(wf, p, tiny(o))) {
+    std::vector<CandidatePlane> planes = candidate_planes(wf, o, &budget);
+    for (const CandidatePlane& p : planes)
+      for (const ClosingEdge& c : closing_edges(wf, p, tiny(o), &budget)) {
         auto& v = votes[{c.ends[0], c.ends[1]}];
         ++v.first;
         // One plane alone closes only a chain of three or more edges: any two edges at a corner span a plane.
@@ -50,23 +56,35 @@ void close_gaps(Wireframe& wf, std::set<EdgeKey>& added, const SurfaceOptions& o
         added.insert(k);
         ++fresh;
       }
-    if (fresh == 0) break;
+    if (budget.exhausted()) return std::nullopt;
+    if (fresh == 0) return planes;
   }
+  return std::nullopt;
 }
 
-Attempt build(const Wireframe& cleaned, const SurfaceOptions& o) {
+// Clean wireframe -> gaps closed -> candidate planes -> faces per plane -> shell. `stopped` when the budget ran out.
+Attempt build(const Wireframe& cleaned, const SurfaceOptions& o, WorkBudget& budget) {
+  Attempt stopped;
+  stopped.stopped = true;
   Wireframe wf = cleaned;
   std::set<EdgeKey> added;
-  close_gaps(wf, added, o);
-  const std::vector<CandidatePlane> planes = candidate_planes(wf, o);
+  std::optional<std::vector<CandidatePlane>> found = close_gaps(wf, added, o, budget);
+  if (budget.exhausted()) return stopped;
+  const std::vector<CandidatePlane> planes = found ? std::move(*found) : candidate_planes(wf, o, &budget);
+  if (budget.exhausted()) return stopped;
   std::vector<CandidateFace> candidates;
   std::set<std::vector<int>> seen;
   for (size_t p = 0; p < planes.size(); ++p)
-    for (std::vector<int>& ring : plane_cycles(wf, planes[p], tiny(o))) {
+    for (std::vector<int>& ring : plane_cycles(wf, planes[p], tiny(o), &budget)) {
       std::vector<int> sorted = ring;
       std::sort(sorted.begin(), sorted.end());
       if (seen.insert(sorted).second) candidates.push_back({std::move(ring), static_cast<int>(p)});
     }
+  if (budget.exhausted()) return stopped;
+  long candidate_sides = 0;
+  for (const CandidateFace& f : candidates) candidate_sides += static_cast<long>(f.ring.size());
+  // Selection (a heap over the faces, each removal updating its neighbours), merge, orientation, snapping.
+  if (!budget.charge(32 * candidate_sides, "shell assembly")) return stopped;
   std::vector<CandidateFace> kept;
   for (int f : select_shell_faces(candidates, added)) kept.push_back(candidates[f]);
   const std::vector<CandidateFace> merged = merge_coplanar_faces(kept, wf.junctions, o.plane_angle_deg);
@@ -89,12 +107,14 @@ Attempt build(const Wireframe& cleaned, const SurfaceOptions& o) {
   snap_vertices_to_planes(a.model.vertices, rings, 2 * o.plane_distance_m);
   for (auto& r : rings) a.model.faces.push_back({std::move(r), SurfaceLabel::kRoof});
   label_faces(a.model, o.wall_tilt_deg, o.plane_distance_m);
-  set_status(a, reasons, o);
+  if (!set_status(a, reasons, o, budget)) return stopped;
   return a;
 }
 
-void set_status(Attempt& a, const std::vector<std::string>& reasons, const SurfaceOptions& o) {
-  a.check = check_shell(a.model, o.planarity_tolerance_m);
+// The checks and the status; false (nothing set) when the budget cannot pay for the checks.
+bool set_status(Attempt& a, const std::vector<std::string>& reasons, const SurfaceOptions& o, WorkBudget& budget) {
+  a.check = check_shell(a.model, o.planarity_tolerance_m, &budget);
+  if (budget.exhausted()) return false;
   if (a.model.faces.empty()) {
     a.model.status = ShellStatus::kNoFaces;
     a.model.reasons = {"no planar cycle of edges bounds a face"};
@@ -106,6 +126,7 @@ void set_status(Attempt& a, const std::vector<std::string>& reasons, const Surfa
     for (std::string& p : a.check.problems())
       if (std::find(a.model.reasons.begin(), a.model.reasons.end(), p) == a.model.reasons.end()) a.model.reasons.push_back(std::move(p));
   }
+  return true;
 }
 
 // Walls down from the eaves: every end of a horizontal open side of a roof face gets a vertical edge to the
@@ -186,40 +207,26 @@ bool floats_above(const SurfaceModel& m, double ground, const SurfaceOptions& o)
   return lowest > ground + o.plane_distance_m;
 }
 
-// The shell as a prism below the roof of `a` (prism_shell.h), its vertices on their faces' planes.
-std::optional<Attempt> prism_attempt(const Attempt& a, double ground, const SurfaceOptions& o, const std::vector<bool>& parts,
-                                     int* part_count = nullptr);
-
-// The prism under every part of the roof sheet when it is a valid solid; else greedily from the largest part,
-// each further part kept when the solid stays valid (two prisms side by side overlap where they touch).
-std::optional<Attempt> closed_prism(const Attempt& a, double ground, const SurfaceOptions& o) {
-  int count = 0;
-  std::optional<Attempt> all = prism_attempt(a, ground, o, {}, &count);
-  if (all && all->model.closed_solid()) return all;
-  if (count < 2) return std::nullopt;
-  // Each try re-checks the whole shell: the largest parts only, so the time stays a few checks, not one per part.
-  constexpr int kMaxGreedyParts = 16;
-  std::vector<bool> parts(count, false);
-  std::optional<Attempt> best;
-  for (int k = 0; k < std::min(count, kMaxGreedyParts); ++k) {
-    parts[k] = true;
-    std::optional<Attempt> p = prism_attempt(a, ground, o, parts);
-    if (p && p->model.closed_solid()) best = std::move(p);
-    else parts[k] = false;
-  }
-  return best;
-}
-
-std::optional<Attempt> prism_attempt(const Attempt& a, double ground, const SurfaceOptions& o, const std::vector<bool>& parts,
-                                     int* part_count) {
+PrismOptions prism_options(double ground, const SurfaceOptions& o) {
   PrismOptions p;
-  p.parts = parts;
   p.ground_z = ground;
   p.level_distance = o.plane_distance_m;
   p.column_distance = o.merge_distance_m;
   p.wall_tilt_deg = o.wall_tilt_deg;
   p.straight_deg = o.plane_angle_deg;
-  std::optional<SurfaceModel> m = extrude_roof_to_ground(a.model, p, nullptr, part_count);
+  return p;
+}
+
+// The shell as a prism below the parts of the roof sheet of `a` (prism_shell.h), its vertices on their faces'
+// planes. nullopt when the sheet gives no prism or the budget ran out.
+std::optional<Attempt> prism_attempt(const Attempt& a, const RoofSheet& sheet, double ground, const SurfaceOptions& o,
+                                     const std::vector<bool>& parts, WorkBudget& budget) {
+  long sheet_sides = 0;
+  for (const auto& r : sheet.faces) sheet_sides += static_cast<long>(r.size());
+  if (!budget.charge(8 * sheet_sides, "prism below the roof")) return std::nullopt;  // outlines, walls, orientation, snapping
+  PrismOptions p = prism_options(ground, o);
+  p.parts = parts;
+  std::optional<SurfaceModel> m = extrude_roof_sheet(a.model, sheet, p);
   if (!m) return std::nullopt;
   Attempt out;
   out.model = std::move(*m);
@@ -229,14 +236,80 @@ std::optional<Attempt> prism_attempt(const Attempt& a, double ground, const Surf
   orient_faces(rings, out.model.vertices, &reasons);
   snap_vertices_to_planes(out.model.vertices, rings, 2 * o.plane_distance_m);
   for (size_t f = 0; f < rings.size(); ++f) out.model.faces[f].ring = std::move(rings[f]);
-  set_status(out, reasons, o);
+  if (!set_status(out, reasons, o, budget)) return std::nullopt;
   return out;
 }
 
-}  // namespace
+// The prism under every part of the roof sheet when it is a valid solid; else greedily from the largest part,
+// each further part kept when the solid stays valid (two prisms side by side overlap where they touch).
+// nullopt when there is none or the budget ran out.
+std::optional<Attempt> closed_prism(const Attempt& a, double ground, const SurfaceOptions& o, WorkBudget& budget) {
+  // The sheet once for every choice of parts.
+  const std::optional<RoofSheet> sheet = roof_sheet(a.model, prism_options(ground, o), nullptr, &budget);
+  if (!sheet) return std::nullopt;
+  std::optional<Attempt> all = prism_attempt(a, *sheet, ground, o, {}, budget);
+  if (all && all->model.closed_solid()) return all;
+  const int count = static_cast<int>(sheet->parts.size());
+  if (count < 2 || budget.exhausted()) return std::nullopt;
+  // Each try re-checks the whole shell: the largest parts only, so the time stays a few checks, not one per part.
+  constexpr int kMaxGreedyParts = 16;
+  std::vector<bool> parts(count, false);
+  std::optional<Attempt> best;
+  for (int k = 0; k < std::min(count, kMaxGreedyParts); ++k) {
+    parts[k] = true;
+    std::optional<Attempt> p = prism_attempt(a, *sheet, ground, o, parts, budget);
+    if (budget.exhausted()) return std::nullopt;
+    if (p && p->model.closed_solid()) best = std::move(p);
+    else parts[k] = false;
+  }
+  return best;
+}
 
-SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& o) {
-  o.Check();
+// The search once the graph is known to be searchable; `budget` pays for its steps.
+SurfaceModel search(const Wireframe& wireframe, const SurfaceOptions& o, WorkBudget& budget) {
+  // A model without a finished search: no faces, the budget's reason.
+  const auto stopped = [&] {
+    SurfaceModel m;
+    m.reasons = {budget.reason()};
+    return m;
+  };
+  // A finished model taken because a later attempt ran out of budget: an open one says so too.
+  const auto keep = [&](Attempt& a) {
+    if (budget.exhausted() && !a.model.closed_solid()) a.model.reasons.push_back(budget.reason());
+    return std::move(a.model);
+  };
+  const long junctions = static_cast<long>(wireframe.junctions.size()), edges = static_cast<long>(wireframe.edges.size());
+  if (!budget.charge(junctions * (junctions - 1) / 2 + edges * junctions, "cleaning")) return stopped();  // merges, splits
+  const Wireframe cleaned = clean_wireframe(wireframe, o.merge_distance_m);
+  Attempt first = build(cleaned, o, budget);
+  if (first.stopped) return stopped();
+  if (!o.complete_walls) return std::move(first.model);
+  const std::optional<double> ground = ground_level(cleaned, o);
+  if (first.model.closed_solid() && !(ground && o.prism_walls && floats_above(first.model, *ground, o))) return std::move(first.model);
+  if (ground && o.prism_walls)
+    if (std::optional<Attempt> prism = closed_prism(first, *ground, o, budget)) return std::move(prism->model);
+  if (first.model.closed_solid() || budget.exhausted()) return keep(first);
+  Wireframe extended = cleaned;
+  const long cj = static_cast<long>(cleaned.junctions.size());
+  long first_sides = 0;
+  for (const SurfaceFace& f : first.model.faces) first_sides += static_cast<long>(f.ring.size());
+  // The faces' sides, the edges, each eave corner's foot against the junctions.
+  if (!budget.charge(first_sides + static_cast<long>(cleaned.edges.size()) + cj * cj, "walls down to the ground")) return keep(first);
+  if (!complete_walls(extended, first, o)) return std::move(first.model);
+  const long ej = static_cast<long>(extended.junctions.size()), ee = static_cast<long>(extended.edges.size());
+  if (!budget.charge(ej * (ej - 1) / 2 + ee * ej, "cleaning")) return keep(first);
+  Attempt second = build(clean_wireframe(extended, o.merge_distance_m), o, budget);
+  if (second.stopped) return keep(first);
+  if (second.model.closed_solid()) return std::move(second.model);
+  if (ground && o.prism_walls)
+    if (std::optional<Attempt> prism = closed_prism(second, *ground, o, budget)) return std::move(prism->model);
+  const bool take_second = !second.model.faces.empty() && second.defects() < first.defects();
+  return keep(take_second ? second : first);
+}
+
+// The checks of the input, then the search; `budget` pays for it (one budget per building, whichever edge
+// sets are searched).
+SurfaceModel surfaces_within(const Wireframe& wireframe, const SurfaceOptions& o, WorkBudget& budget) {
   if (static_cast<int>(wireframe.edges.size()) > o.max_edges) {
     SurfaceModel m;
     m.reasons = {std::to_string(wireframe.edges.size()) + " edges: more than surfaces.max_edges (" + std::to_string(o.max_edges) +
@@ -250,41 +323,43 @@ SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOp
         m.reasons = {"an edge has a junction that does not exist or is not finite: not searched"};
         return m;
       }
-  const Wireframe cleaned = clean_wireframe(wireframe, o.merge_distance_m);
-  Attempt first = build(cleaned, o);
-  if (!o.complete_walls) return std::move(first.model);
-  const std::optional<double> ground = ground_level(cleaned, o);
-  if (first.model.closed_solid() && !(ground && o.prism_walls && floats_above(first.model, *ground, o))) return std::move(first.model);
-  if (ground && o.prism_walls)
-    if (std::optional<Attempt> prism = closed_prism(first, *ground, o)) return std::move(prism->model);
-  if (first.model.closed_solid()) return std::move(first.model);
-  Wireframe extended = cleaned;
-  if (!complete_walls(extended, first, o)) return std::move(first.model);
-  Attempt second = build(clean_wireframe(extended, o.merge_distance_m), o);
-  if (second.model.closed_solid()) return std::move(second.model);
-  if (ground && o.prism_walls)
-    if (std::optional<Attempt> prism = closed_prism(second, *ground, o)) return std::move(prism->model);
-  const bool take_second = !second.model.faces.empty() && second.defects() < first.defects();
-  return std::move(take_second ? second.model : first.model);
+  return search(wireframe, o, budget);
 }
 
-}  // namespace lc2wf
+}  // namespace
 
-namespace lc2wf {
+SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& o) {
+  o.Check();
+  WorkBudget budget(o.max_work_steps);
+  SurfaceModel m = surfaces_within(wireframe, o, budget);
+  m.work_steps = budget.used();
+  return m;
+}
 
 SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const std::vector<double>& scores, const SurfaceOptions& o) {
   if (scores.size() != wireframe.edges.size())
     throw std::invalid_argument("surfaces: " + std::to_string(scores.size()) + " edge scores for " +
                                 std::to_string(wireframe.edges.size()) + " edges");
+  o.Check();
   Wireframe confident;
   confident.junctions = wireframe.junctions;
   for (size_t e = 0; e < scores.size(); ++e)
     if (scores[e] >= o.min_edge_score) confident.edges.push_back(wireframe.edges[e]);
-  if (confident.edges.size() == wireframe.edges.size()) return surfaces_from_wireframe(wireframe, o);
-  SurfaceModel m = surfaces_from_wireframe(confident, o);
-  if (m.closed_solid()) return m;
-  SurfaceModel all = surfaces_from_wireframe(wireframe, o);
-  return all.closed_solid() ? all : m;
+  WorkBudget budget(o.max_work_steps);  // one budget for both searches
+  SurfaceModel m = surfaces_within(confident.edges.size() == wireframe.edges.size() ? wireframe : confident, o, budget);
+  if (confident.edges.size() == wireframe.edges.size() || m.closed_solid() || budget.exhausted()) {
+    m.work_steps = budget.used();
+    return m;
+  }
+  SurfaceModel all = surfaces_within(wireframe, o, budget);
+  if (all.closed_solid()) {
+    all.work_steps = budget.used();
+    return all;
+  }
+  // The confident edges' faces stay; when the search of all the edges stopped at the budget, they say so.
+  if (budget.exhausted()) m.reasons.push_back("all edges: " + budget.reason());
+  m.work_steps = budget.used();
+  return m;
 }
 
 }  // namespace lc2wf

@@ -14,13 +14,16 @@
 
 namespace lc2wf {
 
-// Deterministic; time grows with the edges of the graph and is bounded by options.max_edges (larger graphs
-// give a model without faces whose reason says so). Throws std::invalid_argument on bad options.
+// Deterministic. The work is bounded: graphs with more than options.max_edges edges are not searched, and the
+// search stops once it has taken options.max_work_steps steps (work_budget.h; about 5 ns each): the model then
+// keeps what was finished (no faces when the first shell was not) and its reasons say where the budget ran
+// out. model.work_steps is the work taken. Throws std::invalid_argument on bad options.
 SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const SurfaceOptions& options = {});
 
 // The same for a predicted wireframe with its edge probabilities (`edge_scores`, one per edge): the faces of
 // the confident edges (score >= options.min_edge_score) when they close into a valid solid, else of all the
-// edges when those do, else of the confident ones. Throws std::invalid_argument when the counts differ.
+// edges when those do, else of the confident ones (with the budget's reason when the search of all the edges
+// ran out of it). One work budget for both searches. Throws std::invalid_argument when the counts differ.
 SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const std::vector<double>& edge_scores,
                                      const SurfaceOptions& options = {});
 
