@@ -15,14 +15,20 @@ step_dataset() {
   cp runs/dataset-summary-test.json runs/dataset/summary-test.json
 }
 
-# More views give the junction model the walls' feet it misses (experiments/README.md, "Denser clouds"): the
-# same renders from 30 views -> runs/dataset-30v. The test split first, so the shipped models can be scored on
-# it while the validation and training clouds are made.
-step_dense() {
+# The Roof-Image test split's 30-view Blender clouds (the paper's benchmark as the README scores it) ->
+# runs/dataset-30v, resumable; also used by general-eval.
+dense_test_clouds() {
   LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
   link_meshes runs/test-meshes configs/splits/test.txt
   "$build_dir/tools/lc2wf-dataset" --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 \
     > runs/dataset-30v-summary-test.json
+}
+
+# More views give the junction model the walls' feet it misses (experiments/README.md, "Denser clouds"): the
+# same renders from 30 views -> runs/dataset-30v. The test split first, so the shipped models can be scored on
+# it while the validation and training clouds are made.
+step_dense() {
+  dense_test_clouds
   # The validation split next (200 buildings): test-time options are chosen on it while the training
   # clouds are made; the train + val pass below skips its finished buildings.
   link_meshes runs/val-meshes configs/splits/val.txt

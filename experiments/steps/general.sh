@@ -40,6 +40,17 @@ open(sys.argv[2], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
 }
 
+# general_list LIST PART...: links the clouds of runs/general/PART/clouds into runs/general/clouds and writes
+# their names, sorted, to LIST (the training and validation lists of configs/general.json).
+general_list() {
+  local list=$1 part f
+  shift
+  mkdir -p runs/general/clouds
+  for part in "$@"; do
+    for f in runs/general/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done
+  done | sort > "$list"
+}
+
 # general-data: the raster clouds of the mix, then the training folder (links) and its split lists.
 step_general_data() {
   local dataset=$build_dir/tools/lc2wf-dataset
@@ -76,18 +87,8 @@ step_general_data() {
   [[ -f runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
   "$dataset" --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
     --views 30 -j 2 -q > runs/general/rival.json || true
-  mkdir -p runs/general/clouds
-  : > runs/general/train.txt
-  local part
-  for part in gen-raster real-raster riaug-raster ri-raster photo-blender; do
-    for f in runs/general/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done >> runs/general/train.txt
-  done
-  : > runs/general/val.txt
-  for part in genval-raster realval-raster rival-blender; do
-    for f in runs/general/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done >> runs/general/val.txt
-  done
-  sort -o runs/general/train.txt runs/general/train.txt
-  sort -o runs/general/val.txt runs/general/val.txt
+  general_list runs/general/train.txt gen-raster real-raster riaug-raster ri-raster photo-blender
+  general_list runs/general/val.txt genval-raster realval-raster rival-blender
   echo "general-data: $(wc -l < runs/general/train.txt) training and $(wc -l < runs/general/val.txt) validation clouds in runs/general/clouds"
 }
 
@@ -109,10 +110,7 @@ step_general_eval() {
   general_meshes
   "$dataset" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
     --views 30 -j 2 -q > runs/lod2-raster-summary.json || true
-  LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
-  link_meshes runs/test-meshes configs/splits/test.txt
-  "$dataset" --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 -q \
-    > runs/dataset-30v-summary-test.json || true
+  dense_test_clouds || true  # steps/clouds.sh; a failed building is named and left out
   local models=("$@") model views tag
   [[ ${#models[@]} -gt 0 ]] || models=(models/general models/dense)
   for model in "${models[@]}"; do
