@@ -10,6 +10,7 @@
 
 #include "dataset/geometry/footprint.h"
 #include "dataset/synthetic/synthetic_building.h"
+#include "tests/tools/camera_expectations.h"
 #include "tools/render/camera_ring.h"
 #include "tools/render/capture_kind.h"
 
@@ -58,17 +59,6 @@ double lowest(const std::vector<Vec3>& points) {
   double z = std::numeric_limits<double>::infinity();
   for (const Vec3& p : points) z = std::min(z, p.z());
   return z;
-}
-
-void expect_frames_every_point(const Camera& c, const std::vector<Vec3>& points, const CameraRingOptions& o) {
-  for (const Vec3& v : points) {
-    ASSERT_GT(c.to_camera(v).z(), 0);
-    const Vec2 p = c.project(v);
-    EXPECT_GE(p.x(), o.margin * o.width - 0.5 - 1e-6);
-    EXPECT_LE(p.x(), o.width * (1 - o.margin) - 0.5 + 1e-6);
-    EXPECT_GE(p.y(), o.margin * o.height - 0.5 - 1e-6);
-    EXPECT_LE(p.y(), o.height * (1 - o.margin) - 0.5 + 1e-6);
-  }
 }
 
 // Pedestrian cameras: 1.5-3 m above the lowest point, aimed at the centre of a 7 m house: level (the aim
