@@ -61,6 +61,10 @@
 #   general-eval [MODEL...]  the real test split's raster clouds and Roof-Image's 30-view test clouds, each model
 #                 (default models/general, models/dense) scored by default and with 8 test-time views, the real
 #                 split per source, roof kind and height band -> runs/general-eval/MODEL-ttN/{real,ri}
+#   general2-data  general-data's mix plus every 3D BAG, Vienna and tall real training building, the rarer NRW
+#                 roof kinds and 300 Roof-Image training buildings as 30-view Blender clouds; validation with
+#                 the whole real validation split (414) -> runs/general2
+#   general2-train experiments/configs/general2.json: models/general fine-tuned on it -> runs/general2-model
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -80,7 +84,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval snapshot restore)
+       general-train general-eval general2-data general2-train snapshot restore)
 
 step=${1:-}
 case $step in

@@ -20,6 +20,7 @@ struct PostProcessFlags {
   std::optional<double> pair_support;       // --pair-support S
   std::optional<double> edge_support;       // --edge-support S
   bool edge_support_everywhere = false;     // --edge-support-everywhere
+  std::optional<int64_t> judge_degree;      // --judge-degree-above N
   std::optional<int64_t> edge_cameras;      // --edge-cameras N
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
@@ -34,7 +35,7 @@ struct PostProcessFlags {
   std::optional<int64_t> max_pairs_per_junction; // --max-pairs-per-junction N
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
+    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || judge_degree || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
            max_pairs || max_pairs_per_junction;
   }
@@ -47,6 +48,7 @@ struct PostProcessFlags {
     else if (flag == "--pair-support") pair_support = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-support") edge_support = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-support-everywhere") edge_support_everywhere = true;
+    else if (flag == "--judge-degree-above") judge_degree = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-cameras") edge_cameras = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
@@ -75,6 +77,7 @@ struct PostProcessFlags {
     if (pair_support) o.pair_support.min_support = *pair_support;
     if (edge_support) o.edge_support.min_support = *edge_support;
     if (edge_support_everywhere) o.edge_support.partial_captures_only = false;
+    if (judge_degree) o.edge_support.judge_degree_above = static_cast<int>(std::min<int64_t>(*judge_degree, 1 << 30));
     if (edge_cameras) o.edge_support.min_cameras = static_cast<int>(std::min<int64_t>(*edge_cameras, 1 << 30));
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).

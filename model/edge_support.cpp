@@ -1,5 +1,6 @@
 #include "model/edge_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -14,21 +15,26 @@ void EdgeSupportOptions::Check() const {
   if (!(radius_m > 0) || !std::isfinite(radius_m)) fail("radius_m must be a positive distance in metres");
   if (!(max_angle_deg > 0 && max_angle_deg <= 90)) fail("max_angle_deg must be in (0, 90]");
   if (min_cameras < 0) fail("min_cameras must be >= 0");
+  if (judge_degree_above < 0) fail("judge_degree_above must be >= 0 (0: off)");
   if (!(occlusion_tolerance_m >= 0) || !std::isfinite(occlusion_tolerance_m))
     fail("occlusion_tolerance_m must be a distance >= 0 in metres");
 }
 
 SupportedEdges keep_supported_edges(const ScoredWireframe& in, const std::vector<Segment3>& segments,
-                                    const std::vector<Camera>& cameras, const EdgeSupportOptions& options) {
+                                    const std::vector<Camera>& cameras, const EdgeSupportOptions& options,
+                                    JudgedEdges judged) {
   options.Check();
   in.check("keep_supported_edges");
   SupportedEdges out;
-  if (!options.enabled()) {
+  const bool every = judged == JudgedEdges::every_edge;
+  if (!options.enabled() || (!every && options.judge_degree_above == 0)) {
     out.wireframe = in;
     return out;
   }
+  std::vector<int> degree(in.wireframe.junctions.size(), 0);
+  for (const auto& [a, b] : in.wireframe.edges) ++degree[a], ++degree[b];
   const SegmentSupport support(segments);
-  const bool ask_cameras = options.min_cameras > 0 && !cameras.empty();
+  const bool ask_cameras = every && options.min_cameras > 0 && !cameras.empty();
   const FootprintOccluder occluder(ask_cameras ? in.wireframe : Wireframe{});
   ScoredWireframe kept;
   kept.wireframe.junctions = in.wireframe.junctions;
@@ -37,7 +43,8 @@ SupportedEdges keep_supported_edges(const ScoredWireframe& in, const std::vector
     const auto [a, b] = in.wireframe.edges[e];
     const Vec3& u = in.wireframe.junctions[a];
     const Vec3& v = in.wireframe.junctions[b];
-    const bool lines = support.support(u, v, options.radius_m, options.max_angle_deg) >= options.min_support;
+    const bool exempt = !every && std::max(degree[a], degree[b]) <= options.judge_degree_above;
+    const bool lines = exempt || support.support(u, v, options.radius_m, options.max_angle_deg) >= options.min_support;
     const bool seen = !lines && ask_cameras &&
                       cameras_seeing(u, v, cameras, occluder, options.occlusion_tolerance_m) >= options.min_cameras;
     if (lines || seen) {

@@ -26,6 +26,11 @@ struct EdgeSupportOptions {
   // full orbit's wireframe stays as the networks drew it (the rule cost 0.4 sAP on the Roof-Image test split),
   // and a cloud without cameras is not judged. false: every cloud.
   bool partial_captures_only = true;
+  // Where the rule above leaves a wireframe alone, the edges of a junction with more than this many edges are
+  // still judged, by their lines alone (0: never). A building's corner meets a few edges; where the edge model
+  // accepts a near-complete subgraph (tall blocks, dense clutter) one junction meets dozens, most of them
+  // running through the building where no line is, and every camera sees the inside of a building's hull.
+  int judge_degree_above = 0;
 
   bool enabled() const { return min_support > 0; }
   void Check() const;  // throws std::invalid_argument naming the bad field
@@ -38,8 +43,12 @@ struct SupportedEdges {
   int kept_by_cameras = 0;  // kept for the cameras alone (too little line support)
 };
 
+// Which edges the test judges: every one, or only those of over-connected junctions (judge_degree_above).
+enum class JudgedEdges { every_edge, over_connected_only };
+
 // The edges of `in` that pass the test (all of them when the option is off), junctions without an edge dropped.
 SupportedEdges keep_supported_edges(const ScoredWireframe& in, const std::vector<Segment3>& segments,
-                                    const std::vector<Camera>& cameras, const EdgeSupportOptions& options);
+                                    const std::vector<Camera>& cameras, const EdgeSupportOptions& options,
+                                    JudgedEdges judged = JudgedEdges::every_edge);
 
 }  // namespace lc2wf

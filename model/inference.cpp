@@ -193,26 +193,29 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   for (size_t p = 0; p < r.pairs.size(); ++p)
     in.pairs.push_back({r.pairs[p].i, r.pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
   PostProcessResult post = post_process(in, options);
-  EdgeSupportOptions support = options.edge_support;
+  const EdgeSupportOptions& support = options.edge_support;
+  JudgedEdges judged = JudgedEdges::every_edge;
   if (support.partial_captures_only && support.enabled()) {
     const bool partial = !cloud.cameras.empty() && [&] {
       const CameraCoverage c = camera_coverage(cloud.cameras, post.wireframe.wireframe, cloud.segments);
       return std::any_of(c.sides.begin(), c.sides.end(), [](const SideCoverage& s) { return !s.seen; });
     }();
-    if (!partial) support.min_support = 0;  // off: nothing to tell the unseen from
+    if (!partial) judged = JudgedEdges::over_connected_only;  // nothing to tell the unseen from
   }
-  SupportedEdges seen = keep_supported_edges(post.wireframe, cloud.segments, cloud.cameras, support);
+  SupportedEdges seen = keep_supported_edges(post.wireframe, cloud.segments, cloud.cameras, support, judged);
   r.wireframe = std::move(seen.wireframe);
   r.candidates = std::move(post.candidates);
   r.notes.insert(r.notes.end(), post.notes.begin(), post.notes.end());
+  const bool cameras_asked = judged == JudgedEdges::every_edge && !cloud.cameras.empty() && support.min_cameras > 0;
   if (seen.dropped_edges > 0)
-    r.notes.push_back(std::to_string(seen.dropped_edges) + " edge(s) with line support < " +
-                      format_number("%g", options.edge_support.min_support) + " of their length" +
-                      (cloud.cameras.empty() || options.edge_support.min_cameras == 0
+    r.notes.push_back(std::to_string(seen.dropped_edges) + " edge(s)" +
+                      (judged == JudgedEdges::every_edge
                            ? std::string()
-                           : " and seen by < " + std::to_string(options.edge_support.min_cameras) + " cameras") +
-                      " dropped, and " +
-                      std::to_string(seen.dropped_junctions) + " junction(s) left without an edge");
+                           : " of junctions with > " + std::to_string(support.judge_degree_above) + " edges") +
+                      " with line support < " + format_number("%g", support.min_support) + " of their length" +
+                      (cameras_asked ? " and seen by < " + std::to_string(support.min_cameras) + " cameras"
+                                     : std::string()) +
+                      " dropped, and " + std::to_string(seen.dropped_junctions) + " junction(s) left without an edge");
   if (r.wireframe.wireframe.edges.empty()) r.notes.push_back("no edge survived post-processing: empty wireframe");
   r.post_seconds += seconds_since(t0);
   return r;

@@ -85,6 +85,7 @@ Options:
                          by --edge-cameras cameras (0-1; default 0.2; 0 keeps every edge; see lc2wf-infer --help)
   --edge-cameras N       cameras that must have had an edge in view to keep it without line support (default 2)
   --edge-support-everywhere  apply --edge-support also when the cameras saw every side (default: only then not)
+  --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
   --max-pairs N          at most N pairs for the edge model (default 2080; see lc2wf-infer --help)
   --max-pairs-per-junction K  and at most K per junction when the cap bites (default 64)
   --nms-radius M         point-NMS radius of the candidate junctions (default 0.5 m; see lc2wf-infer --help)

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <utility>
 #include <string>
@@ -127,6 +128,42 @@ TEST(EdgeSupport, CamerasKeepAnUnlinedEdgeInViewAndNotOneOnTheHiddenSide) {
   EXPECT_TRUE(keep_supported_edges(f.box, none, f.cameras, lines_only).wireframe.wireframe.edges.empty());
 }
 
+// The square with both diagonals and a fifth junction at its centre joined to every corner: the corners meet
+// 4 edges, the centre 4, and no line runs along a diagonal or a spoke.
+ScoredWireframe square_with_clique() {
+  ScoredWireframe w = square();
+  w.wireframe.junctions.push_back(Vec3(2, 2, 0));
+  w.junction_scores.push_back(0.5);
+  for (std::array<int, 2> e : {std::array{0, 2}, {1, 3}, {0, 4}, {1, 4}, {2, 4}, {3, 4}}) {
+    w.wireframe.edges.push_back(e);
+    w.edge_scores.push_back(0.9);
+  }
+  return w;
+}
+
+TEST(EdgeSupport, OverConnectedJunctionsLoseTheirUnlinedEdgesOnly) {
+  EdgeSupportOptions o;
+  o.min_support = 0.4;
+  o.judge_degree_above = 3;
+  const SupportedEdges r = keep_supported_edges(square_with_clique(), segments(), {}, o, JudgedEdges::over_connected_only);
+  // Every junction has > 3 edges, so every edge is judged by its lines: the three lined sides stay.
+  EXPECT_EQ(r.wireframe.wireframe.edges.size(), 3u);
+  EXPECT_EQ(r.dropped_edges, 7);
+  // Junctions of at most 5 edges are left alone, lined or not.
+  o.judge_degree_above = 5;
+  EXPECT_EQ(keep_supported_edges(square_with_clique(), segments(), {}, o, JudgedEdges::over_connected_only)
+                .wireframe.wireframe.edges.size(), 10u);
+  // The plain square's corners meet 2 edges: above 2 they are not judged, not even without any line.
+  o.judge_degree_above = 2;
+  EXPECT_EQ(keep_supported_edges(square(), {}, {}, o, JudgedEdges::over_connected_only).wireframe.wireframe.edges.size(), 4u);
+  // Off (0) keeps every edge; the cameras do not rescue an over-connected junction's edge (they see inside).
+  o.judge_degree_above = 0;
+  EXPECT_EQ(keep_supported_edges(square_with_clique(), {}, {}, o, JudgedEdges::over_connected_only).dropped_edges, 0);
+  o.judge_degree_above = 3;
+  const FrontView f = front_view();
+  EXPECT_EQ(keep_supported_edges(square_with_clique(), segments(), f.cameras, o, JudgedEdges::over_connected_only).kept_by_cameras, 0);
+}
+
 TEST(EdgeSupport, BadOptionsAndInputsAreNamed) {
   EdgeSupportOptions o;
   o.min_support = 1.5;
@@ -136,6 +173,9 @@ TEST(EdgeSupport, BadOptionsAndInputsAreNamed) {
   EXPECT_THROW(o.Check(), std::invalid_argument);
   o = {};
   o.min_cameras = -1;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  o = {};
+  o.judge_degree_above = -1;
   EXPECT_THROW(o.Check(), std::invalid_argument);
   ScoredWireframe bad = square();
   bad.wireframe.edges.push_back({0, 9});
@@ -153,6 +193,12 @@ TEST(EdgeSupport, FlagSetsTheShareAndReleaseQuirksTurnItOff) {
   int i = 1;
   ASSERT_TRUE(flags.parse(args[1], static_cast<int>(argv.size()), argv.data(), i));
   EXPECT_EQ(flags.options().edge_support.min_support, 0.5);
+  std::vector<std::string> degree_args = {"x", "--judge-degree-above", "6"};
+  std::vector<char*> degree_argv;
+  for (auto& a : degree_args) degree_argv.push_back(a.data());
+  i = 1;
+  ASSERT_TRUE(flags.parse(degree_args[1], static_cast<int>(degree_argv.size()), degree_argv.data(), i));
+  EXPECT_EQ(flags.options().edge_support.judge_degree_above, 6);
   flags.edge_support = 2.0;
   try {
     flags.options();
