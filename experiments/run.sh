@@ -61,10 +61,13 @@
 #   general-eval [MODEL...]  the real test split's raster clouds and Roof-Image's 30-view test clouds, each model
 #                 (default models/general, models/dense) scored by default and with 8 test-time views, the real
 #                 split per source, roof kind and height band -> runs/general-eval/MODEL-ttN/{real,ri}
-#   general2-data  general-data's mix plus every 3D BAG, Vienna and tall real training building, the rarer NRW
-#                 roof kinds and 300 Roof-Image training buildings as 30-view Blender clouds; validation with
-#                 the whole real validation split (414) -> runs/general2
+#   general2-data  general-data's mix plus the real training buildings of the kinds general failed on (every 3D
+#                 BAG, Vienna and >= 10 m one, NRW's rarer roofs), 1 in 5 of them also photo-like (Blender), and
+#                 300 Roof-Image training buildings as 30-view Blender clouds; validation with the whole real
+#                 validation split (414) -> runs/general2
 #   general2-train experiments/configs/general2.json: models/general fine-tuned on it -> runs/general2-model
+#   general2-val WEIGHTS TAG [FLAGS...]  WEIGHTS with lc2wf-infer FLAGS on general2's validation clouds (real per
+#                 group, Roof-Image, generated) -> runs/general2-val/TAG and a row of runs/general2-val/table.md
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -84,7 +87,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train snapshot restore)
+       general-train general-eval general2-data general2-train general2-val snapshot restore)
 
 step=${1:-}
 case $step in

@@ -1,9 +1,10 @@
 # Steps general2-data and general2-train: models/general fine-tuned on its own mix plus what its scores said it
-# lacked: real training buildings
-# (every 3D BAG, Vienna and >= 10 m one, NRW's complex, multi-level flat and hipped roofs, 100 of its mixed ones; raster), and Roof-Image training buildings as 30-view Blender clouds (its edge stage had learnt the raster
-# look, experiments/README.md "General model: the whole mix"). Validation: the whole real validation split
-# (414 buildings, raster: with Vienna, 3D BAG and buildings over 20 m) besides general's generated and
-# Roof-Image validation clouds (sourced by experiments/run.sh; needs general-data's clouds).
+# lacked (experiments/README.md, "General model: the whole mix"): real training buildings of the kinds it
+# failed on (every 3D BAG, Vienna and >= 10 m one, NRW's complex, multi-level flat and hipped roofs, 100 of its
+# mixed ones; raster), Roof-Image training buildings as 30-view Blender clouds (its edge stage had learnt the
+# raster look) and a larger photo-like share. Validation: the whole real validation split (414 buildings,
+# raster: with Vienna, 3D BAG and buildings over 20 m) besides general's generated and Roof-Image validation
+# clouds (sourced by experiments/run.sh; needs general-data's clouds).
 
 # general2-data: the added clouds, then runs/general2/{clouds,train.txt,val.txt}.
 step_general2_data() {
@@ -35,13 +36,19 @@ PY
   link_meshes runs/general2/ri-meshes configs/splits/train.txt
   "$dataset" --meshes runs/general2/ri-meshes --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender \
     --renderer blender --views 30 -j 2 -q > runs/general2/ri.json || true
+  # Photo-like clouds of every 5th added real building with the textures COLMAP registers (76b1407): general's
+  # 108 were 5 % of its mix and of the textures before.
+  [[ -f runs/general2/photo-names.txt ]] || awk 'NR % 5 == 1 { print "photo_" $0 }' runs/general2/real-train-add.txt \
+    > runs/general2/photo-names.txt
+  "$dataset" --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
+    --renderer blender --textures photo --views 30 -j 2 -q > runs/general2/photo.json || true
   mkdir -p runs/general2/clouds
   local f
-  for f in runs/general/clouds/*.lcloud runs/general2/{real-raster,realval-raster,ri-blender}/clouds/*.lcloud; do
+  for f in runs/general/clouds/*.lcloud runs/general2/{real-raster,realval-raster,ri-blender,photo-blender}/clouds/*.lcloud; do
     ln -sfn "$(realpath "$f")" runs/general2/clouds/
   done
   { cat runs/general/train.txt
-    for f in runs/general2/{real-raster,ri-blender}/clouds/*.lcloud; do basename "$f" .lcloud; done; } | sort -u > runs/general2/train.txt
+    for f in runs/general2/{real-raster,ri-blender,photo-blender}/clouds/*.lcloud; do basename "$f" .lcloud; done; } | sort -u > runs/general2/train.txt
   { grep -v -x -F -f runs/general/realval-names.txt runs/general/val.txt
     for f in runs/general2/realval-raster/clouds/*.lcloud; do basename "$f" .lcloud; done; } | sort -u > runs/general2/val.txt
   echo "general2-data: $(wc -l < runs/general2/train.txt) training and $(wc -l < runs/general2/val.txt) validation clouds in runs/general2/clouds"
@@ -54,4 +61,34 @@ step_general2_train() {
   local resume=()
   [[ -d runs/general2-model/checkpoints ]] && resume=(--resume)
   "$build_dir/train/lc2wf-train" experiments/configs/general2.json "${resume[@]}"
+}
+
+# general2-val WEIGHTS TAG [FLAGS...]: WEIGHTS with lc2wf-infer FLAGS on general2's validation clouds -> runs/general2-val/TAG:
+# real/ (414 real buildings, per source, roof kind and height band), ri/ (100 Roof-Image, Blender), gen/ (60
+# generated), and one row of runs/general2-val/table.md (a finished part is kept, so a killed run resumes).
+step_general2_val() {
+  [[ $# -ge 2 ]] || die 2 "general2-val needs WEIGHTS and TAG"
+  local weights=$1 tag=$2 out
+  shift 2
+  out=runs/general2-val/$tag
+  mkdir -p "$out"
+  bench/real/score_groups.sh "$weights" runs/general2/realval-raster/clouds val "$out/real" "$@" > /dev/null
+  [[ -f $out/ri/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/general/rival-blender/clouds \
+    --split runs/general/rival-names.txt -o "$out/ri" -q --method "$tag" "$@" > /dev/null
+  [[ -s $out/gen-names.txt ]] || ls runs/general/genval-raster/clouds | sed -n 's/\.lcloud$//p' > "$out/gen-names.txt"
+  [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/general/genval-raster/clouds \
+    --split "$out/gen-names.txt" -o "$out/gen" -q --method "$tag" "$@" > /dev/null
+  python3 - "$out" "$tag" "$*" >> runs/general2-val/table.md <<'PY'
+import json, os, sys
+out, tag, flags = sys.argv[1:4]
+def cell(path):
+    m = json.load(open(path))
+    return f"{100*m['vertex_avg']['ap']:.1f} / {100*m['edge_avg']['ap']:.1f} / {m['wed']['total_num']:.2f}"
+def group(name):
+    p = os.path.join(out, 'real', 'eval', name, 'metrics.json')
+    return cell(p) if os.path.exists(p) else '-'
+print(f"| {tag} | {flags or '-'} | {group('all')} | {group('height_ge20_m')} | {group('source_vienna')} | "
+      f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} |")
+PY
+  tail -1 runs/general2-val/table.md
 }
