@@ -62,7 +62,7 @@
 #                 (default models/general, models/dense) scored by default and with 8 test-time views, the real
 #                 split per source, roof kind and height band -> runs/general-eval/MODEL-ttN/{real,ri}
 #   general2-data  general-data's mix plus the real training buildings of the kinds general failed on (every 3D
-#                 BAG, Vienna and >= 10 m one, NRW's rarer roofs), 1 in 5 of them also photo-like (Blender), and
+#                 BAG, Vienna and >= 10 m one, NRW's rarer roofs), 1 in 10 of them also photo-like (Blender), and
 #                 300 Roof-Image training buildings as 30-view Blender clouds; validation with the whole real
 #                 validation split (414) -> runs/general2
 #   general2-train experiments/configs/general2.json: models/general fine-tuned on it -> runs/general2-model

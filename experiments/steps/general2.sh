@@ -2,7 +2,7 @@
 # lacked (experiments/README.md, "General model: the whole mix"): real training buildings of the kinds it
 # failed on (every 3D BAG, Vienna and >= 10 m one, NRW's complex, multi-level flat and hipped roofs, 100 of its
 # mixed ones; raster), Roof-Image training buildings as 30-view Blender clouds (its edge stage had learnt the
-# raster look) and a larger photo-like share. Validation: the whole real validation split (414 buildings,
+# raster look) and more photo-like clouds. Validation: the whole real validation split (414 buildings,
 # raster: with Vienna, 3D BAG and buildings over 20 m) besides general's generated and Roof-Image validation
 # clouds (sourced by experiments/run.sh; needs general-data's clouds).
 
@@ -36,9 +36,9 @@ PY
   link_meshes runs/general2/ri-meshes configs/splits/train.txt
   "$dataset" --meshes runs/general2/ri-meshes --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender \
     --renderer blender --views 30 -j 2 -q > runs/general2/ri.json || true
-  # Photo-like clouds of every 5th added real building with the textures COLMAP registers (76b1407): general's
+  # Photo-like clouds of every 10th added real building with the textures COLMAP registers (76b1407): general's
   # 108 were 5 % of its mix and of the textures before.
-  [[ -f runs/general2/photo-names.txt ]] || awk 'NR % 5 == 1 { print "photo_" $0 }' runs/general2/real-train-add.txt \
+  [[ -f runs/general2/photo-names.txt ]] || awk 'NR % 10 == 1 { print "photo_" $0 }' runs/general2/real-train-add.txt \
     > runs/general2/photo-names.txt
   "$dataset" --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
     --renderer blender --textures photo --views 30 -j 2 -q > runs/general2/photo.json || true
