@@ -47,7 +47,7 @@ wireframe and a note, never a failure.
   --edge-support-everywhere  apply --edge-support to every cloud, also full orbits and clouds without cameras
   --judge-degree-above N  elsewhere, still apply --edge-support (by lines alone) to the edges of junctions
                       with more than N edges, where the edge model accepted a near-complete subgraph
-                      (0 = never)
+                      (default 8; 0 = never)
   --edge-cameras N    cameras that must have had an edge in view (in front, inside the image, not behind
                       the block over the wireframe's footprint) to keep it without line support
                       (default 2; 0 = the lines alone decide)

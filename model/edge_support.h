@@ -30,7 +30,8 @@ struct EdgeSupportOptions {
   // still judged, by their lines alone (0: never). A building's corner meets a few edges; where the edge model
   // accepts a near-complete subgraph (tall blocks, dense clutter) one junction meets dozens, most of them
   // running through the building where no line is, and every camera sees the inside of a building's hull.
-  int judge_degree_above = 0;
+  // Chosen on validation (infer/README.md, "Over-connected junctions"): no Roof-Image score moves at 8.
+  int judge_degree_above = 8;
 
   bool enabled() const { return min_support > 0; }
   void Check() const;  // throws std::invalid_argument naming the bad field

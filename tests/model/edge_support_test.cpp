@@ -186,6 +186,7 @@ TEST(EdgeSupport, BadOptionsAndInputsAreNamed) {
 TEST(EdgeSupport, FlagSetsTheShareAndReleaseQuirksTurnItOff) {
   EXPECT_GT(PostProcessOptions{}.edge_support.min_support, 0.0);
   EXPECT_EQ(PostProcessOptions::release_quirks().edge_support.min_support, 0.0);
+  EXPECT_GT(PostProcessOptions{}.edge_support.judge_degree_above, 0);  // over-connected junctions are judged
   std::vector<std::string> args = {"x", "--edge-support", "0.5"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
