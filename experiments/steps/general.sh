@@ -96,8 +96,8 @@ step_general_data() {
 step_general_train() {
   need_binary "$build_dir/train/lc2wf-train" lc2wf-train
   [[ -s runs/general/train.txt ]] || die 3 "no training list: run experiments/run.sh general-data first"
-  local resume=()
-  [[ -d runs/general-model/checkpoints ]] && resume=(--resume)
+  local resume
+  resume_or_restore general-model
   "$build_dir/train/lc2wf-train" configs/general.json "${resume[@]}"
 }
 

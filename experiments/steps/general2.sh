@@ -58,8 +58,8 @@ PY
 step_general2_train() {
   need_binary "$build_dir/train/lc2wf-train" lc2wf-train
   [[ -s runs/general2/train.txt ]] || die 3 "no training list: run experiments/run.sh general2-data first"
-  local resume=()
-  [[ -d runs/general2-model/checkpoints ]] && resume=(--resume)
+  local resume
+  resume_or_restore general2-model
   "$build_dir/train/lc2wf-train" experiments/configs/general2.json "${resume[@]}"
 }
 
