@@ -16,6 +16,7 @@
 #include "core/matmul_precision.h"
 #include "core/util/cli.h"
 #include "dataset/formats/cloud_input.h"
+#include "dataset/geometry/wireframe_graph.h"
 #include "dataset/splits/splits.h"
 #include "model/ap_metric.h"
 #include "infer/batch_inference.h"
@@ -118,8 +119,7 @@ int run(int argc, char** argv) {
       points[s] += static_cast<int64_t>(at[s].positions.size());
     }
     // What the GT junctions without any candidate within the largest η look like.
-    std::vector<int> degree(gt.size(), 0);
-    for (const auto& e : cloud.wireframe.edges) ++degree[e[0]], ++degree[e[1]];
+    const std::vector<int> degree = junction_degrees(cloud.wireframe);
     for (size_t g = 0; g < gt.size(); ++g) {
       const bool low = gt[g].z() < 0.5;
       gt_low += low;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "dataset/geometry/wireframe_graph.h"
 #include "model/edge_visibility.h"
 
 namespace lc2wf {
@@ -31,8 +32,7 @@ SupportedEdges keep_supported_edges(const ScoredWireframe& in, const std::vector
     out.wireframe = in;
     return out;
   }
-  std::vector<int> degree(in.wireframe.junctions.size(), 0);
-  for (const auto& [a, b] : in.wireframe.edges) ++degree[a], ++degree[b];
+  const std::vector<int> degree = junction_degrees(in.wireframe);
   const SegmentSupport support(segments);
   const bool ask_cameras = every && options.min_cameras > 0 && !cameras.empty();
   const FootprintOccluder occluder(ask_cameras ? in.wireframe : Wireframe{});

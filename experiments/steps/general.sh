@@ -40,14 +40,14 @@ open(sys.argv[2], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
 }
 
-# general_list LIST PART...: links the clouds of runs/general/PART/clouds into runs/general/clouds and writes
-# their names, sorted, to LIST (the training and validation lists of configs/general.json).
+# general_list MIX LIST PART...: links the clouds of runs/PART/clouds into runs/MIX/clouds and writes their
+# names, sorted, to LIST (the training and validation lists of configs/general.json and its successors).
 general_list() {
-  local list=$1 part f
-  shift
-  mkdir -p runs/general/clouds
+  local mix=$1 list=$2 part f
+  shift 2
+  mkdir -p "runs/$mix/clouds"
   for part in "$@"; do
-    for f in runs/general/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" runs/general/clouds/; basename "$f" .lcloud; done
+    for f in runs/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/$mix/clouds/"; basename "$f" .lcloud; done
   done | sort > "$list"
 }
 
@@ -87,8 +87,8 @@ step_general_data() {
   [[ -f runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
   "$dataset" --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
     --views 30 -j 2 -q > runs/general/rival.json || true
-  general_list runs/general/train.txt gen-raster real-raster riaug-raster ri-raster photo-blender
-  general_list runs/general/val.txt genval-raster realval-raster rival-blender
+  general_list general runs/general/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender}
+  general_list general runs/general/val.txt general/{genval-raster,realval-raster,rival-blender}
   echo "general-data: $(wc -l < runs/general/train.txt) training and $(wc -l < runs/general/val.txt) validation clouds in runs/general/clouds"
 }
 

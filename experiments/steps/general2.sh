@@ -42,15 +42,9 @@ PY
     > runs/general2/photo-names.txt
   "$dataset" --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
     --renderer blender --textures photo --views 30 -j 2 -q > runs/general2/photo.json || true
-  mkdir -p runs/general2/clouds
-  local f
-  for f in runs/general/clouds/*.lcloud runs/general2/{real-raster,realval-raster,ri-blender,photo-blender}/clouds/*.lcloud; do
-    ln -sfn "$(realpath "$f")" runs/general2/clouds/
-  done
-  { cat runs/general/train.txt
-    for f in runs/general2/{real-raster,ri-blender,photo-blender}/clouds/*.lcloud; do basename "$f" .lcloud; done; } | sort -u > runs/general2/train.txt
-  { grep -v -x -F -f runs/general/realval-names.txt runs/general/val.txt
-    for f in runs/general2/realval-raster/clouds/*.lcloud; do basename "$f" .lcloud; done; } | sort -u > runs/general2/val.txt
+  general_list general2 runs/general2/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender} \
+    general2/{real-raster,ri-blender,photo-blender}
+  general_list general2 runs/general2/val.txt general/{genval-raster,rival-blender} general2/realval-raster
   echo "general2-data: $(wc -l < runs/general2/train.txt) training and $(wc -l < runs/general2/val.txt) validation clouds in runs/general2/clouds"
 }
 

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <set>
 
+#include "dataset/geometry/wireframe_graph.h"
+
 namespace lc2wf {
 namespace {
 
@@ -145,21 +147,12 @@ constexpr long kStepsPerPair = 24;
 }  // namespace
 
 std::vector<int> edges_in_plane(const Wireframe& wf, const Plane& plane, double distance) {
-  std::vector<int> out;
-  for (size_t e = 0; e < wf.edges.size(); ++e)
-    if (std::abs(plane.distance(wf.junctions[wf.edges[e][0]])) <= distance &&
-        std::abs(plane.distance(wf.junctions[wf.edges[e][1]])) <= distance)
-      out.push_back(static_cast<int>(e));
-  return out;
+  return PlaneEdgeFinder(wf)(plane, distance);
 }
 
 std::vector<CandidatePlane> candidate_planes(const Wireframe& wf, const SurfaceOptions& o, WorkBudget* budget) {
   const int n = static_cast<int>(wf.junctions.size());
-  std::vector<std::vector<int>> incident(n);
-  for (size_t e = 0; e < wf.edges.size(); ++e) {
-    incident[wf.edges[e][0]].push_back(static_cast<int>(e));
-    incident[wf.edges[e][1]].push_back(static_cast<int>(e));
-  }
+  const std::vector<std::vector<int>> incident = incident_edges(wf);
   const double min_sin = std::sin(o.min_edge_angle_deg * M_PI / 180);
   const double cos_merge = std::cos(o.plane_angle_deg * M_PI / 180);
   // Two unit normals within the merge angle (up to sign) differ by at most this chord in each coordinate.

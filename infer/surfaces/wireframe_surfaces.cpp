@@ -265,6 +265,14 @@ std::optional<Attempt> closed_prism(const Attempt& a, double ground, const Surfa
   return best;
 }
 
+// The wireframe cleaned (wireframe_cleanup.h) when the budget pays for its merges and splits: every pair of
+// junctions, every edge against every junction.
+std::optional<Wireframe> clean_within(const Wireframe& wf, const SurfaceOptions& o, WorkBudget& budget) {
+  const long j = static_cast<long>(wf.junctions.size()), e = static_cast<long>(wf.edges.size());
+  if (!budget.charge(j * (j - 1) / 2 + e * j, "cleaning")) return std::nullopt;
+  return clean_wireframe(wf, o.merge_distance_m);
+}
+
 // The search once the graph is known to be searchable; `budget` pays for its steps.
 SurfaceModel search(const Wireframe& wireframe, const SurfaceOptions& o, WorkBudget& budget) {
   // A model without a finished search: no faces, the budget's reason.
@@ -278,9 +286,9 @@ SurfaceModel search(const Wireframe& wireframe, const SurfaceOptions& o, WorkBud
     if (budget.exhausted() && !a.model.closed_solid()) a.model.reasons.push_back(budget.reason());
     return std::move(a.model);
   };
-  const long junctions = static_cast<long>(wireframe.junctions.size()), edges = static_cast<long>(wireframe.edges.size());
-  if (!budget.charge(junctions * (junctions - 1) / 2 + edges * junctions, "cleaning")) return stopped();  // merges, splits
-  const Wireframe cleaned = clean_wireframe(wireframe, o.merge_distance_m);
+  const std::optional<Wireframe> clean = clean_within(wireframe, o, budget);
+  if (!clean) return stopped();
+  const Wireframe& cleaned = *clean;
   Attempt first = build(cleaned, o, budget);
   if (first.stopped) return stopped();
   if (!o.complete_walls) return std::move(first.model);
@@ -296,9 +304,9 @@ SurfaceModel search(const Wireframe& wireframe, const SurfaceOptions& o, WorkBud
   // The faces' sides, the edges, each eave corner's foot against the junctions.
   if (!budget.charge(first_sides + static_cast<long>(cleaned.edges.size()) + cj * cj, "walls down to the ground")) return keep(first);
   if (!complete_walls(extended, first, o)) return std::move(first.model);
-  const long ej = static_cast<long>(extended.junctions.size()), ee = static_cast<long>(extended.edges.size());
-  if (!budget.charge(ej * (ej - 1) / 2 + ee * ej, "cleaning")) return keep(first);
-  Attempt second = build(clean_wireframe(extended, o.merge_distance_m), o, budget);
+  const std::optional<Wireframe> clean_extended = clean_within(extended, o, budget);
+  if (!clean_extended) return keep(first);
+  Attempt second = build(*clean_extended, o, budget);
   if (second.stopped) return keep(first);
   if (second.model.closed_solid()) return std::move(second.model);
   if (ground && o.prism_walls)
@@ -346,20 +354,17 @@ SurfaceModel surfaces_from_wireframe(const Wireframe& wireframe, const std::vect
   for (size_t e = 0; e < scores.size(); ++e)
     if (scores[e] >= o.min_edge_score) confident.edges.push_back(wireframe.edges[e]);
   WorkBudget budget(o.max_work_steps);  // one budget for both searches
+  const auto finish = [&](SurfaceModel model) {
+    model.work_steps = budget.used();
+    return model;
+  };
   SurfaceModel m = surfaces_within(confident.edges.size() == wireframe.edges.size() ? wireframe : confident, o, budget);
-  if (confident.edges.size() == wireframe.edges.size() || m.closed_solid() || budget.exhausted()) {
-    m.work_steps = budget.used();
-    return m;
-  }
+  if (confident.edges.size() == wireframe.edges.size() || m.closed_solid() || budget.exhausted()) return finish(std::move(m));
   SurfaceModel all = surfaces_within(wireframe, o, budget);
-  if (all.closed_solid()) {
-    all.work_steps = budget.used();
-    return all;
-  }
+  if (all.closed_solid()) return finish(std::move(all));
   // The confident edges' faces stay; when the search of all the edges stopped at the budget, they say so.
   if (budget.exhausted()) m.reasons.push_back("all edges: " + budget.reason());
-  m.work_steps = budget.used();
-  return m;
+  return finish(std::move(m));
 }
 
 }  // namespace lc2wf

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "dataset/geometry/wireframe_graph.h"
 #include "infer/prediction_io.h"
 #include "infer/surfaces/plane_candidates.h"
 #include "infer/surfaces/plane_faces.h"
@@ -40,11 +41,7 @@ std::vector<CandidatePlane> candidate_planes_by_scan(const Wireframe& wf, const 
     double offset() const { return offset_sum / votes; }
   };
   const int n = static_cast<int>(wf.junctions.size());
-  std::vector<std::vector<int>> incident(n);
-  for (size_t e = 0; e < wf.edges.size(); ++e) {
-    incident[wf.edges[e][0]].push_back(static_cast<int>(e));
-    incident[wf.edges[e][1]].push_back(static_cast<int>(e));
-  }
+  const std::vector<std::vector<int>> incident = incident_edges(wf);
   const double min_sin = std::sin(o.min_edge_angle_deg * M_PI / 180);
   const double cos_merge = std::cos(o.plane_angle_deg * M_PI / 180);
   std::vector<Cluster> clusters;
