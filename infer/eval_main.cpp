@@ -70,6 +70,8 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
                   in every cloud; --judge-degree-above N: elsewhere at junctions of more than N edges
                   (see lc2wf-infer --help)
   --max-pairs N, --max-pairs-per-junction K  with --weights: the pair cap (see lc2wf-infer --help)
+  --crossing-distance M  with --weights: of two crossing edges keep the higher-scoring one (default 0.25 m;
+                  0 = keep both; see lc2wf-infer --help)
   --nms-radius M  with --weights: point-NMS radius of the candidate junctions (default 0.5 m)
   --max-offset M  with --weights: ignore candidates regressed more than M metres from their sample point
                   (default 0.75; 0 = every candidate; see lc2wf-infer --help)
@@ -182,7 +184,7 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
   if (a.weights.empty() && (a.post.any() || a.previews || a.format != "auto" || a.precision != "fp32"))
     throw UsageError(
-        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --edge-support, --edge-support-everywhere, --judge-degree-above, --edge-cameras, --nms-radius, --max-offset, --sampling-passes, --density-seeds, --test-time-views, --edge-test-time-views, --max-segment-length, --max-pairs, --max-pairs-per-junction, --previews, --format and "
+        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --edge-support, --edge-support-everywhere, --judge-degree-above, --edge-cameras, --nms-radius, --max-offset, --sampling-passes, --density-seeds, --test-time-views, --edge-test-time-views, --max-segment-length, --max-pairs, --max-pairs-per-junction, --crossing-distance, --previews, --format and "
         "--precision only apply with --weights");
   a.post.options();  // checks the values before anything is written
 #if LC2WF_EVAL_WITH_WEIGHTS

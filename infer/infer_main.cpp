@@ -48,6 +48,9 @@ wireframe and a note, never a failure.
   --judge-degree-above N  elsewhere, still apply --edge-support (by lines alone) to the edges of junctions
                       with more than N edges, where the edge model accepted a near-complete subgraph
                       (default 8; 0 = never)
+  --crossing-distance M  of two edges that pass within M metres of each other away from their ends (a
+                      building's edges meet only at junctions), keep the higher-scoring one (default 0.25;
+                      0 = keep both)
   --edge-cameras N    cameras that must have had an edge in view (in front, inside the image, not behind
                       the block over the wireframe's footprint) to keep it without line support
                       (default 2; 0 = the lines alone decide)

@@ -33,11 +33,12 @@ struct PostProcessFlags {
   bool max_segment_length_auto = false;          // --max-segment-length auto
   std::optional<int64_t> max_pairs;              // --max-pairs N
   std::optional<int64_t> max_pairs_per_junction; // --max-pairs-per-junction N
+  std::optional<double> crossing_distance;       // --crossing-distance M
 
   bool any() const {
     return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || judge_degree || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
-           max_pairs || max_pairs_per_junction;
+           max_pairs || max_pairs_per_junction || crossing_distance;
   }
 
   // Consumes argv[i] (and its value) when it is one of these flags.
@@ -59,6 +60,7 @@ struct PostProcessFlags {
     else if (flag == "--edge-test-time-views") edge_test_time_views = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-pairs") max_pairs = int_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-pairs-per-junction") max_pairs_per_junction = int_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--crossing-distance") crossing_distance = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-segment-length") {
       const std::string value = flag_value(argc, argv, i);
       max_segment_length_auto = value == "auto";
@@ -101,7 +103,9 @@ struct PostProcessFlags {
     if (max_pairs) o.pair_cap.max_pairs = static_cast<int>(std::clamp<int64_t>(*max_pairs, -1, 1 << 30));
     if (max_pairs_per_junction)
       o.pair_cap.max_pairs_per_junction = static_cast<int>(std::clamp<int64_t>(*max_pairs_per_junction, -1, 1 << 30));
-    check_options([&] { o.Check(); }, {{"JunctionSelectionOptions.min_confidence", "--min-confidence"},
+    if (crossing_distance) o.crossing_distance_m = *crossing_distance;
+    check_options([&] { o.Check(); }, {{"PostProcessOptions.crossing_distance_m", "--crossing-distance"},
+                                       {"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"EdgeSupportOptions.min_support", "--edge-support"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "dataset/geometry/segment_crossing.h"
 #include "model/ap_metric.h"
 
 namespace lc2wf {
@@ -167,6 +168,36 @@ int line_nms(const std::vector<Vec3>& pts, std::vector<Edge>& edges, const PostP
   return removed;
 }
 
+// Not in the release: visited by descending score, an edge that crosses an edge already kept is dropped.
+int remove_crossing_edges(const std::vector<Vec3>& pts, std::vector<Edge>& edges, const PostProcessOptions& o) {
+  if (o.crossing_distance_m <= 0.0) return 0;
+  constexpr double kMinCrossingAngleDeg = 10.0;  // closer to parallel is an overlap, line NMS's case
+  std::vector<int> order(edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return edges[x].weight > edges[y].weight; });
+  std::vector<int> kept_order;
+  std::vector<char> dropped(edges.size(), 0);
+  for (int e : order) {
+    const Edge& a = edges[e];
+    for (int k : kept_order) {
+      const Edge& b = edges[k];
+      if (a.a == b.a || a.a == b.b || a.b == b.a || a.b == b.b) continue;
+      if (segments_cross(pts[a.a], pts[a.b], pts[b.a], pts[b.b], o.crossing_distance_m, o.crossing_end_margin_m,
+                         kMinCrossingAngleDeg)) {
+        dropped[e] = 1;
+        break;
+      }
+    }
+    if (!dropped[e]) kept_order.push_back(e);
+  }
+  std::vector<Edge> kept;
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (!dropped[e]) kept.push_back(edges[e]);
+  const int removed = static_cast<int>(edges.size() - kept.size());
+  edges = std::move(kept);
+  return removed;
+}
+
 ScoredWireframe to_wireframe(const PostProcessInput& in, const std::vector<Edge>& edges) {
   ScoredWireframe all;
   all.wireframe.junctions = in.junctions;
@@ -216,6 +247,7 @@ PostProcessResult post_process(const PostProcessInput& in, const PostProcessOpti
   out.stats.isolated_edges = remove_low_degree(n, edges, /*both_endpoints=*/true);
   merge_junctions(in, pruned, o, edges, out);
   out.stats.line_nms_edges = line_nms(in.junctions, edges, o);
+  out.stats.crossing_edges = remove_crossing_edges(in.junctions, edges, o);
   out.stats.dangling_edges = remove_low_degree(n, edges, /*both_endpoints=*/false);
   if (edges.empty()) out.notes.push_back("every candidate edge was removed by the clean-up: empty wireframe");
   out.wireframe = to_wireframe(in, edges);

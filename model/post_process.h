@@ -39,6 +39,7 @@ struct PostProcessStats {
   int transferred_edges = 0;   // edges moved onto a surviving junction (sound rule)
   int merge_removed_edges = 0; // edges deleted by the merge (release rule, or duplicates/degenerate after transfer)
   int line_nms_edges = 0;      // removed by line NMS
+  int crossing_edges = 0;      // removed: crossed a higher-scoring edge
   int dangling_edges = 0;      // removed: an endpoint of degree 1
 };
 
@@ -51,8 +52,8 @@ struct PostProcessResult {
   std::vector<std::string> notes;  // degenerate cases met on the way
 };
 
-// Identical-pair pruning, candidate edges, isolated-edge removal, Hamming junction merge, line NMS and
-// dangling-edge removal. Throws std::invalid_argument on malformed input (bad indices, repeated pairs,
+// Identical-pair pruning, candidate edges, isolated-edge removal, Hamming junction merge, line NMS, crossing
+// edges and dangling-edge removal. Throws std::invalid_argument on malformed input (bad indices, repeated pairs,
 // probabilities outside [0, 1]).
 PostProcessResult post_process(const PostProcessInput& input, const PostProcessOptions& options);
 

@@ -34,6 +34,10 @@ void PostProcessOptions::Check() const {
           ">= 0 metres", junction_merge_distance);
   require(std::isfinite(line_nms_distance) && line_nms_distance >= 0.0, "line_nms_distance", ">= 0 metres",
           line_nms_distance);
+  require(std::isfinite(crossing_distance_m) && crossing_distance_m >= 0.0 && crossing_distance_m <= 10.0,
+          "crossing_distance_m", "in [0, 10] metres (0 = off)", crossing_distance_m);
+  require(std::isfinite(crossing_end_margin_m) && crossing_end_margin_m >= 0.0 && crossing_end_margin_m <= 10.0,
+          "crossing_end_margin_m", "in [0, 10] metres", crossing_end_margin_m);
   if (transfer_edges_on_merge && pruned_junctions_in_merge)
     throw std::invalid_argument(
         "PostProcessOptions.pruned_junctions_in_merge cannot be combined with transfer_edges_on_merge: edges would "
@@ -47,6 +51,7 @@ PostProcessOptions PostProcessOptions::release_quirks() {
   o.transfer_edges_on_merge = false;
   o.pruned_junctions_in_merge = true;
   o.line_nms_keep_higher = false;
+  o.crossing_distance_m = 0.0;  // the release keeps crossing edges
   o.max_segment_length_m = 0.0;  // the release runs on the cloud as it is
   o.edge_support.min_support = 0.0;  // the release keeps every edge the post-processing leaves
   o.edge_support.min_cameras = 0;

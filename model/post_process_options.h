@@ -58,6 +58,13 @@ struct PostProcessOptions {
   double line_nms_distance = 1.0;    // metres (release: 20 raw)
   bool line_nms_keep_higher = true;  // release false: edges are visited by ascending score, so the lower one stays
 
+  // Not in the release (keeps both): of two edges that cross - closest points within crossing_distance_m of
+  // each other and at least crossing_end_margin_m from every end (dataset/geometry/segment_crossing.h) - the
+  // lower-scoring one is dropped, since a building's edges meet only at junctions. 0 = off; 0.25 chosen on
+  // validation (infer/README.md, "Crossing edges").
+  double crossing_distance_m = 0.25;
+  double crossing_end_margin_m = 0.3;
+
   // Not in the release (keeps every edge): after the clean-up, edges the cloud's lines do not run along are
   // dropped, with the junctions left without an edge (model/edge_support.h): nothing on unphotographed sides.
   EdgeSupportOptions edge_support;

@@ -190,6 +190,27 @@ TEST(PostProcess, LineNmsKeepsHigherOrLowerScore) {
   EXPECT_EQ(r.stats.dangling_edges, 2);
 }
 
+TEST(PostProcess, CrossingEdgesKeepTheHigherScore) {
+  // The square 0-1-2-3 of 10 m and both its diagonals: 0-2 (.7) crosses 1-3 (.5) at the centre.
+  const auto in = make_input(kSquare, {.99, .98, .97, .96},
+                             {{{0, 1}, {0, .9}}, {{1, 2}, {0, .9}}, {{2, 3}, {0, .9}}, {{0, 3}, {0, .9}},
+                              {{0, 2}, {0, .7}}, {{1, 3}, {0, .5}}});
+  PostProcessOptions o = no_merge_no_nms(PostProcessOptions{});
+  o.crossing_distance_m = 0.0;  // off: both diagonals stay
+  EXPECT_EQ(post_process(in, o).wireframe.wireframe.edges.size(), 6u);
+  o.crossing_distance_m = 0.25;  // the default
+  const auto r = post_process(in, o);
+  EXPECT_EQ(r.stats.crossing_edges, 1);
+  const auto kept = edge_set(r.wireframe);
+  EXPECT_EQ(kept.size(), 5u);
+  EXPECT_TRUE(kept.count({{0, 0, 0}, {10, 10, 0}}));   // the higher diagonal stays
+  EXPECT_FALSE(kept.count({{0, 10, 0}, {10, 0, 0}}));  // the lower one goes
+  EXPECT_EQ(PostProcessOptions{}.crossing_distance_m, 0.25);
+  EXPECT_EQ(PostProcessOptions::release_quirks().crossing_distance_m, 0.0);  // the release keeps both
+  o.crossing_distance_m = -1.0;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+}
+
 TEST(PostProcess, FourReleaseCrashInputsGiveEmptyOrValidResults) {
   // Empty input.
   const auto empty = post_process(PostProcessInput{}, PostProcessOptions{});
@@ -276,6 +297,7 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
   EXPECT_TRUE(std::isinf(release.selection.max_offset_m));  // every candidate, as the release
   EXPECT_GT(none.selection.refine.radius, 0.0);
   EXPECT_EQ(parse_flags({"--no-junction-refine"}).options().selection.refine.radius, 0.0);
+  EXPECT_DOUBLE_EQ(parse_flags({"--crossing-distance", "0.2"}).options().crossing_distance_m, 0.2);
   EXPECT_FALSE(PostProcessFlags{}.any());
   EXPECT_TRUE(parse_flags({"--min-confidence", "0.85"}).any());
 }
@@ -297,6 +319,7 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--max-offset", "inf"}), HasSubstr("--max-offset expects a finite number"));
   EXPECT_EQ(message({"--max-offset", "-1"}), "");  // <= 0: every candidate
   EXPECT_THAT(message({"--sampling-passes", "0"}), HasSubstr("--sampling-passes"));
+  EXPECT_THAT(message({"--crossing-distance", "-1"}), HasSubstr("--crossing-distance must be in [0, 10]"));
   EXPECT_THAT(message({"--sampling-passes", "9"}), HasSubstr("--sampling-passes must be in [1, 8]"));
   EXPECT_EQ(parse_flags({"--sampling-passes", "2"}).options().selection.sampling_passes, 2);
   EXPECT_EQ(PostProcessFlags{}.options().selection.sampling_passes, 1);  // the release's one pass
