@@ -51,5 +51,26 @@ TEST(LsdDetector, LengthFilterCapAndDownscaling) {
   EXPECT_TRUE(detect_segments(cv::Mat(100, 100, CV_8UC1, cv::Scalar(7)), o).empty());
 }
 
+TEST(LsdDetector, ScaledOptionsKeepTheLimitsOfTheSetImageSize) {
+  LsdOptions o;
+  o.max_segments = 1000;
+  o.min_length_frac = 0.005;
+  const LsdOptions same = scaled_lsd(o, 1.0);
+  EXPECT_EQ(same.max_segments, 1000);
+  EXPECT_EQ(same.min_length_frac, 0.005);
+  const LsdOptions x3 = scaled_lsd(o, 3.0);  // 3 x the pixels per side: 9 x the area
+  EXPECT_EQ(x3.max_segments, 9000);
+  EXPECT_NEAR(x3.min_length_frac, 0.005 / 3, 1e-15);  // the same shortest length in set-size pixels
+  EXPECT_EQ(x3.max_side, 0);                         // never downscaled stays so
+  // A drawing at 3 x the resolution yields (about) the segments of the small one, at 3 x their length.
+  cv::Mat small(240, 320, CV_8UC1, cv::Scalar(200)), large;
+  cv::rectangle(small, cv::Rect(60, 50, 150, 100), cv::Scalar(40), cv::FILLED);
+  cv::resize(small, large, cv::Size(), 3.0, 3.0, cv::INTER_NEAREST);
+  const auto a = detect_segments(small, o), b = detect_segments(large, x3);
+  ASSERT_FALSE(a.empty());
+  ASSERT_FALSE(b.empty());
+  EXPECT_NEAR(b.front().length(), 3.0 * a.front().length(), 0.05 * 3.0 * a.front().length());
+}
+
 }  // namespace
 }  // namespace lc2wf

@@ -149,6 +149,30 @@ TEST(DatasetRun, ShardsResumesAndReportsFailures) {
   EXPECT_EQ(bx, by);
 }
 
+// --max-metres-per-pixel: the images of a building grow (up to the side cap) and the status says how large.
+TEST(DatasetRun, FinerPixelsForLargerBuildingsAreRecorded) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_mpp_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "meshes");
+  write_polyshape(dir / "meshes" / "a_rect.polyshape", make_rect_mesh(RectBuildingSpec{}));
+  DatasetRunOptions o;
+  o.meshes = dir / "meshes";
+  o.out = dir / "out";
+  o.cameras.views = 12;
+  o.cameras.width = 160;
+  o.cameras.height = 120;
+  o.max_metres_per_pixel = 0.01;  // far finer than 160 px give any building: the cap decides
+  o.max_image_side = 480;
+  o.progress = false;
+  EXPECT_EQ(run_dataset(o)["done"], 1);
+  const auto status = nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"));
+  EXPECT_EQ(status["image_size"], nlohmann::json::array({480, 360}));
+  EXPECT_EQ(read_line_cloud(o.out / "clouds" / "a_rect.lcloud").cameras.front().width, 480);
+  o.max_image_side = 100;  // below the set size
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  fs::remove_all(dir);
+}
+
 std::set<std::string> entries(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());

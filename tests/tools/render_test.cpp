@@ -1,6 +1,7 @@
 // Software rasteriser and camera rings.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <opencv2/imgproc.hpp>
 
 #include "dataset/synthetic/synthetic_building.h"
@@ -39,6 +40,29 @@ TEST(CameraRing, FramesTheWholeBuildingWithinTheElevationBand) {
   EXPECT_NE(make_camera_ring(b.mesh.vertices, o)[5].t, cams[5].t);
   o.views = 0;
   EXPECT_THROW(make_camera_ring(b.mesh.vertices, o), std::invalid_argument);
+}
+
+TEST(CameraRing, LargerBuildingsGetFinerPixelsInTheSameFraming) {
+  CameraRingOptions o;  // 640 x 480
+  const std::vector<Vec3> house{{0, 0, 0}, {12, 8, 6}};      // diagonal 15.6 m
+  const std::vector<Vec3> block{{0, 0, 0}, {120, 40, 30}};   // diagonal 130 m
+  EXPECT_EQ(view_scale_for(block, o, 0.0, 4096), 1.0);       // off
+  EXPECT_EQ(view_scale_for(house, o, 0.05, 4096), 1.0);      // 0.024 m per pixel already
+  const double k = view_scale_for(block, o, 0.05, 4096);     // 130 / (0.05 x 640) = 4.06
+  EXPECT_NEAR(k, std::sqrt(120.0 * 120 + 40 * 40 + 30 * 30) / 32.0, 1e-12);
+  EXPECT_EQ(view_scale_for(block, o, 0.05, 1280), 2.0);      // capped at 1280 px on the longer side
+  EXPECT_EQ(view_scale_for(block, o, 0.05, 320), 1.0);       // a cap below the set size never shrinks
+  CameraRingOptions big = scaled_ring(o, 2.0);
+  EXPECT_EQ(big.width, 1280);
+  EXPECT_EQ(big.height, 960);
+  // Same framing: every camera of the scaled ring stands where the original does, with twice the focal length.
+  o.seed = big.seed = 5;
+  const auto a = make_camera_ring(block, o), b = make_camera_ring(block, big);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t v = 0; v < a.size(); ++v) {
+    EXPECT_LT((a[v].center() - b[v].center()).norm(), 1e-3 * 130);
+    EXPECT_NEAR(b[v].K(0, 0), 2.0 * a[v].K(0, 0), 1e-9);
+  }
 }
 
 TEST(RasterRenderer, DepthMapMatchesTheMeshAndFaceIds) {

@@ -34,6 +34,11 @@ options:
                               The facade or corner comes from the seed; recorded in the summary and
                               status; a building done with another capture is rendered again
   --size WxH                  image size (default 640x480)
+  --max-metres-per-pixel M    larger buildings get larger images (same framing, finer pixels): each
+                              building's images grow until its bounding-box diagonal takes at most M metres
+                              per pixel of width (default 0 = --size for every building); LSD's shortest
+                              segment and segment count follow; recorded as image_size in status/
+  --max-image-side N          the longest image side --max-metres-per-pixel may reach (default 4096)
   -j, --threads N             worker threads (default: all cores)
   --shard i/n                 process buildings k with k % n == i (for Slurm arrays, GNU parallel)
   --limit K                   at most K buildings of the shard
@@ -132,6 +137,10 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       o.capture = value();
     } else if (a == "--size") {
       std::tie(o.cameras.width, o.cameras.height) = split_pair(a, value(), 'x');
+    } else if (a == "--max-metres-per-pixel") {
+      o.max_metres_per_pixel = lc2wf::number_flag(a, value());
+    } else if (a == "--max-image-side") {
+      o.max_image_side = lc2wf::int_flag(a, value());
     } else if (a == "-j" || a == "--threads") {
       o.threads = lc2wf::threads_flag(a, value());
     } else if (a == "--shard") {
@@ -202,6 +211,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
   lc2wf::check_options([&] { o.Check(); }, {{"CameraRingOptions.views", "--views"},
                                             {"DatasetRunOptions.capture", "--capture"},
                                             {"CameraRingOptions.width/height", "--size"},
+                                            {"DatasetRunOptions.max_metres_per_pixel", "--max-metres-per-pixel"},
+                                            {"DatasetRunOptions.max_image_side", "--max-image-side"},
                                             {"RasterOptions.supersample", "--supersample"},
                                             {"RasterOptions.blur_sigma_px", "--blur"},
                                             {"BlenderOptions.engine", "--engine"},

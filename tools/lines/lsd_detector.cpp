@@ -14,6 +14,15 @@ void LsdOptions::Check() const {
   if (!(scale > 0 && scale <= 1)) throw std::invalid_argument("LsdOptions.scale must be in (0, 1]");
 }
 
+LsdOptions scaled_lsd(const LsdOptions& options, double scale) {
+  LsdOptions o = options;
+  if (!(scale > 1.0)) return o;
+  o.min_length_frac = options.min_length_frac / scale;
+  o.max_segments = static_cast<int>(std::min(std::lround(options.max_segments * scale * scale), 1L << 30));
+  if (options.max_side > 0) o.max_side = static_cast<int>(std::lround(options.max_side * scale));
+  return o;
+}
+
 std::vector<Segment2> detect_segments(const cv::Mat& image, const LsdOptions& options) {
   options.Check();
   if (image.empty()) throw std::invalid_argument("detect_segments: empty image");

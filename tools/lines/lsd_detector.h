@@ -22,6 +22,11 @@ struct LsdOptions {
   void Check() const;
 };
 
+// The options for images `scale` times larger than those `options` were set for (tools/render/camera_ring.h,
+// view_scale_for): the same shortest segment in pixels of the set size, and as many segments per set-size
+// pixel area.
+LsdOptions scaled_lsd(const LsdOptions& options, double scale);
+
 // Accepts 8-bit gray or BGR images; throws std::invalid_argument for an empty or other-typed image.
 std::vector<Segment2> detect_segments(const cv::Mat& image, const LsdOptions& options);
 

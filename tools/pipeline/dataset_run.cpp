@@ -155,6 +155,7 @@ struct Job {
   fs::path render_dir;  // Blender's output folder of this building
   PhotoScene scene;      // textures "photo": the clutter around the building
   PolyMesh scene_mesh;   // the building and that clutter (empty otherwise)
+  double view_scale = 1.0;  // its images' size over the cameras' option (DatasetRunOptions::max_metres_per_pixel)
   Json status;
   bool failed = false;
 };
@@ -174,8 +175,10 @@ void load_job(Job& job, const DatasetRunOptions& o, const BuildingCatalog& sourc
       job.status["skip_reason"] = e.reason();  // counted per reason in the summary
       throw;
     }
-    CameraRingOptions ring = capture_ring(o.cameras, o.capture);
+    job.view_scale = view_scale_for(job.building.mesh.vertices, o.cameras, o.max_metres_per_pixel, o.max_image_side);
+    CameraRingOptions ring = capture_ring(scaled_ring(o.cameras, job.view_scale), o.capture);
     ring.seed = building_seed(job.name, o.seed);
+    job.status["image_size"] = {ring.width, ring.height};
     job.cameras = make_camera_ring(job.building.mesh.vertices, ring);
     const std::string& textures = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
     if (textures == "photo") {
@@ -209,7 +212,9 @@ void finish_job(Job& job, const DatasetRunOptions& o) {
     try {
       if (o.keep_views && o.renderer == RendererKind::Raster) write_views(o.out / "views" / job.name, job.building, job.views);
       CloudBuildStats cs;
-      const LineCloud cloud = build_line_cloud(job.building, job.views, o.cloud, &cs, job.scene_mesh.faces.empty() ? nullptr : &job.scene_mesh);
+      CloudBuilderOptions cloud_options = o.cloud;
+      cloud_options.lsd = scaled_lsd(o.cloud.lsd, job.view_scale);
+      const LineCloud cloud = build_line_cloud(job.building, job.views, cloud_options, &cs, job.scene_mesh.faces.empty() ? nullptr : &job.scene_mesh);
       const auto t = Clock::now();
       write_line_cloud(cloud_path(o.out, job.name), cloud);
       job.status["seconds"]["write"] = seconds_since(t);
@@ -258,6 +263,10 @@ void DatasetRunOptions::Check() const {
   if (shard_count < 1 || shard_index < 0 || shard_index >= shard_count)
     throw std::invalid_argument("DatasetRunOptions.shard_index/shard_count must satisfy 0 <= index < count");
   if (limit < 0) throw std::invalid_argument("DatasetRunOptions.limit must be >= 0");
+  if (!(std::isfinite(max_metres_per_pixel) && max_metres_per_pixel >= 0))
+    throw std::invalid_argument("DatasetRunOptions.max_metres_per_pixel must be >= 0 (0 = off)");
+  if (max_image_side < std::max(cameras.width, cameras.height) || max_image_side > 16384)
+    throw std::invalid_argument("DatasetRunOptions.max_image_side must be in [the cameras' larger side, 16384]");
 }
 
 uint64_t building_seed(const std::string& name, uint64_t seed) {

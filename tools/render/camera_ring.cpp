@@ -84,6 +84,27 @@ void CameraRingOptions::Check() const {
     throw std::invalid_argument("CameraRingOptions.min/max_camera_height_m must both be 0 (elevation rings) or satisfy 0 < min <= max");
 }
 
+double view_scale_for(const std::vector<Vec3>& points, const CameraRingOptions& options, double max_metres_per_pixel,
+                      int max_side) {
+  if (!(max_metres_per_pixel > 0) || points.empty()) return 1.0;
+  Vec3 lo = points.front(), hi = points.front();
+  for (const Vec3& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double wanted = (hi - lo).norm() / (max_metres_per_pixel * options.width);
+  const double most = static_cast<double>(max_side) / std::max(options.width, options.height);
+  return std::clamp(wanted, 1.0, std::max(1.0, most));
+}
+
+CameraRingOptions scaled_ring(const CameraRingOptions& options, double scale) {
+  CameraRingOptions o = options;
+  o.width = static_cast<int>(std::lround(options.width * scale));
+  o.height = static_cast<int>(std::lround(options.height * scale));
+  o.focal_px = options.focal_px * scale;
+  return o;
+}
+
 Camera look_at(const Vec3& center, const Vec3& target, const Eigen::Matrix3d& K, int width, int height) {
   const Vec3 z = (target - center).normalized();
   Vec3 x = z.cross(Vec3::UnitZ());

@@ -40,6 +40,17 @@ struct CameraRingOptions {
 // Throws std::invalid_argument when `points` is empty or the options are bad.
 std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const CameraRingOptions& options);
 
+// How many times larger than `options`' width x height a building's images must be for its bounding-box
+// diagonal (the size make_camera_ring frames) to take at most `max_metres_per_pixel` per pixel of the image
+// width: 1 when it already does or the rule is off (0), else that factor, but never beyond `max_side`
+// pixels on the longer image side. The framing stays; the pixels get finer, so a 100 m block is seen as
+// sharply as a house (a fixed image size would assume the building's size).
+double view_scale_for(const std::vector<Vec3>& points, const CameraRingOptions& options, double max_metres_per_pixel,
+                      int max_side);
+
+// `options` with width, height (and a set focal_px) multiplied by `scale`, rounded.
+CameraRingOptions scaled_ring(const CameraRingOptions& options, double scale);
+
 // OpenCV-convention camera at `center` looking at `target` with world +z up in the image.
 Camera look_at(const Vec3& center, const Vec3& target, const Eigen::Matrix3d& K, int width, int height);
 
