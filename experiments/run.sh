@@ -58,9 +58,10 @@
 #                 Roof-Image training buildings, 123 of them also photo-like (Blender); validation 60 generated, 150 real (raster), 100 Roof-Image
 #                 (Blender) -> runs/general
 #   general-train configs/general.json: models/dense fine-tuned on it -> runs/general-model
-#   general-eval [MODEL...]  the real test split's raster clouds and Roof-Image's 30-view test clouds, each model
-#                 (default models/general, models/dense) scored by default and with 8 test-time views, the real
-#                 split per source, roof kind and height band -> runs/general-eval/MODEL-ttN/{real,ri}
+#   general-eval [MODEL...]  the real test split's raster clouds (lc2wf-dataset's default pixel rule, and 640 x 480
+#                 for every building as before it) and Roof-Image's 30-view test clouds, each model (default
+#                 models/general, models/dense) scored by default and with 8 test-time views, the real split per
+#                 source, roof kind and height band -> runs/general-eval/MODEL-ttN/{real,real-fixed,ri}
 #   general2-data  general-data's mix plus the real training buildings of the kinds general failed on (every 3D
 #                 BAG, Vienna and >= 10 m one, NRW's rarer roofs), 1 in 10 of them also photo-like (Blender), and
 #                 300 Roof-Image training buildings as 30-view Blender clouds; validation with the whole real

@@ -57,12 +57,12 @@ step_general_data() {
   need_binary "$dataset" lc2wf-dataset
   general_meshes
   local common=(--renderer raster --views 30 -j 2 -q)
-  "$dataset" --meshes runs/general/meshes-gen --out runs/general/gen-raster "${common[@]}" > runs/general/gen.json || true
-  "$dataset" --meshes runs/general/meshes-genval --out runs/general/genval-raster "${common[@]}" > runs/general/genval.json || true
-  "$dataset" --meshes runs/lod2-all --names runs/general/real-train-sub.txt --out runs/general/real-raster "${common[@]}" \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-gen --out runs/general/gen-raster "${common[@]}" > runs/general/gen.json || true
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-genval --out runs/general/genval-raster "${common[@]}" > runs/general/genval.json || true
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general/real-train-sub.txt --out runs/general/real-raster "${common[@]}" \
     > runs/general/real.json || true
-  "$dataset" --meshes runs/general/meshes-riaug --out runs/general/riaug-raster "${common[@]}" > runs/general/riaug.json || true
-  "$dataset" --meshes runs/general/ri-train-sub --out runs/general/ri-raster "${common[@]}" > runs/general/ri.json || true
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-riaug --out runs/general/riaug-raster "${common[@]}" > runs/general/riaug.json || true
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/ri-train-sub --out runs/general/ri-raster "${common[@]}" > runs/general/ri.json || true
   # Photo-like clouds (Blender, --textures photo: facades with windows, clutter, sun, camera noise), so photo
   # clutter is in the training distribution: every 10th generated and every 13th real training building,
   # named photo_* (links with that prefix) beside their raster clouds.
@@ -75,17 +75,17 @@ step_general_data() {
     for g in runs/lod2-all/*; do ln -sfn "$(realpath "$g")" "runs/general/lod2-photo/photo_$(basename "$g")"; done
     awk 'NR % 13 == 1 { print "photo_" $0 }' runs/general/real-train-sub.txt > runs/general/photo-names.txt
   fi
-  "$dataset" --meshes runs/general/meshes-photo --out runs/general/photo-blender --renderer blender --textures photo \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-photo --out runs/general/photo-blender --renderer blender --textures photo \
     --views 30 -j 2 -q > runs/general/photo-gen.json || true
-  "$dataset" --meshes runs/general/lod2-photo --names runs/general/photo-names.txt --out runs/general/photo-blender \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/lod2-photo --names runs/general/photo-names.txt --out runs/general/photo-blender \
     --renderer blender --textures photo --views 30 -j 2 -q > runs/general/photo-real.json || true
   # Validation: generated, real (the first 150 of configs/splits/lod2/val.txt) and Roof-Image (100 of its
   # validation split, 30-view Blender clouds as in the paper's benchmark).
   [[ -f runs/general/realval-names.txt ]] || head -150 configs/splits/lod2/val.txt > runs/general/realval-names.txt
-  "$dataset" --meshes runs/lod2-all --names runs/general/realval-names.txt --out runs/general/realval-raster "${common[@]}" \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general/realval-names.txt --out runs/general/realval-raster "${common[@]}" \
     > runs/general/realval.json || true
   [[ -f runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
-  "$dataset" --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
+  "$dataset" --max-metres-per-pixel 0 --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
     --views 30 -j 2 -q > runs/general/rival.json || true
   general_list general runs/general/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender}
   general_list general runs/general/val.txt general/{genval-raster,realval-raster,rival-blender}
@@ -101,14 +101,18 @@ step_general_train() {
   "$build_dir/train/lc2wf-train" configs/general.json "${resume[@]}"
 }
 
-# general-eval [MODEL...]: the test clouds (real LoD2 test split, raster; Roof-Image test split, 30-view Blender)
-# and the scores of each model (default models/general models/dense), by default and with 8 test-time views:
-# the real split per source, roof kind and height band (bench/real/score_groups.sh), Roof-Image with lc2wf-eval.
+# general-eval [MODEL...]: the test clouds (real LoD2 test split, raster: at lc2wf-dataset's default pixel rule
+# in runs/lod2-raster-fine, and at 640 x 480 for every building, as before that rule, in runs/lod2-raster;
+# Roof-Image test split, 30-view Blender) and the scores of each model (default models/general models/dense), by
+# default and with 8 test-time views: the real split per source, roof kind and height band
+# (bench/real/score_groups.sh; real-fixed/ for the 640 x 480 clouds), Roof-Image with lc2wf-eval.
 step_general_eval() {
   local dataset=$build_dir/tools/lc2wf-dataset
   need_binary "$dataset" lc2wf-dataset
   general_meshes
-  "$dataset" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
+  "$dataset" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster-fine --renderer raster \
+    --views 30 -j 2 -q > runs/lod2-raster-fine-summary.json || true
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
     --views 30 -j 2 -q > runs/lod2-raster-summary.json || true
   dense_test_clouds || true  # steps/clouds.sh; a failed building is named and left out
   local models=("$@") model views tag
@@ -116,7 +120,8 @@ step_general_eval() {
   for model in "${models[@]}"; do
     for views in 1 8; do
       tag=$(basename "$model")-tt$views
-      bench/real/score_groups.sh "$model" runs/lod2-raster/clouds test "runs/general-eval/$tag/real" --test-time-views "$views"
+      bench/real/score_groups.sh "$model" runs/lod2-raster-fine/clouds test "runs/general-eval/$tag/real" --test-time-views "$views"
+      bench/real/score_groups.sh "$model" runs/lod2-raster/clouds test "runs/general-eval/$tag/real-fixed" --test-time-views "$views"
       [[ -f runs/general-eval/$tag/ri/metrics.json ]] ||
         "$build_dir/infer/lc2wf-eval" --weights "$model" --data runs/dataset-30v/clouds --split configs/splits/test.txt \
           --test-time-views "$views" -o "runs/general-eval/$tag/ri" -q --method "$tag"

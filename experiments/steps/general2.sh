@@ -24,23 +24,23 @@ pick += rng.sample([r['name'] for r in rows if r['name'] not in pick and r['roof
 open(sys.argv[3], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
   local common=(--renderer raster --views 30 -j 2 -q)
-  "$dataset" --meshes runs/lod2-all --names runs/general2/real-train-add.txt --out runs/general2/real-raster "${common[@]}" \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general2/real-train-add.txt --out runs/general2/real-raster "${common[@]}" \
     > runs/general2/real.json || true
   [[ -f runs/general2/realval-names.txt ]] || cp configs/splits/lod2/val.txt runs/general2/realval-names.txt
-  "$dataset" --meshes runs/lod2-all --names runs/general2/realval-names.txt --out runs/general2/realval-raster "${common[@]}" \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general2/realval-names.txt --out runs/general2/realval-raster "${common[@]}" \
     > runs/general2/realval.json || true
   # 300 Roof-Image training buildings not in general's mix, as the paper's benchmark renders them.
   if [[ ! -f runs/general2/ri-blender-names.txt ]]; then
     sed -n '751,1050p' runs/general/ri-train-sub.txt > runs/general2/ri-blender-names.txt
   fi
   link_meshes runs/general2/ri-meshes configs/splits/train.txt
-  "$dataset" --meshes runs/general2/ri-meshes --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general2/ri-meshes --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender \
     --renderer blender --views 30 -j 2 -q > runs/general2/ri.json || true
   # Photo-like clouds of every 10th added real building with the textures COLMAP registers (76b1407): general's
   # 108 were 5 % of its mix and of the textures before.
   [[ -f runs/general2/photo-names.txt ]] || awk 'NR % 10 == 1 { print "photo_" $0 }' runs/general2/real-train-add.txt \
     > runs/general2/photo-names.txt
-  "$dataset" --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
+  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
     --renderer blender --textures photo --views 30 -j 2 -q > runs/general2/photo.json || true
   general_list general2 runs/general2/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender} \
     general2/{real-raster,ri-blender,photo-blender}

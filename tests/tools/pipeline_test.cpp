@@ -149,7 +149,8 @@ TEST(DatasetRun, ShardsResumesAndReportsFailures) {
   EXPECT_EQ(bx, by);
 }
 
-// --max-metres-per-pixel: the images of a building grow (up to the side cap) and the status says how large.
+// --max-metres-per-pixel: the images of a building grow (up to the side cap), the status says how large, and a
+// building done with another value is rendered again.
 TEST(DatasetRun, FinerPixelsForLargerBuildingsAreRecorded) {
   const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_mpp_" + std::to_string(getpid()));
   fs::remove_all(dir);
@@ -168,6 +169,10 @@ TEST(DatasetRun, FinerPixelsForLargerBuildingsAreRecorded) {
   const auto status = nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"));
   EXPECT_EQ(status["image_size"], nlohmann::json::array({480, 360}));
   EXPECT_EQ(read_line_cloud(o.out / "clouds" / "a_rect.lcloud").cameras.front().width, 480);
+  EXPECT_EQ(run_dataset(o)["processed_this_run"], 0);  // done with this rule
+  o.max_metres_per_pixel = 0.0;                        // another rule: rendered again, at the set size
+  EXPECT_EQ(run_dataset(o)["processed_this_run"], 1);
+  EXPECT_EQ(nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"))["image_size"], nlohmann::json::array({160, 120}));
   o.max_image_side = 100;  // below the set size
   EXPECT_THROW(o.Check(), std::invalid_argument);
   fs::remove_all(dir);

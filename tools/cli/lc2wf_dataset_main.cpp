@@ -36,8 +36,9 @@ options:
   --size WxH                  image size (default 640x480)
   --max-metres-per-pixel M    larger buildings get larger images (same framing, finer pixels): each
                               building's images grow until its bounding-box diagonal takes at most M metres
-                              per pixel of width (default 0 = --size for every building); LSD's shortest
-                              segment and segment count follow; recorded as image_size in status/
+                              per pixel of width (default 0.05; 0 = --size for every building); LSD's
+                              shortest segment and segment count follow; recorded as image_size in status/;
+                              a building done with another value is rendered again
   --max-image-side N          the longest image side --max-metres-per-pixel may reach (default 4096)
   -j, --threads N             worker threads (default: all cores)
   --shard i/n                 process buildings k with k % n == i (for Slurm arrays, GNU parallel)

@@ -45,13 +45,15 @@ fs::path cloud_path(const fs::path& out, const std::string& name) { return out /
 
 fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
 
-// Done with the capture asked for (statuses without one are orbits): another capture is redone.
-bool is_done(const fs::path& out, const std::string& name, const std::string& capture) {
+// Done with the capture and pixel rule asked for (statuses without them are orbits at a fixed image size):
+// a building done another way is redone.
+bool is_done(const fs::path& out, const std::string& name, const DatasetRunOptions& o) {
   const fs::path sp = status_path(out, name);
   if (!fs::exists(sp) || !fs::exists(cloud_path(out, name))) return false;
   try {
     const Json st = Json::parse(read_file(sp));
-    return st.value("ok", false) && st.value("capture", "orbit") == capture;
+    return st.value("ok", false) && st.value("capture", "orbit") == o.capture &&
+           st.value("max_metres_per_pixel", 0.0) == o.max_metres_per_pixel;
   } catch (const std::exception&) {
     return false;  // unreadable status: redo the building
   }
@@ -371,7 +373,7 @@ Json run_dataset(const DatasetRunOptions& o) {
 
   std::vector<std::string> todo;
   for (const auto& n : names)
-    if (!is_done(o.out, n, o.capture)) todo.push_back(n);
+    if (!is_done(o.out, n, o)) todo.push_back(n);
   const auto start = Clock::now();
   {
     std::mutex mu;
@@ -388,6 +390,7 @@ Json run_dataset(const DatasetRunOptions& o) {
       job.name = name;
       job.status["name"] = name;
       job.status["capture"] = o.capture;
+      job.status["max_metres_per_pixel"] = o.max_metres_per_pixel;
       job.status["seconds"] = Json::object();
       return job;
     };
@@ -463,6 +466,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["renderer"] = o.renderer == RendererKind::Raster ? "raster" : "blender";
   summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
   summary["capture"] = o.capture;
+  summary["max_metres_per_pixel"] = o.max_metres_per_pixel;
   summary["command"] = o.command_line;
   add_version_fields(summary);
   summary["processed_this_run"] = todo.size();
