@@ -48,7 +48,7 @@ general_list() {
   mkdir -p "runs/$mix/clouds"
   for part in "$@"; do
     for f in runs/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/$mix/clouds/"; basename "$f" .lcloud; done
-  done | sort > "$list"
+  done | sort -u > "$list"
 }
 
 # general-data: the raster clouds of the mix, then the training folder (links) and its split lists.
