@@ -60,8 +60,12 @@ Options:
   --intrinsics fx,fy,cx,cy  COLMAP intrinsics (OpenCV convention: pixel (0,0) = centre of top-left pixel)
   --focal-35mm F         else fx = fy = F / 36 x width (EXIF FocalLengthIn35mmFilm; default 35)
   --max-features N       SIFT features per image (default 2000)
-  --first-octave N       SIFT's first octave: -1 (default) the image doubled first, 0 at its own size
-                         (fewer, larger features found in less time)
+  --first-octave N       SIFT's first octave: -1 the image doubled first, 0 at its own size (fewer, larger
+                         features found in less time); default -1 for photos within --max-image-side, 0
+                         for larger ones (SIFT scales them down first)
+  --max-image-side N     SIFT and LSD see each photo scaled down to at most N pixels on its longer side
+                         (default 1600; their points stay in full-size pixels), so large photos cost
+                         about what 2 MP ones do
   --matcher M            exhaustive (default) or sequential (photos taken in order)
   --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
                          the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two
@@ -145,6 +149,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--focal-35mm") o.focal_35mm = number_flag(f, value());
     else if (f == "--max-features") o.colmap.max_features = int_flag(f, value());
     else if (f == "--first-octave") o.colmap.first_octave = int_flag(f, value());
+    else if (f == "--max-image-side") o.colmap.max_image_size = o.lsd.max_side = int_flag(f, value());
     else if (f == "--matcher") o.colmap.matcher = value();
     else if (f == "--min-score") o.triangulator.min_best_score = number_flag(f, value());
     else if (f == "--min-confirming-views") o.confirmation.min_other_views = int_flag(f, value());
@@ -194,6 +199,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
                                      {"ReconstructOptions: a known distance", "--known-distance"},
                                      {"ColmapOptions.max_features", "--max-features"},
                                      {"ColmapOptions.first_octave", "--first-octave"},
+                                     {"ColmapOptions.max_image_size", "--max-image-side"},
                                      {"ColmapOptions.matcher", "--matcher"},
                                      {"TriangulatorOptions.min_best_score", "--min-score"},
                                      {"LineConfirmationOptions.min_other_views", "--min-confirming-views"}});

@@ -40,7 +40,13 @@ struct ReconstructOptions {
     return o;
   }();
 
-  LsdOptions lsd;
+  // LSD sees each photo at most this large (its segments come back in full-size pixels), as SIFT does
+  // (colmap.max_image_size): the time of 2-12 MP photos stays that of a 2 MP one.
+  LsdOptions lsd = [] {
+    LsdOptions o;
+    o.max_side = 1600;
+    return o;
+  }();
   TriangulatorOptions triangulator;
   // Lines no other source view confirms are dropped before inference (dataset/photo/line_confirmation.h): in
   // photo clouds most of them are chance matches among texture lines, floating above the roof.

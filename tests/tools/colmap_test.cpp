@@ -27,6 +27,22 @@ std::vector<Camera> ring(int n) {
   return cams;
 }
 
+// Large photos: SIFT at a bounded size, and the image doubled only where it was not scaled down.
+TEST(ColmapPoses, FirstOctaveDoublesOnlyPhotosWithinTheSizeCap) {
+  ColmapOptions o;  // max_image_size 1600
+  EXPECT_EQ(sift_first_octave(o, 640), -1);
+  EXPECT_EQ(sift_first_octave(o, 1600), -1);
+  EXPECT_EQ(sift_first_octave(o, 4000), 0);
+  o.first_octave = -1;  // asked for: kept
+  EXPECT_EQ(sift_first_octave(o, 4000), -1);
+  EXPECT_NO_THROW(o.Check());
+  o.first_octave = 3;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  o.first_octave.reset();
+  o.max_image_size = 50;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+}
+
 TEST(ColmapPoses, QuaternionRoundTripIsNotTheConjugate) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   const Eigen::Vector4d q = rotation_to_quaternion(R);

@@ -44,8 +44,9 @@ options:
                               all image pairs (default) or only views close in name order
   --overlap N                 sequential matcher: next views matched per view (default 10)
   --max-features N            SIFT features per image (default 4000)
-  --first-octave N            SIFT's first octave: -1 (default) the image doubled first, 0 at its own size
-                              (fewer, larger features found in less time)
+  --first-octave N            SIFT's first octave: -1 the image doubled first, 0 at its own size (fewer,
+                              larger features found in less time); default -1 for images of at most 1600
+                              pixels on their longer side, 0 for larger ones (SIFT scales them down first)
   --init-min-inliers N        mapper: verified matches of the initial pair (default 100)
   --abs-pose-min-inliers N    mapper: 2D-3D inliers to register a view (default 30)
   --outlier-factor F          alignment: leave views whose centre error exceeds F x the median out of

@@ -118,7 +118,10 @@ void ColmapOptions::Check() const {
   if (init_min_inliers < 8) throw std::invalid_argument("ColmapOptions.init_min_inliers must be >= 8");
   if (abs_pose_min_inliers < 6) throw std::invalid_argument("ColmapOptions.abs_pose_min_inliers must be >= 6");
   if (threads < 0) throw std::invalid_argument("ColmapOptions.threads must be >= 0");
-  if (first_octave < -1 || first_octave > 2) throw std::invalid_argument("ColmapOptions.first_octave must be in [-1, 2]");
+  if (first_octave && (*first_octave < -1 || *first_octave > 2))
+    throw std::invalid_argument("ColmapOptions.first_octave must be in [-1, 2]");
+  if (max_image_size < 100 || max_image_size > 20000)
+    throw std::invalid_argument("ColmapOptions.max_image_size must be in [100, 20000] pixels");
 }
 
 namespace {
@@ -146,6 +149,11 @@ void clear_colmap_outputs(const fs::path& workspace) {
 
 }  // namespace
 
+int sift_first_octave(const ColmapOptions& options, int longer_side) {
+  if (options.first_octave) return *options.first_octave;
+  return longer_side > options.max_image_size ? 0 : -1;
+}
+
 ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
                                      const ColmapOptions& o) {
   o.Check();
@@ -165,6 +173,8 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
   std::ostringstream params;
   params.precision(17);
   params << K(0, 0) << "," << K(1, 1) << "," << K(0, 2) + 0.5 << "," << K(1, 2) + 0.5;
+  // The photos' size from the principal point of the intrinsics (cx = (width - 1) / 2 for a centred one).
+  const int longer_side = static_cast<int>(std::lround(2.0 * std::max(K(0, 2), K(1, 2)) + 1.0));
   ColmapRun run;
   run.step_seconds.emplace_back(
       "feature_extractor",
@@ -172,7 +182,7 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
                 "--ImageReader.camera_model", "PINHOLE", "--ImageReader.single_camera", "1", "--ImageReader.camera_params",
                 params.str(), "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads,
                 "--SiftExtraction.max_num_features", std::to_string(o.max_features), "--SiftExtraction.first_octave",
-                std::to_string(o.first_octave)},
+                std::to_string(sift_first_octave(o, longer_side)), "--SiftExtraction.max_image_size", std::to_string(o.max_image_size)},
                log, "feature_extractor"));
   // Our exact matcher, then COLMAP's geometric verification of the matches (its RANSAC, its defaults).
   const auto t0 = SteadyClock::now();
