@@ -1,34 +1,27 @@
 # Step general4-data: general2's mix with its large buildings rendered again at lc2wf-dataset's default pixel
 # rule (finer images for buildings whose diagonal is over 32 m; experiments/README.md, "Real buildings: where
 # the junctions go"): the real, generated and augmented Roof-Image buildings of the mix and of its validation
-# split whose mesh diagonal is over 30 m. The other clouds are the ones general2-data made (byte-identical at
-# the default rule). Needs general-data's and general2-data's clouds.
+# split over 30 m across (footprint sides and height). The other clouds are the ones general2-data made
+# (byte-identical at the default rule). Needs general-data's and general2-data's clouds.
 
-# The names of a mesh folder's buildings whose bounding-box diagonal is over 30 m (polyshape raw units / 20).
-large_meshes() {
-  python3 - "$1" <<'PY'
-import glob, math, os, sys
-for f in sorted(glob.glob(os.path.join(sys.argv[1], '*.polyshape'))):
-    pts = []
-    for line in open(f):
-        p = line.strip().split(',')
-        if len(p) == 3:
-            try: pts.append([float(x) for x in p])
-            except ValueError: pass
-    if pts and math.dist([min(q[i] for q in pts) for i in range(3)], [max(q[i] for q in pts) for i in range(3)]) / 20 > 30:
-        print(os.path.basename(f)[:-len('.polyshape')])
+# The buildings of a building CSV (configs/splits/lod2/buildings.csv, or lc2wf-list-buildings' output for a mesh
+# folder: the same name, height_m and footprint columns) over 30 m across (footprint sides and height), limited to
+# the names of NAMES when given.
+large_buildings() {
+  python3 - "$@" <<'PY'
+import csv, math, sys
+names = set(open(sys.argv[2]).read().split()) if len(sys.argv) > 2 else None
+for r in csv.DictReader(open(sys.argv[1])):
+    if (names is None or r['name'] in names) and r.get('status', 'ok') == 'ok' and \
+            math.hypot(float(r['footprint_long_m']), float(r['footprint_short_m']), float(r['height_m'])) > 30:
+        print(r['name'])
 PY
 }
 
-# The real buildings of a name list whose footprint and height (configs/splits/lod2/buildings.csv) span over 30 m.
-large_real() {
-  python3 - configs/splits/lod2/buildings.csv "$1" <<'PY'
-import csv, math, sys
-names = set(open(sys.argv[2]).read().split())
-for r in csv.DictReader(open(sys.argv[1])):
-    if r['name'] in names and math.hypot(float(r['footprint_long_m']), float(r['footprint_short_m']), float(r['height_m'])) > 30:
-        print(r['name'])
-PY
+# large_meshes FOLDER: the large buildings of a mesh folder (lc2wf-list-buildings facts).
+large_meshes() {
+  "$build_dir/dataset/lc2wf-list-buildings" "$1" -o "runs/general4/$(basename "$1").csv" -q -j 2 || true
+  large_buildings "runs/general4/$(basename "$1").csv"
 }
 
 step_general4_data() {
@@ -38,9 +31,9 @@ step_general4_data() {
   mkdir -p runs/general4
   if [[ ! -f runs/general4/real-large.txt ]]; then
     sort runs/general/real-train-sub.txt runs/general2/real-train-add.txt > runs/general4/all-real.txt
-    large_real runs/general4/all-real.txt > runs/general4/real-large.txt
+    large_buildings configs/splits/lod2/buildings.csv runs/general4/all-real.txt > runs/general4/real-large.txt
   fi
-  [[ -f runs/general4/realval-large.txt ]] || large_real runs/general2/realval-names.txt > runs/general4/realval-large.txt
+  [[ -f runs/general4/realval-large.txt ]] || large_buildings configs/splits/lod2/buildings.csv runs/general2/realval-names.txt > runs/general4/realval-large.txt
   [[ -f runs/general4/gen-large.txt ]] || large_meshes runs/general/meshes-gen > runs/general4/gen-large.txt
   [[ -f runs/general4/genval-large.txt ]] || large_meshes runs/general/meshes-genval > runs/general4/genval-large.txt
   [[ -f runs/general4/riaug-large.txt ]] || large_meshes runs/general/meshes-riaug > runs/general4/riaug-large.txt
