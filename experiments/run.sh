@@ -69,7 +69,7 @@
 #   general2-train experiments/configs/general2.json: models/general fine-tuned on it -> runs/general2-model
 #   general2-val WEIGHTS TAG [FLAGS...]  WEIGHTS with lc2wf-infer FLAGS on general2's validation clouds (real per
 #                 group, Roof-Image, generated) -> runs/general2-val/TAG and a row of runs/general2-val/table.md
-#   general4-data  general2's mix with its buildings over 30 m across (real, generated, augmented Roof-Image; train
+#   general4-data  general2's mix with its buildings over 22 m across (real, generated, augmented Roof-Image; train
 #                 and validation) rendered again at lc2wf-dataset's default pixel rule -> runs/general4
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,

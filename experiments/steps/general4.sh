@@ -1,11 +1,12 @@
 # Step general4-data: general2's mix with its large buildings rendered again at lc2wf-dataset's default pixel
 # rule (finer images for buildings whose diagonal is over 32 m; experiments/README.md, "Real buildings: where
 # the junctions go"): the real, generated and augmented Roof-Image buildings of the mix and of its validation
-# split over 30 m across (footprint sides and height). The other clouds are the ones general2-data made
+# split over 22 m across (footprint sides and height: every building the rule enlarges, whatever its
+# turn, since the rule measures the axis-aligned box; 32 m / sqrt 2). The other clouds are the ones general2-data made
 # (byte-identical at the default rule). Needs general-data's and general2-data's clouds.
 
 # The buildings of a building CSV (configs/splits/lod2/buildings.csv, or lc2wf-list-buildings' output for a mesh
-# folder: the same name, height_m and footprint columns) over 30 m across (footprint sides and height), limited to
+# folder: the same name, height_m and footprint columns) over 22 m across (footprint sides and height), limited to
 # the names of NAMES when given.
 large_buildings() {
   python3 - "$@" <<'PY'
@@ -13,7 +14,7 @@ import csv, math, sys
 names = set(open(sys.argv[2]).read().split()) if len(sys.argv) > 2 else None
 for r in csv.DictReader(open(sys.argv[1])):
     if (names is None or r['name'] in names) and r.get('status', 'ok') == 'ok' and \
-            math.hypot(float(r['footprint_long_m']), float(r['footprint_short_m']), float(r['height_m'])) > 30:
+            math.hypot(float(r['footprint_long_m']), float(r['footprint_short_m']), float(r['height_m'])) > 22:
         print(r['name'])
 PY
 }
