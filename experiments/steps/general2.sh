@@ -62,17 +62,24 @@ step_general2_train() {
 # generated), and one row of runs/general2-val/table.md (a finished part is kept, so a killed run resumes).
 step_general2_val() {
   [[ $# -ge 2 ]] || die 2 "general2-val needs WEIGHTS and TAG"
-  local weights=$1 tag=$2 out
-  shift 2
-  out=runs/general2-val/$tag
+  score_validation runs/general2-val runs/general2/realval-raster/clouds runs/general/genval-raster/clouds "$@"
+}
+
+# score_validation ROOT REAL_CLOUDS GEN_CLOUDS WEIGHTS TAG [FLAGS...]: the validation table of a mix (general2-val,
+# general4-val): the real split's buildings of REAL_CLOUDS per group, the Roof-Image validation clouds, the
+# generated validation buildings of GEN_CLOUDS -> ROOT/TAG and a row of ROOT/table.md.
+score_validation() {
+  local root=$1 real=$2 gen=$3 weights=$4 tag=$5 out
+  shift 5
+  out=$root/$tag
   mkdir -p "$out"
-  bench/real/score_groups.sh "$weights" runs/general2/realval-raster/clouds val "$out/real" "$@" > /dev/null
+  bench/real/score_groups.sh "$weights" "$real" val "$out/real" "$@" > /dev/null
   [[ -f $out/ri/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/general/rival-blender/clouds \
     --split runs/general/rival-names.txt -o "$out/ri" -q --method "$tag" "$@" > /dev/null
   [[ -s $out/gen-names.txt ]] || ls runs/general/genval-raster/clouds | sed -n 's/\.lcloud$//p' > "$out/gen-names.txt"
-  [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/general/genval-raster/clouds \
+  [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "$gen" \
     --split "$out/gen-names.txt" -o "$out/gen" -q --method "$tag" "$@" > /dev/null
-  python3 - "$out" "$tag" "$*" >> runs/general2-val/table.md <<'PY'
+  python3 - "$out" "$tag" "$*" >> "$root/table.md" <<'PY'
 import json, os, sys
 out, tag, flags = sys.argv[1:4]
 def cell(path):
@@ -84,5 +91,5 @@ def group(name):
 print(f"| {tag} | {flags or '-'} | {group('all')} | {group('height_ge20_m')} | {group('source_vienna')} | "
       f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} |")
 PY
-  tail -1 runs/general2-val/table.md
+  tail -1 "$root/table.md"
 }

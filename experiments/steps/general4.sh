@@ -50,3 +50,11 @@ step_general4_data() {
   general_list general4 runs/general4/val.txt general/{genval-raster,rival-blender} general2/realval-raster general4/{realval-fine,genval-fine}
   echo "general4-data: $(wc -l < runs/general4/train.txt) training and $(wc -l < runs/general4/val.txt) validation clouds in runs/general4/clouds"
 }
+
+# general4-val WEIGHTS TAG [FLAGS...]: as general2-val, on general4's validation clouds (the large buildings at the
+# default pixel rule) -> runs/general4-val/TAG and a row of runs/general4-val/table.md.
+step_general4_val() {
+  [[ $# -ge 2 ]] || die 2 "general4-val needs WEIGHTS and TAG"
+  [[ -s runs/general4/val.txt ]] || die 3 "no general4 mix: run experiments/run.sh general4-data first"
+  score_validation runs/general4-val runs/general4/clouds runs/general4/clouds "$@"
+}
