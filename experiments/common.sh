@@ -3,6 +3,9 @@
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_dir=${LC2WF_BUILD_DIR:-$root/build}
 meshes=${LC2WF_DATA_DIR:-$root/../shared/data}/roof-image/res_building
+# lc2wf-dataset as it rendered before large buildings got finer images (640 x 480 for every building): the
+# clouds of the paper's run and of the models trained so far, reproduced as they were.
+fixed_size=(--max-metres-per-pixel 0)
 
 # die CODE MESSAGE: the step's error on stderr, then exit with CODE (2 bad command line, 3 data or I/O).
 die() {
@@ -125,4 +128,44 @@ score_on_val() {
       --split configs/splits/val.txt --test-time-views "$views" -q -o "$2$views"
     cat "$2$views/metrics.md"
   done
+}
+
+# general_list MIX LIST PART...: links the clouds of runs/PART/clouds into runs/MIX/clouds and writes their
+# names, sorted, to LIST (the training and validation lists of configs/general.json and its successors).
+general_list() {
+  local mix=$1 list=$2 part f
+  shift 2
+  mkdir -p "runs/$mix/clouds"
+  for part in "$@"; do
+    for f in runs/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/$mix/clouds/"; basename "$f" .lcloud; done
+  done | sort -u > "$list"
+}
+
+# score_validation ROOT REAL_CLOUDS GEN_CLOUDS WEIGHTS TAG [FLAGS...]: the validation table of a mix (general2-val,
+# general4-val): the real split's buildings of REAL_CLOUDS per group, the Roof-Image validation clouds, the
+# generated validation buildings of GEN_CLOUDS -> ROOT/TAG and a row of ROOT/table.md.
+score_validation() {
+  local root=$1 real=$2 gen=$3 weights=$4 tag=$5 out
+  shift 5
+  out=$root/$tag
+  mkdir -p "$out"
+  bench/real/score_groups.sh "$weights" "$real" val "$out/real" "$@" > /dev/null
+  [[ -f $out/ri/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/general/rival-blender/clouds \
+    --split runs/general/rival-names.txt -o "$out/ri" -q --method "$tag" "$@" > /dev/null
+  [[ -s $out/gen-names.txt ]] || ls runs/general/genval-raster/clouds | sed -n 's/\.lcloud$//p' > "$out/gen-names.txt"
+  [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "$gen" \
+    --split "$out/gen-names.txt" -o "$out/gen" -q --method "$tag" "$@" > /dev/null
+  python3 - "$out" "$tag" "$*" >> "$root/table.md" <<'PY'
+import json, os, sys
+out, tag, flags = sys.argv[1:4]
+def cell(path):
+    m = json.load(open(path))
+    return f"{100*m['vertex_avg']['ap']:.1f} / {100*m['edge_avg']['ap']:.1f} / {m['wed']['total_num']:.2f}"
+def group(name):
+    p = os.path.join(out, 'real', 'eval', name, 'metrics.json')
+    return cell(p) if os.path.exists(p) else '-'
+print(f"| {tag} | {flags or '-'} | {group('all')} | {group('height_ge20_m')} | {group('source_vienna')} | "
+      f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} |")
+PY
+  tail -1 "$root/table.md"
 }

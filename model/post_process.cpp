@@ -74,6 +74,24 @@ void sort_ascending(std::vector<Edge>& edges) {
   std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return x.weight < y.weight; });
 }
 
+// Edge indices, highest score first (ties: list order): the order the greedy clean-ups keep edges in.
+std::vector<int> by_descending_score(const std::vector<Edge>& edges) {
+  std::vector<int> order(edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return edges[x].weight > edges[y].weight; });
+  return order;
+}
+
+// Drops the edges marked in `dropped` (list order kept) and returns how many went.
+int remove_marked(std::vector<Edge>& edges, const std::vector<char>& dropped) {
+  std::vector<Edge> kept;
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (!dropped[e]) kept.push_back(edges[e]);
+  const int removed = static_cast<int>(edges.size() - kept.size());
+  edges = std::move(kept);
+  return removed;
+}
+
 // Step 5 (both endpoints of degree <= 1) and step 8 (any endpoint of degree <= 1): one pass, degrees
 // computed once before it.
 int remove_low_degree(int n, std::vector<Edge>& edges, bool both_endpoints) {
@@ -148,9 +166,10 @@ void merge_junctions(const PostProcessInput& in, const std::vector<char>& pruned
 int line_nms(const std::vector<Vec3>& pts, std::vector<Edge>& edges, const PostProcessOptions& o) {
   const int m = static_cast<int>(edges.size());
   std::vector<int> order(m);
-  std::iota(order.begin(), order.end(), 0);
   if (o.line_nms_keep_higher)
-    std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return edges[x].weight > edges[y].weight; });
+    order = by_descending_score(edges);
+  else
+    std::iota(order.begin(), order.end(), 0);
   std::vector<char> dropped(m, 0);
   for (int e : order) {
     if (dropped[e]) continue;
@@ -160,42 +179,25 @@ int line_nms(const std::vector<Vec3>& pts, std::vector<Edge>& edges, const PostP
       if (d < o.line_nms_distance) dropped[f] = 1;
     }
   }
-  std::vector<Edge> kept;
-  for (int e = 0; e < m; ++e)
-    if (!dropped[e]) kept.push_back(edges[e]);
-  const int removed = m - static_cast<int>(kept.size());
-  edges = std::move(kept);
-  return removed;
+  return remove_marked(edges, dropped);
 }
 
 // Not in the release: visited by descending score, an edge that crosses an edge already kept is dropped.
 int remove_crossing_edges(const std::vector<Vec3>& pts, std::vector<Edge>& edges, const PostProcessOptions& o) {
   if (o.crossing_distance_m <= 0.0) return 0;
   constexpr double kMinCrossingAngleDeg = 10.0;  // closer to parallel is an overlap, line NMS's case
-  std::vector<int> order(edges.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int x, int y) { return edges[x].weight > edges[y].weight; });
-  std::vector<int> kept_order;
+  const auto cross = [&](const Edge& a, const Edge& b) {
+    const bool share_junction = a.a == b.a || a.a == b.b || a.b == b.a || a.b == b.b;
+    return !share_junction && segments_cross(pts[a.a], pts[a.b], pts[b.a], pts[b.b], o.crossing_distance_m,
+                                             o.crossing_end_margin_m, kMinCrossingAngleDeg);
+  };
+  std::vector<int> kept;  // by descending score
   std::vector<char> dropped(edges.size(), 0);
-  for (int e : order) {
-    const Edge& a = edges[e];
-    for (int k : kept_order) {
-      const Edge& b = edges[k];
-      if (a.a == b.a || a.a == b.b || a.b == b.a || a.b == b.b) continue;
-      if (segments_cross(pts[a.a], pts[a.b], pts[b.a], pts[b.b], o.crossing_distance_m, o.crossing_end_margin_m,
-                         kMinCrossingAngleDeg)) {
-        dropped[e] = 1;
-        break;
-      }
-    }
-    if (!dropped[e]) kept_order.push_back(e);
+  for (int e : by_descending_score(edges)) {
+    dropped[e] = std::any_of(kept.begin(), kept.end(), [&](int k) { return cross(edges[e], edges[k]); });
+    if (!dropped[e]) kept.push_back(e);
   }
-  std::vector<Edge> kept;
-  for (size_t e = 0; e < edges.size(); ++e)
-    if (!dropped[e]) kept.push_back(edges[e]);
-  const int removed = static_cast<int>(edges.size() - kept.size());
-  edges = std::move(kept);
-  return removed;
+  return remove_marked(edges, dropped);
 }
 
 ScoredWireframe to_wireframe(const PostProcessInput& in, const std::vector<Edge>& edges) {

@@ -40,11 +40,11 @@ struct ReconstructOptions {
     return o;
   }();
 
-  // LSD sees each photo at most this large (its segments come back in full-size pixels), as SIFT does
-  // (colmap.max_image_size): the time of 2-12 MP photos stays that of a 2 MP one.
+  // LSD sees each photo at most as large as SIFT does (colmap.max_image_size; its segments come back in
+  // full-size pixels): the time of 2-12 MP photos stays that of a 2 MP one. --max-image-side sets both.
   LsdOptions lsd = [] {
     LsdOptions o;
-    o.max_side = 1600;
+    o.max_side = ColmapOptions{}.max_image_size;
     return o;
   }();
   TriangulatorOptions triangulator;

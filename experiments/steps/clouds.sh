@@ -6,10 +6,10 @@
 step_dataset() {
   LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
   link_meshes runs/trainval-meshes configs/splits/train.txt configs/splits/val.txt
-  "$build_dir/tools/lc2wf-dataset" --max-metres-per-pixel 0 --meshes runs/trainval-meshes --out runs/dataset --renderer blender -j 2 \
+  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/trainval-meshes --out runs/dataset --renderer blender -j 2 \
     > runs/dataset-summary-trainval.json
   link_meshes runs/test-meshes configs/splits/test.txt
-  "$build_dir/tools/lc2wf-dataset" --max-metres-per-pixel 0 --meshes runs/test-meshes --out runs/dataset --renderer blender -j 2 \
+  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/test-meshes --out runs/dataset --renderer blender -j 2 \
     > runs/dataset-summary-test.json
   cp runs/dataset-summary-trainval.json runs/dataset/summary.json.tmp && mv runs/dataset/summary.json.tmp runs/dataset/summary.json
   cp runs/dataset-summary-test.json runs/dataset/summary-test.json
@@ -20,7 +20,7 @@ step_dataset() {
 dense_test_clouds() {
   LC2WF_WITH_RENDER_TOOLS=1 "$root/tools/setup-deps.sh"
   link_meshes runs/test-meshes configs/splits/test.txt
-  "$build_dir/tools/lc2wf-dataset" --max-metres-per-pixel 0 --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 \
+  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/test-meshes --out runs/dataset-30v --renderer blender --views 30 -j 2 \
     > runs/dataset-30v-summary-test.json
 }
 
@@ -32,10 +32,10 @@ step_dense() {
   # The validation split next (200 buildings): test-time options are chosen on it while the training
   # clouds are made; the train + val pass below skips its finished buildings.
   link_meshes runs/val-meshes configs/splits/val.txt
-  "$build_dir/tools/lc2wf-dataset" --max-metres-per-pixel 0 --meshes runs/val-meshes --out runs/dataset-30v --renderer blender --views 30 \
+  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/val-meshes --out runs/dataset-30v --renderer blender --views 30 \
     -j 2 > runs/dataset-30v-summary-val.json
   link_meshes runs/trainval-meshes configs/splits/train.txt configs/splits/val.txt
-  "$build_dir/tools/lc2wf-dataset" --max-metres-per-pixel 0 --meshes runs/trainval-meshes --out runs/dataset-30v --renderer blender --views 30 \
+  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/trainval-meshes --out runs/dataset-30v --renderer blender --views 30 \
     -j 2 > runs/dataset-30v-summary-trainval.json
   cp runs/dataset-30v-summary-trainval.json runs/dataset-30v/summary.json.tmp
   mv runs/dataset-30v/summary.json.tmp runs/dataset-30v/summary.json

@@ -40,29 +40,18 @@ open(sys.argv[2], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
 }
 
-# general_list MIX LIST PART...: links the clouds of runs/PART/clouds into runs/MIX/clouds and writes their
-# names, sorted, to LIST (the training and validation lists of configs/general.json and its successors).
-general_list() {
-  local mix=$1 list=$2 part f
-  shift 2
-  mkdir -p "runs/$mix/clouds"
-  for part in "$@"; do
-    for f in runs/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/$mix/clouds/"; basename "$f" .lcloud; done
-  done | sort -u > "$list"
-}
-
 # general-data: the raster clouds of the mix, then the training folder (links) and its split lists.
 step_general_data() {
   local dataset=$build_dir/tools/lc2wf-dataset
   need_binary "$dataset" lc2wf-dataset
   general_meshes
   local common=(--renderer raster --views 30 -j 2 -q)
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-gen --out runs/general/gen-raster "${common[@]}" > runs/general/gen.json || true
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-genval --out runs/general/genval-raster "${common[@]}" > runs/general/genval.json || true
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general/real-train-sub.txt --out runs/general/real-raster "${common[@]}" \
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-gen --out runs/general/gen-raster "${common[@]}" > runs/general/gen.json || true
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-genval --out runs/general/genval-raster "${common[@]}" > runs/general/genval.json || true
+  "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names runs/general/real-train-sub.txt --out runs/general/real-raster "${common[@]}" \
     > runs/general/real.json || true
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-riaug --out runs/general/riaug-raster "${common[@]}" > runs/general/riaug.json || true
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/ri-train-sub --out runs/general/ri-raster "${common[@]}" > runs/general/ri.json || true
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-riaug --out runs/general/riaug-raster "${common[@]}" > runs/general/riaug.json || true
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/ri-train-sub --out runs/general/ri-raster "${common[@]}" > runs/general/ri.json || true
   # Photo-like clouds (Blender, --textures photo: facades with windows, clutter, sun, camera noise), so photo
   # clutter is in the training distribution: every 10th generated and every 13th real training building,
   # named photo_* (links with that prefix) beside their raster clouds.
@@ -75,17 +64,17 @@ step_general_data() {
     for g in runs/lod2-all/*; do ln -sfn "$(realpath "$g")" "runs/general/lod2-photo/photo_$(basename "$g")"; done
     awk 'NR % 13 == 1 { print "photo_" $0 }' runs/general/real-train-sub.txt > runs/general/photo-names.txt
   fi
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/meshes-photo --out runs/general/photo-blender --renderer blender --textures photo \
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-photo --out runs/general/photo-blender --renderer blender --textures photo \
     --views 30 -j 2 -q > runs/general/photo-gen.json || true
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/lod2-photo --names runs/general/photo-names.txt --out runs/general/photo-blender \
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/lod2-photo --names runs/general/photo-names.txt --out runs/general/photo-blender \
     --renderer blender --textures photo --views 30 -j 2 -q > runs/general/photo-real.json || true
   # Validation: generated, real (the first 150 of configs/splits/lod2/val.txt) and Roof-Image (100 of its
   # validation split, 30-view Blender clouds as in the paper's benchmark).
   [[ -f runs/general/realval-names.txt ]] || head -150 configs/splits/lod2/val.txt > runs/general/realval-names.txt
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general/realval-names.txt --out runs/general/realval-raster "${common[@]}" \
+  "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names runs/general/realval-names.txt --out runs/general/realval-raster "${common[@]}" \
     > runs/general/realval.json || true
   [[ -f runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
-  "$dataset" --max-metres-per-pixel 0 --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
+  "$dataset" "${fixed_size[@]}" --meshes "$meshes" --names runs/general/rival-names.txt --out runs/general/rival-blender --renderer blender \
     --views 30 -j 2 -q > runs/general/rival.json || true
   general_list general runs/general/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender}
   general_list general runs/general/val.txt general/{genval-raster,realval-raster,rival-blender}
@@ -112,7 +101,7 @@ step_general_eval() {
   general_meshes
   "$dataset" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster-fine --renderer raster \
     --views 30 -j 2 -q > runs/lod2-raster-fine-summary.json || true
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
+  "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
     --views 30 -j 2 -q > runs/lod2-raster-summary.json || true
   dense_test_clouds || true  # steps/clouds.sh; a failed building is named and left out
   local models=("$@") model views tag

@@ -24,23 +24,23 @@ pick += rng.sample([r['name'] for r in rows if r['name'] not in pick and r['roof
 open(sys.argv[3], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
   local common=(--renderer raster --views 30 -j 2 -q)
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general2/real-train-add.txt --out runs/general2/real-raster "${common[@]}" \
+  "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names runs/general2/real-train-add.txt --out runs/general2/real-raster "${common[@]}" \
     > runs/general2/real.json || true
   [[ -f runs/general2/realval-names.txt ]] || cp configs/splits/lod2/val.txt runs/general2/realval-names.txt
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/lod2-all --names runs/general2/realval-names.txt --out runs/general2/realval-raster "${common[@]}" \
+  "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names runs/general2/realval-names.txt --out runs/general2/realval-raster "${common[@]}" \
     > runs/general2/realval.json || true
   # 300 Roof-Image training buildings not in general's mix, as the paper's benchmark renders them.
   if [[ ! -f runs/general2/ri-blender-names.txt ]]; then
     sed -n '751,1050p' runs/general/ri-train-sub.txt > runs/general2/ri-blender-names.txt
   fi
   link_meshes runs/general2/ri-meshes configs/splits/train.txt
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general2/ri-meshes --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender \
+  "$dataset" "${fixed_size[@]}" --meshes runs/general2/ri-meshes --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender \
     --renderer blender --views 30 -j 2 -q > runs/general2/ri.json || true
   # Photo-like clouds of every 10th added real building with the textures COLMAP registers (76b1407): general's
   # 108 were 5 % of its mix and of the textures before.
   [[ -f runs/general2/photo-names.txt ]] || awk 'NR % 10 == 1 { print "photo_" $0 }' runs/general2/real-train-add.txt \
     > runs/general2/photo-names.txt
-  "$dataset" --max-metres-per-pixel 0 --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
+  "$dataset" "${fixed_size[@]}" --meshes runs/general/lod2-photo --names runs/general2/photo-names.txt --out runs/general2/photo-blender \
     --renderer blender --textures photo --views 30 -j 2 -q > runs/general2/photo.json || true
   general_list general2 runs/general2/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender} \
     general2/{real-raster,ri-blender,photo-blender}
@@ -63,33 +63,4 @@ step_general2_train() {
 step_general2_val() {
   [[ $# -ge 2 ]] || die 2 "general2-val needs WEIGHTS and TAG"
   score_validation runs/general2-val runs/general2/realval-raster/clouds runs/general/genval-raster/clouds "$@"
-}
-
-# score_validation ROOT REAL_CLOUDS GEN_CLOUDS WEIGHTS TAG [FLAGS...]: the validation table of a mix (general2-val,
-# general4-val): the real split's buildings of REAL_CLOUDS per group, the Roof-Image validation clouds, the
-# generated validation buildings of GEN_CLOUDS -> ROOT/TAG and a row of ROOT/table.md.
-score_validation() {
-  local root=$1 real=$2 gen=$3 weights=$4 tag=$5 out
-  shift 5
-  out=$root/$tag
-  mkdir -p "$out"
-  bench/real/score_groups.sh "$weights" "$real" val "$out/real" "$@" > /dev/null
-  [[ -f $out/ri/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/general/rival-blender/clouds \
-    --split runs/general/rival-names.txt -o "$out/ri" -q --method "$tag" "$@" > /dev/null
-  [[ -s $out/gen-names.txt ]] || ls runs/general/genval-raster/clouds | sed -n 's/\.lcloud$//p' > "$out/gen-names.txt"
-  [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "$gen" \
-    --split "$out/gen-names.txt" -o "$out/gen" -q --method "$tag" "$@" > /dev/null
-  python3 - "$out" "$tag" "$*" >> "$root/table.md" <<'PY'
-import json, os, sys
-out, tag, flags = sys.argv[1:4]
-def cell(path):
-    m = json.load(open(path))
-    return f"{100*m['vertex_avg']['ap']:.1f} / {100*m['edge_avg']['ap']:.1f} / {m['wed']['total_num']:.2f}"
-def group(name):
-    p = os.path.join(out, 'real', 'eval', name, 'metrics.json')
-    return cell(p) if os.path.exists(p) else '-'
-print(f"| {tag} | {flags or '-'} | {group('all')} | {group('height_ge20_m')} | {group('source_vienna')} | "
-      f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} |")
-PY
-  tail -1 "$root/table.md"
 }

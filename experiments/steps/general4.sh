@@ -1,9 +1,9 @@
 # Step general4-data: general2's mix with its large buildings rendered again at lc2wf-dataset's default pixel
-# rule (finer images for buildings whose diagonal is over 32 m; experiments/README.md, "Real buildings: where
-# the junctions go"): the real, generated and augmented Roof-Image buildings of the mix and of its validation
-# split over 22 m across (footprint sides and height: every building the rule enlarges, whatever its
-# turn, since the rule measures the axis-aligned box; 32 m / sqrt 2). The other clouds are the ones general2-data made
-# (byte-identical at the default rule). Needs general-data's and general2-data's clouds.
+# rule (finer images for buildings whose bounding-box diagonal is over 32 m; experiments/README.md, "Real
+# buildings: where the junctions go"): the real, generated and augmented Roof-Image buildings of the mix and of
+# its validation split over 22 m across (footprint sides and height, so every building the rule can enlarge,
+# whatever its turn: the rule measures the axis-aligned box, and 32 m / sqrt 2 < 23 m). The other clouds are
+# the ones general2-data made (byte-identical at the default rule). Needs general-data's and general2-data's clouds.
 
 # The buildings of a building CSV (configs/splits/lod2/buildings.csv, or lc2wf-list-buildings' output for a mesh
 # folder: the same name, height_m and footprint columns) over 22 m across (footprint sides and height), limited to
@@ -25,30 +25,38 @@ large_meshes() {
   large_buildings "runs/general4/$(basename "$1").csv"
 }
 
+# render_fine MESHES NAMES OUT: one part of the mix, raster from 30 views at the default pixel rule ->
+# runs/general4/OUT (resumable: lc2wf-dataset skips the buildings it has done).
+render_fine() {
+  "$build_dir/tools/lc2wf-dataset" --meshes "$1" --names "$2" --out "runs/general4/$3" --renderer raster --views 30 \
+    -j 2 -q > "runs/general4/$3.json" || true
+}
+
 step_general4_data() {
-  local dataset=$build_dir/tools/lc2wf-dataset
-  need_binary "$dataset" lc2wf-dataset
+  need_binary "$build_dir/tools/lc2wf-dataset" lc2wf-dataset
   [[ -s runs/general2/train.txt ]] || die 3 "no general2 mix: run experiments/run.sh general2-data first"
   mkdir -p runs/general4
   if [[ ! -f runs/general4/real-large.txt ]]; then
     sort runs/general/real-train-sub.txt runs/general2/real-train-add.txt > runs/general4/all-real.txt
     large_buildings configs/splits/lod2/buildings.csv runs/general4/all-real.txt > runs/general4/real-large.txt
   fi
-  [[ -f runs/general4/realval-large.txt ]] || large_buildings configs/splits/lod2/buildings.csv runs/general2/realval-names.txt > runs/general4/realval-large.txt
+  [[ -f runs/general4/realval-large.txt ]] ||
+    large_buildings configs/splits/lod2/buildings.csv runs/general2/realval-names.txt > runs/general4/realval-large.txt
   [[ -f runs/general4/gen-large.txt ]] || large_meshes runs/general/meshes-gen > runs/general4/gen-large.txt
   [[ -f runs/general4/genval-large.txt ]] || large_meshes runs/general/meshes-genval > runs/general4/genval-large.txt
   [[ -f runs/general4/riaug-large.txt ]] || large_meshes runs/general/meshes-riaug > runs/general4/riaug-large.txt
-  local common=(--renderer raster --views 30 -j 2 -q)
-  "$dataset" --meshes runs/lod2-all --names runs/general4/real-large.txt --out runs/general4/real-fine "${common[@]}" > runs/general4/real-fine.json || true
-  "$dataset" --meshes runs/lod2-all --names runs/general4/realval-large.txt --out runs/general4/realval-fine "${common[@]}" > runs/general4/realval-fine.json || true
-  "$dataset" --meshes runs/general/meshes-genval --names runs/general4/genval-large.txt --out runs/general4/genval-fine "${common[@]}" > runs/general4/genval-fine.json || true
-  "$dataset" --meshes runs/general/meshes-gen --names runs/general4/gen-large.txt --out runs/general4/gen-fine "${common[@]}" > runs/general4/gen-fine.json || true
-  "$dataset" --meshes runs/general/meshes-riaug --names runs/general4/riaug-large.txt --out runs/general4/riaug-fine "${common[@]}" > runs/general4/riaug-fine.json || true
+  render_fine runs/lod2-all runs/general4/real-large.txt real-fine
+  render_fine runs/lod2-all runs/general4/realval-large.txt realval-fine
+  render_fine runs/general/meshes-genval runs/general4/genval-large.txt genval-fine
+  render_fine runs/general/meshes-gen runs/general4/gen-large.txt gen-fine
+  render_fine runs/general/meshes-riaug runs/general4/riaug-large.txt riaug-fine
   # The fine parts come last, so their links replace the 640 x 480 clouds of the same names.
   general_list general4 runs/general4/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender} \
     general2/{real-raster,ri-blender,photo-blender} general4/{real-fine,gen-fine,riaug-fine}
-  general_list general4 runs/general4/val.txt general/{genval-raster,rival-blender} general2/realval-raster general4/{realval-fine,genval-fine}
-  echo "general4-data: $(wc -l < runs/general4/train.txt) training and $(wc -l < runs/general4/val.txt) validation clouds in runs/general4/clouds"
+  general_list general4 runs/general4/val.txt general/{genval-raster,rival-blender} general2/realval-raster \
+    general4/{realval-fine,genval-fine}
+  echo "general4-data: $(wc -l < runs/general4/train.txt) training and $(wc -l < runs/general4/val.txt)" \
+    "validation clouds in runs/general4/clouds"
 }
 
 # general4-val WEIGHTS TAG [FLAGS...]: as general2-val, on general4's validation clouds (the large buildings at the

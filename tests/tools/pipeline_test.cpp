@@ -103,21 +103,28 @@ void write_polyshape(const fs::path& path, const PolyMesh& m) {
   }
 }
 
-TEST(DatasetRun, ShardsResumesAndReportsFailures) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_run_" + std::to_string(getpid()));
+// A quiet run over a fresh temporary folder whose meshes/ holds one rectangular house, a_rect, into its out/.
+DatasetRunOptions rect_house_run(const std::string& tag, int views, int width, int height) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_" + tag + "_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir / "meshes");
   write_polyshape(dir / "meshes" / "a_rect.polyshape", make_rect_mesh(RectBuildingSpec{}));
-  write_polyshape(dir / "meshes" / "b_l.polyshape", make_l_mesh(LBuildingSpec{}));
-  std::ofstream(dir / "meshes" / "c_broken.polyshape") << "# Number of verts: 3\nnot a vertex\n";
-
   DatasetRunOptions o;
   o.meshes = dir / "meshes";
   o.out = dir / "out";
-  o.cameras.views = 14;
-  o.cameras.width = 480;
-  o.cameras.height = 360;
+  o.cameras.views = views;
+  o.cameras.width = width;
+  o.cameras.height = height;
   o.progress = false;
+  return o;
+}
+
+TEST(DatasetRun, ShardsResumesAndReportsFailures) {
+  DatasetRunOptions o = rect_house_run("run", 14, 480, 360);
+  const fs::path dir = o.meshes.parent_path();
+  write_polyshape(dir / "meshes" / "b_l.polyshape", make_l_mesh(LBuildingSpec{}));
+  std::ofstream(dir / "meshes" / "c_broken.polyshape") << "# Number of verts: 3\nnot a vertex\n";
+
   const auto first = run_dataset(o);
   EXPECT_EQ(first["done"], 2);
   ASSERT_EQ(first["failed"].size(), 1u);
@@ -152,19 +159,9 @@ TEST(DatasetRun, ShardsResumesAndReportsFailures) {
 // --max-metres-per-pixel: the images of a building grow (up to the side cap), the status says how large, and a
 // building done with another value is rendered again.
 TEST(DatasetRun, FinerPixelsForLargerBuildingsAreRecorded) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("lc2wf_dataset_mpp_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "meshes");
-  write_polyshape(dir / "meshes" / "a_rect.polyshape", make_rect_mesh(RectBuildingSpec{}));
-  DatasetRunOptions o;
-  o.meshes = dir / "meshes";
-  o.out = dir / "out";
-  o.cameras.views = 12;
-  o.cameras.width = 160;
-  o.cameras.height = 120;
+  DatasetRunOptions o = rect_house_run("mpp", 12, 160, 120);
   o.max_metres_per_pixel = 0.01;  // far finer than 160 px give any building: the cap decides
   o.max_image_side = 480;
-  o.progress = false;
   EXPECT_EQ(run_dataset(o)["done"], 1);
   const auto status = nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"));
   EXPECT_EQ(status["image_size"], nlohmann::json::array({480, 360}));
@@ -175,7 +172,7 @@ TEST(DatasetRun, FinerPixelsForLargerBuildingsAreRecorded) {
   EXPECT_EQ(nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"))["image_size"], nlohmann::json::array({160, 120}));
   o.max_image_side = 100;  // below the set size
   EXPECT_THROW(o.Check(), std::invalid_argument);
-  fs::remove_all(dir);
+  fs::remove_all(o.meshes.parent_path());
 }
 
 std::set<std::string> entries(const fs::path& dir) {
