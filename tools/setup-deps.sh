@@ -17,7 +17,7 @@ packages=(
 )
 # Rendering and pose tools are only needed by the dataset generator (tools/), so they are opt-in.
 if [[ "${LC2WF_WITH_RENDER_TOOLS:-0}" == 1 ]]; then
-  packages+=(blender colmap)
+  packages+=(blender colmap python3-pil)  # python3-pil: the photo benchmark's GPS-tagged JPEGs (bench/reconstruct)
 fi
 # clang with libFuzzer and the ASan/UBSan runtimes for the sanitizer stage (tools/sanitize.sh).
 if [[ "${LC2WF_WITH_SANITIZERS:-0}" == 1 ]]; then

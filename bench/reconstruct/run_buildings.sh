@@ -18,6 +18,9 @@
 # POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
 # output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.
 # RECONSTRUCT_FLAGS="--max-features 1000" adds options to every lc2wf-reconstruct run.
+# GPS_NOISE_M=1.5 gives the photos a drone's GPS: JPEGs whose EXIF holds each render camera's centre with that
+# much horizontal receiver noise (GPS_VERTICAL_NOISE_M, default 0.5, vertically; geotag_views.py, seeded by the
+# building's name), so the COLMAP-pose run takes its scale and up from GPS. Unset: the PNGs, no GPS.
 set -euo pipefail
 weights=$1 names=$2 out=$3
 meshes=${4:-../shared/data/roof-image/res_building}
@@ -46,8 +49,14 @@ while read -r n; do
   views="$out/dataset/views/$n"
   [ -f "$views/cameras.json" ] || { echo "$n: no renders (lc2wf-dataset failed on it)" | tee -a "$out/logs/exit-codes.txt"; continue; }
   # The photo folder holds the images only: the cameras are thrown away.
+  rm -rf "$out/photos/$n"
   mkdir -p "$out/photos/$n"
-  for f in "$views"/view_*.png; do ln -sf "$(realpath "$f")" "$out/photos/$n/"; done
+  if [ -n "${GPS_NOISE_M:-}" ]; then
+    /usr/bin/python3 "$(dirname "$0")/geotag_views.py" "$views" "$out/photos/$n" --noise-m "$GPS_NOISE_M" \
+      --vertical-noise-m "${GPS_VERTICAL_NOISE_M:-0.5}" --seed "$(printf %s "$n" | cksum | cut -d' ' -f1)"
+  else
+    for f in "$views"/view_*.png; do ln -sf "$(realpath "$f")" "$out/photos/$n/"; done
+  fi
   for mode in photos given-cameras; do
     extra=()
     [ "$mode" = given-cameras ] && extra=(--cameras "$views/cameras.json")

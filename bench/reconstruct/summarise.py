@@ -38,13 +38,13 @@ for run, label in [("eval-known-clouds", "lc2wf-dataset, known cameras"), ("eval
         print(f"| {label} | – | – | – |")  # no run succeeded (logs/exit-codes.txt)
 
 print()
-print("| building | registered | 3D lines (kept) | junctions | edges | scale / true | rotation err (deg) | exit | colmap s | lsd s | triangulation s | scale search s | inference s | total s |")
-print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+print("| building | registered | 3D lines (kept) | junctions | edges | scale from | scale / true | rotation err (deg) | exit | colmap s | lsd s | triangulation s | scale search s | inference s | total s |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
 totals = {}
 for n in names:
     p = out / "recon-photos" / n / "report.json"
     if not p.exists():
-        print(f"| {n} | not run or failed (see logs/) | | | | | | | | | | | | |")
+        print(f"| {n} | not run or failed (see logs/) | | | | | | | | | | | | | |")
         continue
     r = json.load(open(p))
     sec = r["seconds"]
@@ -52,11 +52,11 @@ for n in names:
     sec.setdefault("scale search", 0.0)  # the search runs the networks itself; absent when the scale was given
     for k in ("cameras", "lsd", "triangulation", "scale search", "inference", "total"):
         totals.setdefault(k, []).append(sec[k])
-    print(f"| {n} | {r['cameras']['registered']}/{r['images']['read']} | {r['lines_3d']} ({r['lines_3d'] - r.get('lines_unconfirmed', 0)}) | {r['junctions']} | {r['edges']} | "
+    print(f"| {n} | {r['cameras']['registered']}/{r['images']['read']} | {r['lines_3d']} ({r['lines_3d'] - r.get('lines_unconfirmed', 0)}) | {r['junctions']} | {r['edges']} | {r.get('frame', {}).get('scale_source', '–')} | "
           f"{ref.get('scale_to_reference', float('nan')):.3f} | {ref.get('rotation_error_deg_median', float('nan')):.3f} | {r['exit_code']} | "
           f"{sec['cameras']:.1f} | {sec['lsd']:.2f} | {sec['triangulation']:.2f} | {sec['scale search']:.1f} | {sec['inference']:.2f} | {sec['total']:.1f} |")
 if totals:
-    print("| **median** | | | | | | | | " + " | ".join(f"{statistics.median(totals[k]):.2f}" for k in ("cameras", "lsd", "triangulation", "scale search", "inference", "total")) + " |")
+    print("| **median** | | | | | | | | | " + " | ".join(f"{statistics.median(totals[k]):.2f}" for k in ("cameras", "lsd", "triangulation", "scale search", "inference", "total")) + " |")
 
 
 def on_gt(mode, name):

@@ -9,67 +9,23 @@
 #include <vector>
 
 #include "dataset/photo/local_enu.h"
+#include "tests/common/exif_gps_jpeg.h"
 
 namespace lc2wf {
 namespace {
 
-// A TIFF block with IFD0 (one entry: the GPS IFD pointer) and a GPS IFD, in either byte order.
-class TiffWriter {
- public:
-  explicit TiffWriter(bool little) : little_(little) {}
-  void u16(uint16_t v) {
-    if (little_) b_.push_back(char(v & 0xFF)), b_.push_back(char(v >> 8));
-    else b_.push_back(char(v >> 8)), b_.push_back(char(v & 0xFF));
-  }
-  void u32(uint32_t v) {
-    if (little_) for (int k = 0; k < 4; ++k) b_.push_back(char((v >> (8 * k)) & 0xFF));
-    else for (int k = 3; k >= 0; --k) b_.push_back(char((v >> (8 * k)) & 0xFF));
-  }
-  std::string& bytes() { return b_; }
-
- private:
-  bool little_;
-  std::string b_;
-};
-
-struct Dms {
-  uint32_t d, m, s_num, s_den;
-};
+using testing::Dms;
+using testing::TiffWriter;
 
 // 47 deg 22' 35.5" N, 8 deg 32' 26.25" E, 431.7 m (or the refs given).
 std::string gps_tiff(bool little, char lat_ref = 'N', char lon_ref = 'E', uint8_t alt_ref = 0, uint32_t alt_den = 10) {
-  TiffWriter w(little);
-  w.bytes() += little ? std::string("II*\0", 4) : std::string("MM\0*", 4);
-  w.u32(8);  // IFD0 at 8
-  w.u16(1);  // one entry
-  w.u16(0x8825), w.u16(4), w.u32(1), w.u32(26);  // GPS IFD pointer -> 26
-  w.u32(0);  // next IFD
-  // GPS IFD at 26: 6 entries, then the rationals at 26 + 2 + 72 + 4 = 104
-  const uint32_t data = 104;
-  w.u16(6);
-  w.u16(1), w.u16(2), w.u32(2), w.bytes() += std::string{lat_ref, 0, 0, 0};
-  w.u16(2), w.u16(5), w.u32(3), w.u32(data);
-  w.u16(3), w.u16(2), w.u32(2), w.bytes() += std::string{lon_ref, 0, 0, 0};
-  w.u16(4), w.u16(5), w.u32(3), w.u32(data + 24);
-  w.u16(5), w.u16(1), w.u32(1), w.bytes() += std::string{char(alt_ref), 0, 0, 0};
-  w.u16(6), w.u16(5), w.u32(1), w.u32(data + 48);
-  w.u32(0);
-  for (const Dms& v : {Dms{47, 22, 355, 10}, Dms{8, 32, 2625, 100}}) w.u32(v.d), w.u32(1), w.u32(v.m), w.u32(1), w.u32(v.s_num), w.u32(v.s_den);
-  w.u32(4317), w.u32(alt_den);
-  return w.bytes();
+  return testing::gps_tiff(little, Dms{47, 22, 355, 10}, lat_ref, Dms{8, 32, 2625, 100}, lon_ref, alt_ref, 4317, alt_den);
 }
 
 // SOI, an APP0 segment, APP1 "Exif\0\0" + the TIFF block, then the start of the image data.
 std::string jpeg_with(const std::string& tiff) {
-  std::string j = "\xFF\xD8";
-  j += std::string("\xFF\xE0\x00\x06JFIF", 8);
-  const std::string payload = std::string("Exif\0\0", 6) + tiff;
-  const size_t length = payload.size() + 2;
-  j += "\xFF\xE1";
-  j += char(length >> 8), j += char(length & 0xFF);
-  j += payload;
-  j += std::string("\xFF\xDA\x00\x02", 4) + std::string(100, '\x55');
-  return j;
+  return testing::with_exif(std::string("\xFF\xD8\xFF\xE0\x00\x06JFIF", 10) + std::string("\xFF\xDA\x00\x02", 4) + std::string(100, '\x55'),
+                            tiff);
 }
 
 TEST(ExifGps, ReadsLatitudeLongitudeAltitudeInBothByteOrders) {

@@ -14,6 +14,7 @@
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"
 #include "test_scene.h"
+#include "tests/common/exif_gps_jpeg.h"
 
 using ::testing::HasSubstr;
 
@@ -96,28 +97,37 @@ TEST_F(Reconstruct, KnownCamerasGiveEveryOutputInTheirFrame) {
   EXPECT_TRUE(r.workspace.empty());  // the private workspace is gone
 }
 
-TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
-  // The known cameras written as a COLMAP text model in an arbitrary similarity frame (scale 0.2).
-  Similarity sfm;
-  sfm.scale = 0.2;
-  sfm.R = Eigen::AngleAxisd(1.1, Vec3(0.6, 0.2, -0.7).normalized()).toRotationMatrix();
-  sfm.t = Vec3(-4, 2, 9);
-  const fs::path model = *dir_ / "colmap_model";
+// The scene's known cameras written as a COLMAP text model (images named view_XXX<ext>) in the frame `sfm`.
+void write_colmap_model(const fs::path& model, const std::vector<Camera>& cameras, const Similarity& sfm, const char* ext) {
   fs::create_directories(model);
-  const Camera& c0 = scene_->cameras[0];
+  const Camera& c0 = cameras[0];
   std::ofstream(model / "cameras.txt") << "# camera\n1 PINHOLE " << c0.width << " " << c0.height << " " << c0.K(0, 0) << " " << c0.K(1, 1)
                                        << " " << c0.K(0, 2) + 0.5 << " " << c0.K(1, 2) + 0.5 << "\n";
   std::ofstream images(model / "images.txt");
   images.precision(17);
-  for (size_t v = 0; v < scene_->cameras.size(); ++v) {
-    const Camera c = sfm.apply(scene_->cameras[v]);
+  for (size_t v = 0; v < cameras.size(); ++v) {
+    const Camera c = sfm.apply(cameras[v]);
     const Eigen::Vector4d q = rotation_to_quaternion(c.R);
     char name[32];
-    std::snprintf(name, sizeof name, "view_%03zu.png", v);
+    std::snprintf(name, sizeof name, "view_%03zu%s", v, ext);
     images << v + 1 << " " << q(0) << " " << q(1) << " " << q(2) << " " << q(3) << " " << c.t.x() << " " << c.t.y() << " " << c.t.z()
            << " 1 " << name << "\n\n";
   }
-  images.close();
+}
+
+// An arbitrary similarity frame of the kind structure from motion picks (scale 0.2).
+Similarity arbitrary_sfm_frame() {
+  Similarity sfm;
+  sfm.scale = 0.2;
+  sfm.R = Eigen::AngleAxisd(1.1, Vec3(0.6, 0.2, -0.7).normalized()).toRotationMatrix();
+  sfm.t = Vec3(-4, 2, 9);
+  return sfm;
+}
+
+TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
+  const Similarity sfm = arbitrary_sfm_frame();
+  const fs::path model = *dir_ / "colmap_model";
+  write_colmap_model(model, scene_->cameras, sfm, ".png");
   double height = 0;
   for (const Vec3& j : scene_->building.wireframe.junctions) height = std::max(height, j.z());
 
@@ -157,6 +167,45 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   EXPECT_LE(found, 60.0);
   EXPECT_NEAR(h["height_m"].get<double>(), found, 1e-6 * found);
   EXPECT_TRUE(rn.report["seconds"].contains("scale search"));
+}
+
+// A drone's photos: every camera centre written into its JPEG as a GPS fix (building x east, y north, z up,
+// at 47 N 8 E), the poses in an arbitrary SfM frame, no other evidence: scale, up and north come from GPS.
+TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
+  const fs::path images = *dir_ / "gps_images";
+  fs::create_directories(images);
+  const double lat0 = 47.0, lon0 = 8.0, alt0 = 400.0;
+  const double e2 = 6.69437999014e-3, s2 = std::pow(std::sin(lat0 * M_PI / 180), 2);
+  const double north_radius = 6378137.0 * (1 - e2) / std::pow(1 - e2 * s2, 1.5);  // metres per radian of latitude
+  const double east_radius = 6378137.0 / std::sqrt(1 - e2 * s2) * std::cos(lat0 * M_PI / 180);
+  for (size_t v = 0; v < scene_->cameras.size(); ++v) {
+    char png[32], jpg[32];
+    std::snprintf(png, sizeof png, "view_%03zu.png", v);
+    std::snprintf(jpg, sizeof jpg, "view_%03zu.jpg", v);
+    std::vector<uchar> encoded;
+    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene_->images / png).string()), encoded, {cv::IMWRITE_JPEG_QUALITY, 95}));
+    const Vec3 c = scene_->cameras[v].center();
+    const std::string tiff = testing::gps_tiff(true, testing::to_dms(lat0 + c.y() / north_radius * 180 / M_PI), 'N',
+                                               testing::to_dms(lon0 + c.x() / east_radius * 180 / M_PI), 'E', 0,
+                                               uint32_t(std::llround((alt0 + c.z()) * 1000)), 1000);
+    std::ofstream(images / jpg, std::ios::binary) << testing::with_exif(std::string(encoded.begin(), encoded.end()), tiff);
+  }
+  const Similarity sfm = arbitrary_sfm_frame();
+  const fs::path model = *dir_ / "colmap_model_jpg";
+  write_colmap_model(model, scene_->cameras, sfm, ".jpg");
+
+  ReconstructOptions o = options("gps");
+  o.images = images;
+  o.cameras = model;
+  const ReconstructResult r = reconstruct(o);
+  const Json& f = r.report["frame"];
+  ASSERT_EQ(f["scale_source"], "gps") << f.dump();
+  EXPECT_EQ(f["gps"]["used"], true);
+  const Similarity to_metric = test::similarity_from_json(f["to_metric"]);
+  EXPECT_NEAR(to_metric.scale * sfm.scale, 1.0, 0.005);
+  // Building frame -> metric frame is a pure turn of < 1 degree: x east, y north, z up.
+  const Eigen::Matrix3d turn = to_metric.R * sfm.R;
+  EXPECT_LT(Eigen::AngleAxisd(turn).angle() * 180 / M_PI, 1.0);
 }
 
 void expect_stage_error(const ReconstructOptions& o, const std::string& stage, const std::string& text) {
