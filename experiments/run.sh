@@ -71,6 +71,8 @@
 #                 group, Roof-Image, generated) -> runs/general2-val/TAG and a row of runs/general2-val/table.md
 #   general4-data  general2's mix with its buildings over 22 m across (real, generated, augmented Roof-Image; train
 #                 and validation) rendered again at lc2wf-dataset's default pixel rule -> runs/general4
+#   general4-train [FLAGS...]  experiments/configs/general4.json: models/general fine-tuned on it at a low lr
+#                 (FLAGS to lc2wf-train, e.g. --stage junction) -> runs/general4-model
 #   general4-val WEIGHTS TAG [FLAGS...]  as general2-val, on general4's validation clouds -> runs/general4-val/TAG
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
@@ -91,7 +93,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-val snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val snapshot restore)
 
 step=${1:-}
 case $step in
