@@ -74,6 +74,10 @@
 #   general4-train [FLAGS...]  experiments/configs/general4.json: models/general fine-tuned on it at a low lr
 #                 (FLAGS to lc2wf-train, e.g. --stage junction) -> runs/general4-model
 #   general4-val WEIGHTS TAG [FLAGS...]  as general2-val, on general4's validation clouds -> runs/general4-val/TAG
+# Photo-like clouds for the next round (steps/photo.sh):
+#   photo-data     Blender photo-like renders (30 views, default pixel rule) of every 4th real and generated
+#                 training building of the mix not yet rendered so, and of every 7th real validation building
+#                 -> runs/photo
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -93,7 +97,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data snapshot restore)
 
 step=${1:-}
 case $step in
