@@ -143,7 +143,8 @@ general_list() {
 
 # score_validation ROOT REAL_CLOUDS GEN_CLOUDS WEIGHTS TAG [FLAGS...]: the validation table of a mix (general2-val,
 # general4-val): the real split's buildings of REAL_CLOUDS per group, the Roof-Image validation clouds, the
-# generated validation buildings of GEN_CLOUDS -> ROOT/TAG and a row of ROOT/table.md.
+# generated validation buildings of GEN_CLOUDS and, once photo-data has rendered them, the photo-like validation
+# clouds (runs/photo/realval-blender) -> ROOT/TAG and a row of ROOT/table.md.
 score_validation() {
   local root=$1 real=$2 gen=$3 weights=$4 tag=$5 out
   shift 5
@@ -155,6 +156,11 @@ score_validation() {
   [[ -s $out/gen-names.txt ]] || ls runs/general/genval-raster/clouds | sed -n 's/\.lcloud$//p' > "$out/gen-names.txt"
   [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "$gen" \
     --split "$out/gen-names.txt" -o "$out/gen" -q --method "$tag" "$@" > /dev/null
+  if [[ -s runs/photo/realval-names.txt && ! -f $out/photo/metrics.json ]] &&
+    [[ $(ls runs/photo/realval-blender/clouds 2> /dev/null | wc -l) -eq $(wc -l < runs/photo/realval-names.txt) ]]; then
+    "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/photo/realval-blender/clouds \
+      --split runs/photo/realval-names.txt -o "$out/photo" -q --method "$tag" "$@" > /dev/null
+  fi
   python3 - "$out" "$tag" "$*" >> "$root/table.md" <<'PY'
 import json, os, sys
 out, tag, flags = sys.argv[1:4]
@@ -165,7 +171,8 @@ def group(name):
     p = os.path.join(out, 'real', 'eval', name, 'metrics.json')
     return cell(p) if os.path.exists(p) else '-'
 print(f"| {tag} | {flags or '-'} | {group('all')} | {group('height_ge20_m')} | {group('source_vienna')} | "
-      f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} |")
+      f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} | "
+      f"{cell(os.path.join(out, 'photo', 'metrics.json')) if os.path.exists(os.path.join(out, 'photo', 'metrics.json')) else '-'} |")
 PY
   tail -1 "$root/table.md"
 }
