@@ -7,6 +7,7 @@
 #include <optional>
 #include <random>
 #include <stdexcept>
+#include <utility>
 
 #include "dataset/geometry/footprint.h"
 
@@ -84,14 +85,25 @@ void CameraRingOptions::Check() const {
     throw std::invalid_argument("CameraRingOptions.min/max_camera_height_m must both be 0 (elevation rings) or satisfy 0 < min <= max");
 }
 
-double view_scale_for(const std::vector<Vec3>& points, const CameraRingOptions& options, double max_metres_per_pixel,
-                      int max_side) {
-  if (!(max_metres_per_pixel > 0) || points.empty()) return 1.0;
+namespace {
+
+// The axis-aligned box of a non-empty point set (lowest, highest corner): what a ring frames and what the
+// pixel rule measures.
+std::pair<Vec3, Vec3> bounding_box(const std::vector<Vec3>& points) {
   Vec3 lo = points.front(), hi = points.front();
   for (const Vec3& p : points) {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  return {lo, hi};
+}
+
+}  // namespace
+
+double view_scale_for(const std::vector<Vec3>& points, const CameraRingOptions& options, double max_metres_per_pixel,
+                      int max_side) {
+  if (!(max_metres_per_pixel > 0) || points.empty()) return 1.0;
+  const auto [lo, hi] = bounding_box(points);
   const double wanted = (hi - lo).norm() / (max_metres_per_pixel * options.width);
   const double most = static_cast<double>(max_side) / std::max(options.width, options.height);
   return std::clamp(wanted, 1.0, std::max(1.0, most));
@@ -125,11 +137,7 @@ Camera look_at(const Vec3& center, const Vec3& target, const Eigen::Matrix3d& K,
 std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const CameraRingOptions& options) {
   options.Check();
   if (points.empty()) throw std::invalid_argument("make_camera_ring: no points to frame");
-  Vec3 lo = points.front(), hi = points.front();
-  for (const Vec3& p : points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
+  const auto [lo, hi] = bounding_box(points);
   const Vec3 centre = 0.5 * (lo + hi);
   const double size = std::max((hi - lo).norm(), 1e-3);
   const double f = options.focal_px > 0 ? options.focal_px : options.width * 35.0 / 36.0;
