@@ -156,10 +156,10 @@ score_validation() {
   [[ -s $out/gen-names.txt ]] || ls runs/general/genval-raster/clouds | sed -n 's/\.lcloud$//p' > "$out/gen-names.txt"
   [[ -f $out/gen/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "$gen" \
     --split "$out/gen-names.txt" -o "$out/gen" -q --method "$tag" "$@" > /dev/null
-  if [[ -s runs/photo/realval-names.txt && ! -f $out/photo/metrics.json ]] &&
-    [[ $(ls runs/photo/realval-blender/clouds 2> /dev/null | wc -l) -eq $(wc -l < runs/photo/realval-names.txt) ]]; then
+  if [[ ! -f $out/photo/metrics.json ]] &&
+    [[ $(ls runs/photo/realval-blender/clouds 2> /dev/null | wc -l) -eq $(wc -l < experiments/lists/photo-realval.txt) ]]; then
     "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/photo/realval-blender/clouds \
-      --split runs/photo/realval-names.txt -o "$out/photo" -q --method "$tag" "$@" > /dev/null
+      --split experiments/lists/photo-realval.txt -o "$out/photo" -q --method "$tag" "$@" > /dev/null
   fi
   python3 - "$out" "$tag" "$*" >> "$root/table.md" <<'PY'
 import json, os, sys

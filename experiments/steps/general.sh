@@ -40,6 +40,14 @@ open(sys.argv[2], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
 }
 
+# Every real building file linked again as photo_<file> in runs/general/lod2-photo, so a building's photo-like
+# cloud is named apart from its raster one.
+photo_lod2_links() {
+  mkdir -p runs/general/lod2-photo
+  local g
+  for g in runs/lod2-all/*; do ln -sfn "$(realpath "$g")" "runs/general/lod2-photo/photo_$(basename "$g")"; done
+}
+
 # general-data: the raster clouds of the mix, then the training folder (links) and its split lists.
 step_general_data() {
   local dataset=$build_dir/tools/lc2wf-dataset
@@ -56,12 +64,12 @@ step_general_data() {
   # clutter is in the training distribution: every 10th generated and every 13th real training building,
   # named photo_* (links with that prefix) beside their raster clouds.
   if [[ ! -f runs/general/photo-names.txt ]]; then
-    mkdir -p runs/general/meshes-photo runs/general/lod2-photo
+    mkdir -p runs/general/meshes-photo
     local g
     for g in $(ls runs/general/meshes-gen/*.polyshape | awk 'NR % 10 == 1'); do
       ln -sfn "$(realpath "$g")" "runs/general/meshes-photo/photo_$(basename "$g")"
     done
-    for g in runs/lod2-all/*; do ln -sfn "$(realpath "$g")" "runs/general/lod2-photo/photo_$(basename "$g")"; done
+    photo_lod2_links
     awk 'NR % 13 == 1 { print "photo_" $0 }' runs/general/real-train-sub.txt > runs/general/photo-names.txt
   fi
   "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-photo --out runs/general/photo-blender --renderer blender --textures photo \
