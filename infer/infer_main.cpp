@@ -54,10 +54,10 @@ wireframe and a note, never a failure.
   --edge-cameras N    cameras that must have had an edge in view (in front, inside the image, not behind
                       the block over the wireframe's footprint) to keep it without line support
                       (default 2; 0 = the lines alone decide)
-  --max-pairs N       at most N junction pairs go to the edge model (default 2080, every pair of 65
-                      junctions; 0 = no cap): above N, the pairs with the most line support within 2 m of
-                      their junctions, each junction in at most --max-pairs-per-junction K of them
-                      (default 64), so a cluttered map's time stays bounded; a note says when it bites
+  --max-pairs N       at most N junction pairs go to the edge model (default 1280; 0 = no cap): above N,
+                      the pairs with the most line support within 2 m of their junctions, each junction in
+                      at most --max-pairs-per-junction K of them (default 64), so a building's time stays
+                      under a second however cluttered its cloud; a note says when it bites
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
                       before the cut (default 0.5; the release: 0.25)
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample

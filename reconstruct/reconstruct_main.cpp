@@ -90,9 +90,9 @@ Options:
   --edge-cameras N       cameras that must have had an edge in view to keep it without line support (default 2)
   --edge-support-everywhere  apply --edge-support also when the cameras saw every side (default: only then not)
   --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
-  --max-pairs N          at most N pairs for the edge model (default 2080; see lc2wf-infer --help)
   --crossing-distance M  of two edges crossing within M metres, keep the higher-scoring one (default 0.25;
                          0 = keep both; see lc2wf-infer --help)
+  --max-pairs N          at most N pairs for the edge model (default 1280; see lc2wf-infer --help)
   --max-pairs-per-junction K  and at most K per junction when the cap bites (default 64)
   --nms-radius M         point-NMS radius of the candidate junctions (default 0.5 m; see lc2wf-infer --help)
   --max-offset M         ignore candidates regressed more than M metres from their sample point (default 0.75;
