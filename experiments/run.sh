@@ -78,6 +78,11 @@
 #   photo-data     Blender photo-like renders (30 views, default pixel rule) of every 4th real and generated
 #                 training building of the mix not yet rendered so, and of every 7th real validation building
 #                 -> runs/photo
+#   photo5-data    a fine-tuning mix: every photo-like training cloud photo-data has made and every 3rd cloud of
+#                 general4's mix; validation: the 60 photo-like and every 3rd of general4's validation clouds
+#                 -> runs/photo5 (the photo part's names in experiments/lists/photo5-photo.txt)
+#   photo5-train [FLAGS...]  experiments/configs/photo5.json: models/general fine-tuned on it -> runs/photo5-model
+#                 (scored with general4-val, whose last column is the photo-like validation set)
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -97,7 +102,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train snapshot restore)
 
 step=${1:-}
 case $step in
