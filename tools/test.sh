@@ -8,5 +8,10 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 LC2WF_WITH_RENDER_TOOLS=${LC2WF_WITH_RENDER_TOOLS:-1} LC2WF_WITH_BROWSER=${LC2WF_WITH_BROWSER:-1} \
   "$root/tools/build.sh" "$@"
 cd "${LC2WF_BUILD_DIR:-$root/build}"
+# Tests write their scratch files under the system temp folder: one folder per run, removed afterwards,
+# so repeated runs leave nothing behind in /tmp.
+TMPDIR=$(mktemp -d "${TMPDIR:-/tmp}/lc2wf-test.XXXXXX")
+export TMPDIR
+trap 'rm -rf "$TMPDIR"' EXIT
 ctest --output-on-failure -j "$(nproc)"
 "$root/tools/sanitize.sh"

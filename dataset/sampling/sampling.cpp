@@ -64,13 +64,13 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
   o.Check();
   if (p.empty()) return {};
   const SpatialGrid grid(p, o.density_radius_m);
-  std::vector<int> cand;
+  std::vector<int> cand, count(p.size(), 0);
   std::vector<double> ratio(p.size(), 0.0);
   for (size_t i = 0; i < p.size(); ++i) {
-    int a = 0, b = 0;
-    grid.count_within(p[i], o.density_radius_m, o.density_inner_radius_m, a, b);
-    ratio[i] = b / (a + 1e-3);
-    if (a > o.seeds.min_count && ratio[i] > o.seeds.min_ratio) cand.push_back(static_cast<int>(i));
+    int b = 0;
+    grid.count_within(p[i], o.density_radius_m, o.density_inner_radius_m, count[i], b);
+    ratio[i] = b / (count[i] + 1e-3);
+    if (count[i] > o.seeds.min_count && ratio[i] > o.seeds.min_ratio) cand.push_back(static_cast<int>(i));
   }
   std::vector<Vec3> cp;
   std::vector<double> cs;
@@ -80,6 +80,9 @@ std::vector<int> density_seeds(const std::vector<Vec3>& p, const SamplingOptions
   }
   std::vector<int> out;
   for (int k : point_nms(cp, cs, o.seeds.nms_m, PointNmsRule::kSuppressor)) out.push_back(cand[k]);
+  // A building's corners end a fragment in nearly every view that sees them; window frames, leaves and other
+  // clutter in fewer: when a cluttered cloud has more seeds than sample points, the most endpoints go first.
+  std::stable_sort(out.begin(), out.end(), [&](int a, int b) { return count[a] > count[b]; });
   return out;
 }
 
@@ -188,7 +191,13 @@ std::vector<int> sample_endpoints(const std::vector<Vec3>& endpoints, const Samp
   const auto dens = density_seeds(endpoints, o);
   seeds.insert(seeds.end(), dens.begin(), dens.end());
   std::vector<int> first = farthest_point_sampling(endpoints, o.num_samples, seeds);
-  return o.passes == 1 ? first : continue_sampling(endpoints, std::move(first), o.passes * o.num_samples);
+  if (o.passes == 1) return first;
+  // The seeds one pass could not hold lead the next passes, before farthest-point sampling goes on.
+  std::vector<char> taken(endpoints.size(), 0);
+  for (int s : first) taken[static_cast<size_t>(s)] = 1;
+  for (int s : seeds)
+    if (!taken[static_cast<size_t>(s)]) taken[static_cast<size_t>(s)] = 1, first.push_back(s);
+  return continue_sampling(endpoints, std::move(first), o.passes * o.num_samples);
 }
 
 }  // namespace lc2wf

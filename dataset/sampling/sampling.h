@@ -44,7 +44,8 @@ struct SamplingOptions {
   void Check() const;
 };
 
-// Density seeds: endpoint indices by descending C_i after NMS (may be empty).
+// Density seeds: endpoint indices after the NMS on C_i, the most endpoints within density_radius_m (A_i)
+// first, ties in descending C_i (may be empty).
 std::vector<int> density_seeds(const std::vector<Vec3>& endpoints, const SamplingOptions& options);
 
 // Farthest point sampling to `count` starting from `seeds` (first occurrence kept, capped at count). With
