@@ -2,6 +2,8 @@
 // 2nd-98th percentile box so a few stray lines do not count, between 1 and the cap.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "dataset/sampling/sampling.h"
 
 namespace lc2wf {
@@ -35,6 +37,44 @@ TEST(SampleBudget, AFewStrayLinesDoNotCount) {
   std::vector<Segment3> t;
   for (const Segment3& g : line_of_segments(100, 200)) t.push_back({Vec3(g.a.y(), g.a.x(), 0), Vec3(g.b.y(), g.b.x(), 0)});
   EXPECT_EQ(passes_for_extent(t, 40), 3);
+}
+
+// A cluttered cloud: 40 "corners" where 12 endpoints meet, spread over half a metre as many views' fragments
+// are (C = 7/12), among 400 tighter "clutter" spots of 6 endpoints (C = 1), 1 m apart: every spot is a seed,
+// they outnumber the 256 sample points, and the release's order (by C) would put all the clutter first.
+std::vector<Vec3> corners_among_clutter() {
+  std::vector<Vec3> p;
+  auto spot = [&](double x, double y, int endpoints, double step) {
+    for (int k = 0; k < endpoints; ++k) p.push_back(Vec3(x + step * (k - 0.5 * (endpoints - 1)), y, 1.0));
+  };
+  for (int k = 0; k < 400; ++k) spot(k % 20, k / 20, 6, 0.01);
+  for (int k = 0; k < 40; ++k) spot(k % 8 + 0.5, k / 8 + 30.5, 12, 0.045);
+  return p;
+}
+
+TEST(SampleBudget, TheSeedsWithTheMostEndpointsComeFirst) {
+  const std::vector<Vec3> p = corners_among_clutter();
+  SamplingOptions o;
+  o.seeds = DensitySeedRule::loose();
+  const std::vector<int> seeds = density_seeds(p, o);
+  ASSERT_EQ(seeds.size(), 440u);
+  for (int k = 0; k < 40; ++k) EXPECT_GE(seeds[k], 2400) << k;  // the 40 corners (indices 2400 on) lead
+  auto corners_in = [](const std::vector<int>& sample, size_t first, size_t last) {
+    int n = 0;
+    for (size_t k = first; k < last; ++k) n += sample[k] >= 2400;
+    return n;
+  };
+  const std::vector<int> one = sample_endpoints(p, o);
+  ASSERT_EQ(one.size(), 256u);
+  EXPECT_EQ(corners_in(one, 0, one.size()), 40);  // every corner gets a sample point in one pass
+  // With two passes, the 184 seeds the first pass could not hold lead the second: every seed is sampled.
+  o.passes = 2;
+  const std::vector<int> two = sample_endpoints(p, o);
+  ASSERT_EQ(two.size(), 512u);
+  EXPECT_TRUE(std::equal(one.begin(), one.end(), two.begin()));
+  std::vector<char> sampled(p.size(), 0);
+  for (int s : two) sampled[static_cast<size_t>(s)] = 1;
+  for (int s : seeds) EXPECT_TRUE(sampled[static_cast<size_t>(s)]) << s;
 }
 
 }  // namespace
