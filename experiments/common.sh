@@ -141,6 +141,17 @@ general_list() {
   done | sort -u > "$list"
 }
 
+# train_mix MIX RUN CONFIG [FLAGS...]: lc2wf-train CONFIG [FLAGS] into runs/RUN (resumed, or restored from its
+# snapshot), once MIX's data step has written runs/MIX/train.txt.
+train_mix() {
+  local mix=$1 run=$2 config=$3 resume
+  shift 3
+  need_binary "$build_dir/train/lc2wf-train" lc2wf-train
+  [[ -s runs/$mix/train.txt ]] || die 3 "no training list: run experiments/run.sh $mix-data first"
+  resume_or_restore "$run"
+  "$build_dir/train/lc2wf-train" "$config" "${resume[@]}" "$@"
+}
+
 # score_validation ROOT REAL_CLOUDS GEN_CLOUDS WEIGHTS TAG [FLAGS...]: the validation table of a mix (general2-val,
 # general4-val): the real split's buildings of REAL_CLOUDS per group, the Roof-Image validation clouds, the
 # generated validation buildings of GEN_CLOUDS and, once photo-data has rendered them, the photo-like validation

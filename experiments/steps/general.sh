@@ -90,13 +90,7 @@ step_general_data() {
 }
 
 # general-train: configs/general.json (models/dense fine-tuned on the mix), resumable.
-step_general_train() {
-  need_binary "$build_dir/train/lc2wf-train" lc2wf-train
-  [[ -s runs/general/train.txt ]] || die 3 "no training list: run experiments/run.sh general-data first"
-  local resume
-  resume_or_restore general-model
-  "$build_dir/train/lc2wf-train" configs/general.json "${resume[@]}"
-}
+step_general_train() { train_mix general general-model configs/general.json; }
 
 # general-eval [MODEL...]: the test clouds (real LoD2 test split, raster: at lc2wf-dataset's default pixel rule
 # in runs/lod2-raster-fine, and at 640 x 480 for every building, as before that rule, in runs/lod2-raster;

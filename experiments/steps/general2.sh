@@ -49,13 +49,7 @@ PY
 }
 
 # general2-train: experiments/configs/general2.json, resumable.
-step_general2_train() {
-  need_binary "$build_dir/train/lc2wf-train" lc2wf-train
-  [[ -s runs/general2/train.txt ]] || die 3 "no training list: run experiments/run.sh general2-data first"
-  local resume
-  resume_or_restore general2-model
-  "$build_dir/train/lc2wf-train" experiments/configs/general2.json "${resume[@]}"
-}
+step_general2_train() { train_mix general2 general2-model experiments/configs/general2.json; }
 
 # general2-val WEIGHTS TAG [FLAGS...]: WEIGHTS with lc2wf-infer FLAGS on general2's validation clouds -> runs/general2-val/TAG:
 # real/ (414 real buildings, per source, roof kind and height band), ri/ (100 Roof-Image, Blender), gen/ (60

@@ -62,13 +62,7 @@ step_general4_data() {
 # general4-train: experiments/configs/general4.json (models/general fine-tuned on the mix at a low lr, since
 # general2's 5e-5 moved it off its minimum), resumable; `--stage junction` first, scored as a hybrid with
 # general4-val before the edge stage runs.
-step_general4_train() {
-  need_binary "$build_dir/train/lc2wf-train" lc2wf-train
-  [[ -s runs/general4/train.txt ]] || die 3 "no training list: run experiments/run.sh general4-data first"
-  local resume
-  resume_or_restore general4-model
-  "$build_dir/train/lc2wf-train" experiments/configs/general4.json "${resume[@]}" "$@"
-}
+step_general4_train() { train_mix general4 general4-model experiments/configs/general4.json "$@"; }
 
 # general4-val WEIGHTS TAG [FLAGS...]: as general2-val, on general4's validation clouds (the large buildings at the
 # default pixel rule) -> runs/general4-val/TAG and a row of runs/general4-val/table.md.

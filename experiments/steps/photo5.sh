@@ -41,10 +41,4 @@ step_photo5_data() {
 }
 
 # photo5-train [FLAGS...]: experiments/configs/photo5.json (models/general fine-tuned on the mix), resumable.
-step_photo5_train() {
-  need_binary "$build_dir/train/lc2wf-train" lc2wf-train
-  [[ -s runs/photo5/train.txt ]] || die 3 "no training list: run experiments/run.sh photo5-data first"
-  local resume
-  resume_or_restore photo5-model
-  "$build_dir/train/lc2wf-train" experiments/configs/photo5.json "${resume[@]}" "$@"
-}
+step_photo5_train() { train_mix photo5 photo5-model experiments/configs/photo5.json "$@"; }
