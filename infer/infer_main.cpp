@@ -56,8 +56,8 @@ wireframe and a note, never a failure.
                       (default 2; 0 = the lines alone decide)
   --max-pairs N       at most N junction pairs go to the edge model (default 1280; 0 = no cap): above N,
                       the pairs with the most line support within 2 m of their junctions, each junction in
-                      at most --max-pairs-per-junction K of them (default 64), so a building's time stays
-                      under a second however cluttered its cloud; a note says when it bites
+                      at most --max-pairs-per-junction K of them (default 64), so the edge model's time
+                      stays bounded however cluttered the cloud; a note says when it bites
   --nms-radius M      candidate junctions closer than M metres to a more confident one are dropped
                       before the cut (default 0.5; the release: 0.25)
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample

@@ -15,8 +15,8 @@
 namespace lc2wf {
 
 struct PairCapOptions {
-  // Pairs kept in total (0 = no cap): ≈ 0.5 s of edge model on two cores, so a building's whole inference stays
-  // under a second; more than an ordinary building's selection gives (dataset/README.md, "Pair cap").
+  // Pairs kept in total (0 = no cap): ≈ 0.5 s of edge model on two cores, whatever the clutter; more than an
+  // ordinary building's selection gives (dataset/README.md, "Pair cap").
   int max_pairs = 1280;
   // Pairs kept per junction when the cap bites (0 = no per-junction limit).
   int max_pairs_per_junction = 64;
