@@ -6,6 +6,20 @@
 # validation clouds and every 3rd of general4's validation clouds. The lists are written once (a resumed training
 # keeps its data) and the photo part is kept in experiments/lists/photo5-photo.txt, so a fresh machine trains on
 # the same clouds once photo-data has rendered them.
+# photo5_link CLOUDS NAMES: CLOUDS/<name>.lcloud of every name in the file NAMES linked into runs/photo5/clouds.
+photo5_link() {
+  local name
+  while read -r name; do ln -sfn "$(realpath "$1/$name.lcloud")" runs/photo5/clouds/; done < "$2"
+}
+
+# photo5_split SPLIT PHOTO_NAMES: runs/photo5/SPLIT.txt = the photo-like names (already linked) and every 3rd
+# cloud of general4's SPLIT list.
+photo5_split() {
+  awk 'NR % 3 == 1' "runs/general4/$1.txt" > "runs/photo5/clean-$1.txt"
+  photo5_link runs/general4/clouds "runs/photo5/clean-$1.txt"
+  sort -u "$2" "runs/photo5/clean-$1.txt" > "runs/photo5/$1.txt"
+}
+
 step_photo5_data() {
   [[ -s runs/general4/train.txt && -s runs/general4/val.txt ]] || die 3 "no general4 mix: run experiments/run.sh general4-data first"
   mkdir -p runs/photo5/clouds
@@ -22,19 +36,11 @@ step_photo5_data() {
       done
       [[ -e runs/photo5/clouds/$name.lcloud ]] || die 3 "photo-like cloud $name not rendered yet: run experiments/run.sh photo-data"
     done < experiments/lists/photo5-photo.txt
-    awk 'NR % 3 == 1' runs/general4/train.txt > runs/photo5/clean-train.txt
-    while read -r name; do ln -sfn "$(realpath "runs/general4/clouds/$name.lcloud")" runs/photo5/clouds/; done \
-      < runs/photo5/clean-train.txt
-    sort -u experiments/lists/photo5-photo.txt runs/photo5/clean-train.txt > runs/photo5/train.txt
+    photo5_split train experiments/lists/photo5-photo.txt
   fi
   if [[ ! -s runs/photo5/val.txt ]]; then
-    for name in $(cat experiments/lists/photo-realval.txt); do
-      ln -sfn "$(realpath "runs/photo/realval-blender/clouds/$name.lcloud")" runs/photo5/clouds/
-    done
-    awk 'NR % 3 == 1' runs/general4/val.txt > runs/photo5/clean-val.txt
-    while read -r name; do ln -sfn "$(realpath "runs/general4/clouds/$name.lcloud")" runs/photo5/clouds/; done \
-      < runs/photo5/clean-val.txt
-    sort -u experiments/lists/photo-realval.txt runs/photo5/clean-val.txt > runs/photo5/val.txt
+    photo5_link runs/photo/realval-blender/clouds experiments/lists/photo-realval.txt
+    photo5_split val experiments/lists/photo-realval.txt
   fi
   echo "photo5-data: $(wc -l < runs/photo5/train.txt) training clouds ($(wc -l < experiments/lists/photo5-photo.txt)" \
     "photo-like), $(wc -l < runs/photo5/val.txt) validation clouds in runs/photo5"
