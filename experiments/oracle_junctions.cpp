@@ -4,14 +4,16 @@
 // and misplaced junctions) from what the edge stage and the post-processing cost.
 //   lc2wf_oracle_junctions --weights DIR --data CLOUDS --split FILE -o OUT [--precision fp32|bf16|auto]
 //                          [--junctions gt|predicted|true-only|snapped|true-snapped] [--min-confidence C]
-//                          [--junction-weights FILE] [--nms-radius M] [--max-offset M]
+//                          [--junction-weights FILE] [--keep-wireframes] [post-processing flags of lc2wf-eval]
 // --junctions: gt = the GT junctions (confidence 1); predicted = the junction model's selection (the
 // pipeline of lc2wf-eval --weights); true-only = that selection without its false positives (farther
 // than 0.35 m from every GT junction); snapped = the selection with each true junction moved onto its GT
 // junction; true-snapped = both. --junction-weights another junction model than DIR's (e.g. a checkpoint
-// of another epoch). --min-confidence, --nms-radius and --max-offset set the selection as for lc2wf-eval
-// (infer/post_process_flags.h; defaults: lc2wf-eval's).
-// Writes OUT/metrics.md, metrics.json and per_building.csv (as lc2wf-eval).
+// of another epoch). The post-processing flags (--nms-radius, --max-pairs, --crossing-distance, ...) set the
+// selection and post-processing as for lc2wf-eval (infer/post_process_flags.h; defaults: lc2wf-eval's).
+// Writes OUT/metrics.md, metrics.json and per_building.csv (as lc2wf-eval), and the same for the candidate
+// edges before post-processing in OUT/candidates/ (what the edge model kept against what the clean-up kept);
+// --keep-wireframes also writes both wireframes (OUT/wireframes, OUT/candidates/wireframes: <name>.obj, metres).
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "dataset/splits/splits.h"
 #include "infer/batch_inference.h"
 #include "infer/eval_report_io.h"
+#include "infer/prediction_io.h"
 #include "model/evaluator.h"
 #include "model/inference.h"
 #include "infer/post_process_flags.h"
@@ -54,13 +57,21 @@ PredictedJunctions junctions(const WireframePredictor& predictor, const LineClou
 int run(int argc, char** argv) {
   fs::path weights, data, split, out, junction_weights;
   std::string precision = "fp32", mode = "gt";
+  bool keep_wireframes = false;
   PostProcessFlags selection_flags;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string f = argv[i], v = argv[i + 1];
-    if (f == "--min-confidence" || f == "--nms-radius" || f == "--max-offset") {
-      selection_flags.parse(f, argc, argv, i);
-      --i;  // parse() stepped onto the value; the loop steps over both
-    } else if (f == "--weights") weights = v;
+  for (int i = 1; i < argc; ++i) {
+    const std::string f = argv[i];
+    if (selection_flags.parse(f, argc, argv, i)) continue;  // every post-processing flag of lc2wf-eval
+    if (f == "--keep-wireframes") {
+      keep_wireframes = true;
+      continue;
+    }
+    if (i + 1 >= argc) {
+      std::fprintf(stderr, "lc2wf_oracle_junctions: %s needs a value\n", f.c_str());
+      return 2;
+    }
+    const std::string v = argv[++i];
+    if (f == "--weights") weights = v;
     else if (f == "--data") data = v;
     else if (f == "--split") split = v;
     else if (f == "-o" || f == "--out") out = v;
@@ -87,6 +98,7 @@ int run(int argc, char** argv) {
     options.selection.refine.radius = 0.0;
     options.selection.max_offset_m = std::numeric_limits<double>::infinity();  // no offsets to screen
     Evaluator evaluator{EvalOptions{}};
+    Evaluator before_clean_up{EvalOptions{}};  // the candidate edges: what the edge model kept, before post-processing
     InferenceTiming timing;
     timing.record_selection(pipeline);
     for (const std::string& name : read_name_list(split)) {
@@ -94,6 +106,11 @@ int run(int argc, char** argv) {
       const InferenceResult r = predict_wireframe(predictor.edge_net(), cloud, junctions(predictor, cloud, mode, pipeline.selection),
                                                   mode == "predicted" ? pipeline : options);
       evaluator.add(name, r.wireframe, cloud.wireframe);
+      before_clean_up.add(name, r.candidates, cloud.wireframe);
+      if (keep_wireframes) {
+        write_prediction(out / "wireframes", name, r.wireframe);
+        write_prediction(out / "candidates" / "wireframes", name, r.candidates);
+      }
       ++timing.buildings;
       timing.pairs += static_cast<int64_t>(r.pairs.size());
       timing.edge_seconds += r.edge_seconds;
@@ -102,6 +119,8 @@ int run(int argc, char** argv) {
     }
     timing.precision = to_string(precision_flag(precision));
     write_eval_outputs(out, evaluator.report(), mode + " junctions + " + weights.filename().string(), nullptr, &timing);
+    write_eval_outputs(out / "candidates", before_clean_up.report(),
+                       mode + " junctions + " + weights.filename().string() + ", candidate edges", nullptr, &timing);
     std::printf("%s", eval_markdown(evaluator.report(), mode + " junctions").c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lc2wf_oracle_junctions: %s\n", e.what());

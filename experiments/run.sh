@@ -74,7 +74,7 @@
 #   general4-train [FLAGS...]  experiments/configs/general4.json: models/general fine-tuned on it at a low lr
 #                 (FLAGS to lc2wf-train, e.g. --stage junction) -> runs/general4-model
 #   general4-val WEIGHTS TAG [FLAGS...]  as general2-val, on general4's validation clouds -> runs/general4-val/TAG
-# Photo-like clouds for the next round (steps/photo.sh):
+# Photo-like clouds and the rounds trained on them (steps/photo.sh, steps/photo_rounds.sh):
 #   photo-data     Blender photo-like renders (30 views, default pixel rule) of every 4th real and generated
 #                 training building of the mix not yet rendered so, and of every 7th real validation building
 #                 -> runs/photo
@@ -83,6 +83,10 @@
 #                 -> runs/photo5 (the photo part's names in experiments/lists/photo5-photo.txt)
 #   photo5-train [FLAGS...]  experiments/configs/photo5.json: models/general fine-tuned on it -> runs/photo5-model
 #                 (scored with general4-val, whose last column is the photo-like validation set)
+#   photo6-data    as photo5-data with every photo-like training cloud made by then and every 4th cloud of
+#                 general4's mix (a larger photo share), sampled by endpoint count -> runs/photo6 (photo part's
+#                 names in experiments/lists/photo6-photo.txt; the same validation clouds as photo5)
+#   photo6-train [FLAGS...]  experiments/configs/photo6.json: photo5's schedule on it -> runs/photo6-model
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -102,7 +106,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train snapshot restore)
 
 step=${1:-}
 case $step in
