@@ -6,6 +6,9 @@ meshes=${LC2WF_DATA_DIR:-$root/../shared/data}/roof-image/res_building
 # lc2wf-dataset as it rendered before large buildings got finer images (640 x 480 for every building): the
 # clouds of the paper's run and of the models trained so far, reproduced as they were.
 fixed_size=(--max-metres-per-pixel 0)
+# The rasteriser as it shaded before the ambient light followed the camera (constant ambient): every raster
+# cloud of the models trained so far and of the test scores published with them.
+constant_ambient=(--view-light 0)
 
 # die CODE MESSAGE: the step's error on stderr, then exit with CODE (2 bad command line, 3 data or I/O).
 die() {

@@ -53,7 +53,7 @@ step_general_data() {
   local dataset=$build_dir/tools/lc2wf-dataset
   need_binary "$dataset" lc2wf-dataset
   general_meshes
-  local common=(--renderer raster --views 30 -j 2 -q)
+  local common=(--renderer raster "${constant_ambient[@]}" --views 30 -j 2 -q)
   "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-gen --out runs/general/gen-raster "${common[@]}" > runs/general/gen.json || true
   "$dataset" "${fixed_size[@]}" --meshes runs/general/meshes-genval --out runs/general/genval-raster "${common[@]}" > runs/general/genval.json || true
   "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names runs/general/real-train-sub.txt --out runs/general/real-raster "${common[@]}" \
@@ -102,9 +102,9 @@ step_general_eval() {
   need_binary "$dataset" lc2wf-dataset
   general_meshes
   "$dataset" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster-fine --renderer raster \
-    --views 30 -j 2 -q > runs/lod2-raster-fine-summary.json || true
+    "${constant_ambient[@]}" --views 30 -j 2 -q > runs/lod2-raster-fine-summary.json || true
   "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names configs/splits/lod2/test.txt --out runs/lod2-raster --renderer raster \
-    --views 30 -j 2 -q > runs/lod2-raster-summary.json || true
+    "${constant_ambient[@]}" --views 30 -j 2 -q > runs/lod2-raster-summary.json || true
   dense_test_clouds || true  # steps/clouds.sh; a failed building is named and left out
   local models=("$@") model views tag
   [[ ${#models[@]} -gt 0 ]] || models=(models/general models/dense)

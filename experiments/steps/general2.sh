@@ -23,7 +23,7 @@ pick = [r['name'] for r in rows if r['source'] != 'nrw' or float(r['height_m']) 
 pick += rng.sample([r['name'] for r in rows if r['name'] not in pick and r['roof_kind'] == 'mixed'], 100)
 open(sys.argv[3], 'w').write('\n'.join(sorted(pick)) + '\n')
 PY
-  local common=(--renderer raster --views 30 -j 2 -q)
+  local common=(--renderer raster "${constant_ambient[@]}" --views 30 -j 2 -q)
   "$dataset" "${fixed_size[@]}" --meshes runs/lod2-all --names runs/general2/real-train-add.txt --out runs/general2/real-raster "${common[@]}" \
     > runs/general2/real.json || true
   [[ -f runs/general2/realval-names.txt ]] || cp configs/splits/lod2/val.txt runs/general2/realval-names.txt

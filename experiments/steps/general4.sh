@@ -28,8 +28,8 @@ large_meshes() {
 # render_fine MESHES NAMES OUT: one part of the mix, raster from 30 views at the default pixel rule ->
 # runs/general4/OUT (resumable: lc2wf-dataset skips the buildings it has done).
 render_fine() {
-  "$build_dir/tools/lc2wf-dataset" --meshes "$1" --names "$2" --out "runs/general4/$3" --renderer raster --views 30 \
-    -j 2 -q > "runs/general4/$3.json" || true
+  "$build_dir/tools/lc2wf-dataset" --meshes "$1" --names "$2" --out "runs/general4/$3" --renderer raster "${constant_ambient[@]}" \
+    --views 30 -j 2 -q > "runs/general4/$3.json" || true
 }
 
 step_general4_data() {

@@ -49,7 +49,8 @@ step_eval() {
 step_raster() {
   # Only the test buildings are rendered (the model is the Blender-trained one).
   link_meshes runs/raster-test-meshes configs/splits/test.txt
-  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/raster-test-meshes --out runs/raster-test --renderer raster -j 2
+  "$build_dir/tools/lc2wf-dataset" "${fixed_size[@]}" --meshes runs/raster-test-meshes --out runs/raster-test --renderer raster \
+    "${constant_ambient[@]}" -j 2
   evaluate runs/raster-test/clouds runs/base/test-raster "lc2wf on raster clouds"
 }
 

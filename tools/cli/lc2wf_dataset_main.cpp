@@ -49,6 +49,10 @@ options:
   --keep-views                keep renders, cameras.json and views.json (projected GT with visibility)
   --supersample N             rasteriser samples per pixel side (default 1)
   --blur SIGMA                rasteriser optical blur in pixels (default 1.0; 0 = none)
+  --view-light F              rasteriser, paper textures: share of the ambient light that dims with the angle
+                              to the camera, so walls in the sun's shade differ and their corners show (0-1,
+                              default 0.8; 0 = constant ambient, as renders before 2026-12-06); sfm and photo
+                              textures keep a view-independent light, which structure from motion needs
   --no-shadows                no cast shadows
   --engine NAME               Blender engine: BLENDER_WORKBENCH (default), BLENDER_EEVEE, CYCLES
   --samples N                 Blender anti-aliasing / render samples (default 1 = no AA; Workbench 5 = anti-aliased)
@@ -158,6 +162,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       o.raster.supersample = lc2wf::int_flag(a, value());
     } else if (a == "--blur") {
       o.raster.blur_sigma_px = lc2wf::number_flag(a, value());
+    } else if (a == "--view-light") {
+      o.raster.view_light = lc2wf::number_flag(a, value());
     } else if (a == "--no-shadows") {
       o.raster.shadows = false;
       o.blender.shadows = false;
@@ -216,6 +222,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
                                             {"DatasetRunOptions.max_image_side", "--max-image-side"},
                                             {"RasterOptions.supersample", "--supersample"},
                                             {"RasterOptions.blur_sigma_px", "--blur"},
+                                            {"RasterOptions.view_light", "--view-light"},
                                             {"BlenderOptions.engine", "--engine"},
                                             {"FacadeOptions.storey_height_m", "--photo-storey"},
                                             {"PhotoOptions.exposure_stops", "--photo-exposure"},

@@ -96,6 +96,7 @@ void RasterOptions::Check() const {
   if (sun_elevation_deg <= 0 || sun_elevation_deg > 90)
     throw std::invalid_argument("RasterOptions.sun_elevation_deg must be in (0, 90]");
   if (ambient < 0 || ambient > 1) throw std::invalid_argument("RasterOptions.ambient must be in [0, 1]");
+  if (view_light < 0 || view_light > 1) throw std::invalid_argument("RasterOptions.view_light must be in [0, 1]");
   if (noise_sigma < 0) throw std::invalid_argument("RasterOptions.noise_sigma must be >= 0");
   if (textures != "paper" && textures != "sfm" && textures != "photo")
     throw std::invalid_argument("RasterOptions.textures must be paper, sfm or photo, not " + textures);
@@ -245,6 +246,7 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
   const double ground_z = ground_z_;
   cv::Mat linear(cam.height, cam.width, CV_32FC3);
   const bool sfm = options_.textures == "sfm";
+  const double view_light = options_.textures == "paper" ? options_.view_light : 0.0;
   const ViewPhotometry photometry = photo_ ? view_photometry(photo_options_, options_.seed, view_seed) : ViewPhotometry{};
   const Rgb sky = photo_ ? Rgb{static_cast<float>(sky_colour().r * photometry.exposure), static_cast<float>(sky_colour().g * photometry.exposure),
                                static_cast<float>(sky_colour().b * photometry.exposure)}
@@ -280,7 +282,9 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
       }
       double direct = std::max(0.0, n.dot(sun_));
       if (direct > 0 && options_.shadows && in_shadow(X)) direct = 0;
-      double light = options_.ambient + (1.0 - options_.ambient) * direct;
+      // n faces the camera (or is the ground's up): the ambient share is dimmer the more obliquely it is seen.
+      const double facing = std::clamp(n.dot((C - X).normalized()), 0.0, 1.0);
+      double light = options_.ambient * (1.0 - view_light * (1.0 - facing)) + (1.0 - options_.ambient) * direct;
       if (photo_) light *= photometry.exposure;
       out[x] = cv::Vec3f(colour.b * light, colour.g * light, colour.r * light);
     }

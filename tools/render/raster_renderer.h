@@ -21,6 +21,11 @@ struct RasterOptions {
   double sun_azimuth_deg = 140.0;    // from +x towards +y
   double sun_elevation_deg = 55.0;
   double ambient = 0.38;             // share of light that reaches surfaces facing away from the sun
+  // Paper textures: share of that ambient light that falls off with the angle to the camera (as the studio light
+  // of Blender's renders of the paper look): with a constant ambient, every two walls facing away from the sun
+  // have the same shade and their corner draws no line. 0 = constant ambient (the renders before 2026-12-06).
+  // The sfm and photo textures keep the view-independent light structure from motion matches across views.
+  double view_light = 0.8;
   double noise_sigma = 1.5;          // Gaussian sensor noise, 8-bit levels (0 = none)
   // Optical blur (Gaussian, pixels) before the noise. Point-sampled tile textures alias into many
   // high-contrast texture segments; 1 px brings the line clouds close to Blender's anti-aliased renders
