@@ -175,6 +175,23 @@ TEST(DatasetRun, FinerPixelsForLargerBuildingsAreRecorded) {
   fs::remove_all(o.meshes.parent_path());
 }
 
+// --view-light: recorded, and a building rendered under another light (a status without one: the constant
+// ambient of before) is rendered again.
+TEST(DatasetRun, AnotherViewLightRendersTheBuildingAgain) {
+  DatasetRunOptions o = rect_house_run("light", 12, 160, 120);
+  o.raster.view_light = 0.0;
+  EXPECT_EQ(run_dataset(o)["done"], 1);
+  EXPECT_EQ(nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"))["view_light"], 0.0);
+  EXPECT_EQ(run_dataset(o)["processed_this_run"], 0);
+  o.raster.view_light = 0.8;
+  EXPECT_EQ(run_dataset(o)["processed_this_run"], 1);
+  EXPECT_EQ(nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"))["view_light"], 0.8);
+  o.raster.textures = "sfm";  // a view-independent light whatever the option: rendered again, recorded as 0
+  EXPECT_EQ(run_dataset(o)["processed_this_run"], 1);
+  EXPECT_EQ(nlohmann::json::parse(read_file(o.out / "status" / "a_rect.json"))["view_light"], 0.0);
+  fs::remove_all(o.meshes.parent_path());
+}
+
 std::set<std::string> entries(const fs::path& dir) {
   std::set<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.insert(e.path().filename().string());

@@ -45,15 +45,21 @@ fs::path cloud_path(const fs::path& out, const std::string& name) { return out /
 
 fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
 
-// Done with the capture and pixel rule asked for (statuses without them are orbits at a fixed image size):
-// a building done another way is redone.
+// The view light the images get: the rasteriser's, for the paper look only (RasterOptions::view_light).
+double effective_view_light(const DatasetRunOptions& o) {
+  return o.renderer == RendererKind::Raster && o.raster.textures == "paper" ? o.raster.view_light : 0.0;
+}
+
+// Done with the capture, pixel rule and view light asked for (statuses without them are orbits at a fixed
+// image size under a constant ambient): a building done another way is redone.
 bool is_done(const fs::path& out, const std::string& name, const DatasetRunOptions& o) {
   const fs::path sp = status_path(out, name);
   if (!fs::exists(sp) || !fs::exists(cloud_path(out, name))) return false;
   try {
     const Json st = Json::parse(read_file(sp));
     return st.value("ok", false) && st.value("capture", "orbit") == o.capture &&
-           st.value("max_metres_per_pixel", 0.0) == o.max_metres_per_pixel;
+           st.value("max_metres_per_pixel", 0.0) == o.max_metres_per_pixel &&
+           st.value("view_light", 0.0) == effective_view_light(o);
   } catch (const std::exception&) {
     return false;  // unreadable status: redo the building
   }
@@ -391,6 +397,7 @@ Json run_dataset(const DatasetRunOptions& o) {
       job.status["name"] = name;
       job.status["capture"] = o.capture;
       job.status["max_metres_per_pixel"] = o.max_metres_per_pixel;
+      job.status["view_light"] = effective_view_light(o);
       job.status["seconds"] = Json::object();
       return job;
     };
@@ -467,6 +474,7 @@ Json run_dataset(const DatasetRunOptions& o) {
   summary["textures"] = o.renderer == RendererKind::Raster ? o.raster.textures : o.blender.textures;
   summary["capture"] = o.capture;
   summary["max_metres_per_pixel"] = o.max_metres_per_pixel;
+  summary["view_light"] = effective_view_light(o);
   summary["command"] = o.command_line;
   add_version_fields(summary);
   summary["processed_this_run"] = todo.size();
