@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "core/util/cli.h"
 #include "dataset/formats/cloud_input.h"
 #include "dataset/selection/pair_support.h"
 #include "dataset/splits/splits.h"
@@ -92,8 +93,8 @@ int run(int argc, char** argv) {
     else if (f == "--split") split = v;
     else if (f == "--groups") groups = v;
     else if (f == "--prediction") prediction = v;
-    else if (f == "--radius") radius = std::stod(v);
-    else if (f == "--angle") angle = std::stod(v);
+    else if (f == "--radius") radius = number_flag(f, v);
+    else if (f == "--angle") angle = number_flag(f, v);
     else {
       std::fprintf(stderr, "lc2wf_gt_line_coverage: unknown argument '%s'\n", f.c_str());
       return 2;
