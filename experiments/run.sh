@@ -87,6 +87,10 @@
 #                 general4's mix (a larger photo share), sampled by endpoint count -> runs/photo6 (photo part's
 #                 names in experiments/lists/photo6-photo.txt; the same validation clouds as photo5)
 #   photo6-train [FLAGS...]  experiments/configs/photo6.json: photo5's schedule on it -> runs/photo6-model
+# Today's rasteriser (steps/light.sh):
+#   light-data     general4's mix with every raster cloud rendered again at lc2wf-dataset's defaults (the ambient
+#                 light dims with the viewing angle, so walls in shade show their corners) -> runs/light
+#   light-val WEIGHTS TAG [FLAGS...]  general4-val's table on its validation clouds -> runs/light-val/TAG
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -106,7 +110,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-val snapshot restore)
 
 step=${1:-}
 case $step in
