@@ -21,6 +21,13 @@ Building house() {
   return make_rect_building("house", spec);
 }
 
+// The default ring of `views` cameras around a building.
+std::vector<Camera> ring_around(const Building& b, int views) {
+  CameraRingOptions o;
+  o.views = views;
+  return make_camera_ring(b.mesh.vertices, o);
+}
+
 TEST(CameraRing, FramesTheWholeBuildingWithinTheElevationBand) {
   const Building b = house();
   CameraRingOptions o;
@@ -70,9 +77,7 @@ TEST(CameraRing, LargerBuildingsGetFinerPixelsInTheSameFraming) {
 
 TEST(RasterRenderer, DepthMapMatchesTheMeshAndFaceIds) {
   const Building b = house();
-  CameraRingOptions o;
-  o.views = 3;
-  const auto cams = make_camera_ring(b.mesh.vertices, o);
+  const auto cams = ring_around(b, 3);
   const RasterRenderer r(b.mesh, RasterOptions{});
   cv::Mat depth, ids;
   r.depth_map(cams[0], depth, ids);
@@ -94,9 +99,7 @@ TEST(RasterRenderer, DepthMapMatchesTheMeshAndFaceIds) {
 
 TEST(RasterRenderer, IsDeterministicAndShadowsDarkenTheGround) {
   const Building b = house();
-  CameraRingOptions o;
-  o.views = 2;
-  const auto cams = make_camera_ring(b.mesh.vertices, o);
+  const auto cams = ring_around(b, 2);
   RasterOptions ro;
   ro.seed = 9;
   const RasterRenderer lit(b.mesh, ro);
@@ -122,9 +125,7 @@ TEST(RasterRenderer, IsDeterministicAndShadowsDarkenTheGround) {
 // ambient). The same render with a constant ambient is the reference: the ratio removes the texture.
 TEST(RasterRenderer, WallsInShadeDifferByTheirAngleToTheCamera) {
   const Building b = house();
-  CameraRingOptions o;
-  o.views = 24;
-  const auto cams = make_camera_ring(b.mesh.vertices, o);
+  const auto cams = ring_around(b, 24);
   RasterOptions ro;
   ro.noise_sigma = 0;
   ro.blur_sigma_px = 0;

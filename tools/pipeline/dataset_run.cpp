@@ -45,9 +45,9 @@ fs::path cloud_path(const fs::path& out, const std::string& name) { return out /
 
 fs::path status_path(const fs::path& out, const std::string& name) { return out / "status" / (name + ".json"); }
 
-// The view light the images get: the rasteriser's, for the paper look only (RasterOptions::view_light).
+// The view light the images get: the rasteriser's (RasterOptions::effective_view_light); Blender's is its own.
 double effective_view_light(const DatasetRunOptions& o) {
-  return o.renderer == RendererKind::Raster && o.raster.textures == "paper" ? o.raster.view_light : 0.0;
+  return o.renderer == RendererKind::Raster ? o.raster.effective_view_light() : 0.0;
 }
 
 // Done with the capture, pixel rule and view light asked for (statuses without them are orbits at a fixed

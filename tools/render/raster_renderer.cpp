@@ -246,7 +246,7 @@ RasterImage RasterRenderer::render(const Camera& camera, uint64_t view_seed) con
   const double ground_z = ground_z_;
   cv::Mat linear(cam.height, cam.width, CV_32FC3);
   const bool sfm = options_.textures == "sfm";
-  const double view_light = options_.textures == "paper" ? options_.view_light : 0.0;
+  const double view_light = options_.effective_view_light();
   const ViewPhotometry photometry = photo_ ? view_photometry(photo_options_, options_.seed, view_seed) : ViewPhotometry{};
   const Rgb sky = photo_ ? Rgb{static_cast<float>(sky_colour().r * photometry.exposure), static_cast<float>(sky_colour().g * photometry.exposure),
                                static_cast<float>(sky_colour().b * photometry.exposure)}

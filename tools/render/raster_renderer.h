@@ -36,6 +36,8 @@ struct RasterOptions {
   // or "sfm": non-repeating noise that COLMAP can match (sfm_textures.h); or "photo": windows, clutter
   // objects and per-view exposure (photo_scene.h, photo_textures.h)
   std::string textures = "paper";
+  // The view light the images get: view_light with the paper look, 0 (a view-independent light) otherwise.
+  double effective_view_light() const { return textures == "paper" ? view_light : 0.0; }
   void Check() const;
 };
 
