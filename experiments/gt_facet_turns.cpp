@@ -45,12 +45,14 @@ struct Tally {
 
 int main(int argc, char** argv) {
   fs::path meshes, split;
+  bool bad = argc % 2 == 0;  // flags and values come in pairs
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string f = argv[i];
     if (f == "--meshes") meshes = argv[i + 1];
     else if (f == "--split") split = argv[i + 1];
+    else bad = true;
   }
-  if (meshes.empty() || split.empty()) {
+  if (bad || meshes.empty() || split.empty()) {
     std::fprintf(stderr, "usage: lc2wf_gt_facet_turns --meshes FOLDER --split FILE\n");
     return 2;
   }
