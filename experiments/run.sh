@@ -90,6 +90,7 @@
 # Today's rasteriser (steps/light.sh):
 #   light-data     general4's mix with every raster cloud rendered again at lc2wf-dataset's defaults (the ambient
 #                 light dims with the viewing angle, so walls in shade show their corners) -> runs/light
+#   light-train [FLAGS...]  experiments/configs/light.json: models/general fine-tuned on it -> runs/light-model
 #   light-val WEIGHTS TAG [FLAGS...]  general4-val's table on its validation clouds -> runs/light-val/TAG
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
@@ -110,7 +111,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-val snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val snapshot restore)
 
 step=${1:-}
 case $step in

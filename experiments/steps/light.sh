@@ -37,3 +37,7 @@ step_light_val() {
   [[ -s runs/light/val.txt ]] || die 3 "no light mix: run experiments/run.sh light-data first"
   score_validation runs/light-val runs/light/clouds runs/light/clouds "$@"
 }
+
+# light-train [FLAGS...]: experiments/configs/light.json (photo5's schedule: two junction and two edge epochs, 5e-5
+# then 5e-6, from models/general) on the light mix -> runs/light-model, resumable.
+step_light_train() { train_mix light light-model experiments/configs/light.json "$@"; }
