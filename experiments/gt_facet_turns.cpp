@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/util/cli.h"
 #include "dataset/formats/building_sources.h"
 #include "dataset/splits/splits.h"
 
@@ -45,15 +46,17 @@ struct Tally {
 
 int main(int argc, char** argv) {
   fs::path meshes, split;
-  bool bad = argc % 2 == 0;  // flags and values come in pairs
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string f = argv[i];
-    if (f == "--meshes") meshes = argv[i + 1];
-    else if (f == "--split") split = argv[i + 1];
-    else bad = true;
-  }
-  if (bad || meshes.empty() || split.empty()) {
-    std::fprintf(stderr, "usage: lc2wf_gt_facet_turns --meshes FOLDER --split FILE\n");
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string f = argv[i];
+      const std::string v = flag_value(argc, argv, i);
+      if (f == "--meshes") meshes = v;
+      else if (f == "--split") split = v;
+      else throw UsageError("unknown argument '" + f + "'");
+    }
+    if (meshes.empty() || split.empty()) throw UsageError("usage: lc2wf_gt_facet_turns --meshes FOLDER --split FILE");
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lc2wf_gt_facet_turns: %s\n", e.what());
     return 2;
   }
   try {
@@ -69,6 +72,8 @@ int main(int argc, char** argv) {
         continue;
       }
       const PolyMesh& m = b.mesh;
+      std::vector<Vec3> normal;
+      for (const auto& face : m.faces) normal.push_back(newell_normal(m.vertices, face));
       std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
       for (size_t f = 0; f < m.faces.size(); ++f)
         for (size_t k = 0; k < m.faces[f].size(); ++k) {
@@ -80,10 +85,10 @@ int main(int argc, char** argv) {
         double turn = 0;                 // the largest turn between any two of its faces, degrees in [0, 90]
         bool all_walls = true;
         for (size_t i = 0; i < faces.size(); ++i) {
-          const Vec3 ni = newell_normal(m.vertices, m.faces[faces[i]]);
+          const Vec3& ni = normal[faces[i]];
           all_walls = all_walls && std::abs(ni.z()) < 0.1;
           for (size_t j = i + 1; j < faces.size(); ++j) {
-            const double c = std::abs(ni.dot(newell_normal(m.vertices, m.faces[faces[j]])));
+            const double c = std::abs(ni.dot(normal[faces[j]]));
             turn = std::max(turn, std::acos(std::min(1.0, c)) * 180.0 / M_PI);
           }
         }

@@ -84,27 +84,18 @@ int run(int argc, char** argv) {
   double radius = 0.15, angle = 10.0;
   for (int i = 1; i < argc; ++i) {
     const std::string f = argv[i];
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "lc2wf_gt_line_coverage: %s needs a value\n", f.c_str());
-      return 2;
-    }
-    const std::string v = argv[++i];
+    const std::string v = flag_value(argc, argv, i);
     if (f == "--data") data = v;
     else if (f == "--split") split = v;
     else if (f == "--groups") groups = v;
     else if (f == "--prediction") prediction = v;
     else if (f == "--radius") radius = number_flag(f, v);
     else if (f == "--angle") angle = number_flag(f, v);
-    else {
-      std::fprintf(stderr, "lc2wf_gt_line_coverage: unknown argument '%s'\n", f.c_str());
-      return 2;
-    }
+    else throw UsageError("unknown argument '" + f + "'");
   }
-  if (data.empty() || split.empty() || !(radius > 0) || !(angle > 0 && angle < 90)) {
-    std::fprintf(stderr, "usage: lc2wf_gt_line_coverage --data CLOUDS --split FILE [--groups DIR] [--prediction DIR] "
-                         "[--radius M > 0] [--angle DEG in (0, 90)]\n");
-    return 2;
-  }
+  if (data.empty() || split.empty() || !(radius > 0) || !(angle > 0 && angle < 90))
+    throw UsageError("usage: lc2wf_gt_line_coverage --data CLOUDS --split FILE [--groups DIR] [--prediction DIR] "
+                     "[--radius M > 0] [--angle DEG in (0, 90)]");
   std::map<std::string, Tally> per_building;
   for (const std::string& name : read_name_list(split)) {
     const LineCloud cloud = load_line_cloud(find_cloud_file(data, name), CloudFormat::kAuto);
@@ -147,6 +138,9 @@ int run(int argc, char** argv) {
 int main(int argc, char** argv) {
   try {
     return run(argc, argv);
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lc2wf_gt_line_coverage: %s\n", e.what());
+    return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "lc2wf_gt_line_coverage: %s\n", e.what());
     return 3;

@@ -66,11 +66,7 @@ int run(int argc, char** argv) {
       keep_wireframes = true;
       continue;
     }
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "lc2wf_oracle_junctions: %s needs a value\n", f.c_str());
-      return 2;
-    }
-    const std::string v = argv[++i];
+    const std::string v = flag_value(argc, argv, i);
     if (f == "--weights") weights = v;
     else if (f == "--data") data = v;
     else if (f == "--split") split = v;

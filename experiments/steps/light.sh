@@ -15,14 +15,18 @@ render_light() {
 
 step_light_data() {
   need_binary "$build_dir/tools/lc2wf-dataset" lc2wf-dataset
-  [[ -s runs/general4/train.txt && -s runs/general4/all-real.txt ]] || die 3 "no general4 mix: run experiments/run.sh general4-data first"
+  # The raster parts need only the meshes (seconds) and the committed list of the mix's real training buildings
+  # (experiments/lists/light-real.txt, general4's all-real.txt), so a fresh machine renders them without the
+  # earlier mixes; linking the mix needs general4-data's lists and Blender clouds.
+  [[ -f runs/general/meshes-gen/buildings.json && -d runs/general/ri-train-sub && -d runs/lod2-all ]] || general_meshes
   mkdir -p runs/light
-  render_light runs/lod2-all realval runs/general2/realval-names.txt
+  render_light runs/lod2-all realval configs/splits/lod2/val.txt
   render_light runs/general/meshes-genval genval
-  render_light runs/lod2-all real runs/general4/all-real.txt
+  render_light runs/lod2-all real experiments/lists/light-real.txt
   render_light runs/general/meshes-gen gen
   render_light runs/general/meshes-riaug riaug
   render_light runs/general/ri-train-sub ri
+  [[ -s runs/general4/train.txt && -s runs/general4/val.txt ]] || die 3 "light-data: rendered; linking the mix needs general4-data's lists and Blender clouds"
   general_list light runs/light/train.txt general/photo-blender general2/{ri-blender,photo-blender} light/{gen,real,riaug,ri}
   general_list light runs/light/val.txt general/rival-blender light/{genval,realval}
   cmp -s runs/light/train.txt runs/general4/train.txt && cmp -s runs/light/val.txt runs/general4/val.txt ||
