@@ -94,15 +94,19 @@ wireframe and a note, never a failure.
                       ground at 0). auto: up from the lines' dominant directions (the one most lines are
                       perpendicular to, its sign putting the widest structure at the bottom), refined by
                       the near-vertical lines; ground at the lowest structure; scale from --scale,
-                      --known-distance or --building-height, else the scale search (the networks run on the
-                      map at building heights of 3-60 m, the most confident wireframe wins). The wireframe
-                      is written in that frame and OUT/<name>.frame.json holds the similarity from the map,
-                      the up and scale found, where they came from and the search's scores. as-read: the
-                      map's coordinates are taken as metres, z up
+                      --known-distance or --building-height, the facades' storeys (the heights of the
+                      horizontal lines repeat once per storey of --storey-height metres), else the scale
+                      search (the networks run on the map at building heights of 3-60 m, the most
+                      confident wireframe wins). The wireframe is written in that frame and
+                      OUT/<name>.frame.json holds the similarity from the map, the up and scale found,
+                      where they came from and the search's scores. as-read: the map's coordinates are
+                      taken as metres, z up
   --up U              the map's up axis: x, y, z, -x, -y or -z (default auto)
   --scale F           metres per map unit
   --known-distance X1,Y1,Z1,X2,Y2,Z2,D  two points of the map (map units) are D metres apart
   --building-height M the building's height above its ground, metres
+  --storey-height M   floor-to-floor height of the building's storeys, metres (default 3; old city houses
+                      and offices 3.5-4); 0 skips the storey estimate
   --scale-measure M   what the scale search maximises: edge-confidence (default: the mean over the kept
                       edges of P(edge) x the geometric mean of their junctions' confidences),
                       edge-evidence (the sum over the kept edges of P(edge) x both confidences),
@@ -155,6 +159,11 @@ Args parse_args(int argc, char** argv) {
     } else if (f == "--up") a.options.map_frame.up = value();
     else if (f == "--scale") a.options.map_frame.scale = positive_flag(f, value());
     else if (f == "--building-height") a.options.map_frame.building_height_m = positive_flag(f, value());
+    else if (f == "--storey-height") {
+      a.options.map_frame.storeys.storey_height_m = number_flag(f, value());
+      if (!(a.options.map_frame.storeys.storey_height_m >= 0 && a.options.map_frame.storeys.storey_height_m <= 20))
+        throw UsageError("--storey-height must be in [0, 20]");
+    }
     else if (f == "--scale-measure") {
       try {
         a.options.map_frame.search.measure = parse_scale_measure(value());

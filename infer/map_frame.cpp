@@ -47,6 +47,7 @@ void MapFrameOptions::Check() const {
   if (!(known_distance_m >= 0) || !std::isfinite(known_distance_m)) throw std::invalid_argument("MapFrameOptions.known_distance_m must be > 0");
   if (known_distance_m > 0 && !((known_b - known_a).norm() > 0 && known_a.allFinite() && known_b.allFinite()))
     throw std::invalid_argument("MapFrameOptions.known_distance_m: the two points must differ");
+  storeys.Check();
   search.Check();
 }
 
@@ -60,6 +61,7 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   fo.scale = o.scale;
   if (fo.scale == 0 && o.known_distance_m > 0) fo.scale = o.known_distance_m / (o.known_b - o.known_a).norm();
   fo.building_height_m = o.building_height_m;
+  fo.storeys = o.storeys;
   FramedInference f;
   f.frame = estimate_metric_frame({}, map.segments, fo);
   if (o.scale == 0 && o.known_distance_m > 0) f.frame.scale_source = "known distance";
@@ -98,6 +100,7 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   rep["up_source"] = o.up == "auto" ? f.frame.up_source : "given " + o.up;
   rep["up_input"] = vec_json(f.frame.up_input);
   rep["scale_source"] = f.frame.scale_source;
+  if (f.frame.needs_scale_search || f.frame.scale_source == "storeys") rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
   rep["to_metric"] = similarity_json(f.frame.to_metric);
   rep["height_m"] = f.frame.height_input * f.frame.to_metric.scale;
   rep["note"] = "the wireframe is written in this frame (metres, z up, ground 0); map point p -> scale * R * p + t";

@@ -43,8 +43,10 @@ ground at z = 0:
           (>= 3 registered photos with position and altitude, not on one line: the camera centres
           are fitted to them, which also gives up and north; --no-gps ignores it); --building-height
           M (the cloud's height above its ground, the 99th - 1st percentile of the endpoint heights,
-          is M metres); else the scale search: the networks run on the cloud at building heights of
-          3-60 m and the most confident wireframe wins (report.json: its scores per height)
+          is M metres); the facades' storeys (the heights of the horizontal lines - windows, sills,
+          floor bands - repeat once per storey; a storey is --storey-height metres); else the scale
+          search: the networks run on the cloud at building heights of 3-60 m and the most confident
+          wireframe wins (report.json: its scores per height)
   origin  x/y at the median segment midpoint, z = 0 at the 1st percentile of endpoint heights
 Up, height and origin are measured on the best-supported lines (>= k supporting 2D segments, k the
 largest up to 8 that leaves >= 100 lines), so texture clutter above the roof and below the ground does
@@ -78,6 +80,8 @@ Options:
   --known-distance A,B,D camera centres of images A and B (file names) are D metres apart
   --building-height M    the building's height above its ground, metres (used when no known
                          distance or GPS gives the scale)
+  --storey-height M      floor-to-floor height of the building's storeys, metres (default 3; old city
+                         houses and offices 3.5-4); 0 skips the storey estimate
   --no-gps               do not take scale and up from the photos' EXIF GPS
   --reference-cameras F  evaluation: also write wireframe_aligned.obj in the frame of these cameras
                          (cameras JSON, one per image; similarity fitted on the camera centres)
@@ -142,6 +146,10 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--building-height") {
       o.frame.building_height_m = number_flag(f, value());
       if (!(o.frame.building_height_m > 0)) throw UsageError("--building-height must be > 0");
+    }
+    else if (f == "--storey-height") {
+      o.frame.storeys.storey_height_m = number_flag(f, value());
+      if (!(o.frame.storeys.storey_height_m >= 0 && o.frame.storeys.storey_height_m <= 20)) throw UsageError("--storey-height must be in [0, 20]");
     }
     else if (f == "-q" || f == "--quiet") o.quiet = true;
     else if (f == "-j" || f == "--threads") o.threads = threads_flag(f, value());

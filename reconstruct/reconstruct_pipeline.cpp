@@ -236,7 +236,7 @@ class ReconstructRun {
     log_.done(seconds_, std::to_string(lines_.size()) + " 3D lines");
   }
 
-  // Up, ground and scale: from the given scale, a known distance, GPS, a building height or the scale search.
+  // Up, ground and scale: from the given scale, a known distance, GPS, a building height, the storeys or the scale search.
   void estimate_frame() {
     log_.start("frame");
     for (const auto& v : views_) registered_.push_back(v.camera);
@@ -256,12 +256,15 @@ class ReconstructRun {
       if (gps.to_enu) fo.gps_to_enu = gps.to_enu;
     }
     try {
-      frame_ = estimate_metric_frame(registered_, segments, fo);
+      std::vector<Segment3> all_lines;
+      for (const auto& l : lines_) all_lines.push_back(l.line);
+      frame_ = estimate_metric_frame(registered_, segments, fo, &all_lines);
     } catch (const std::invalid_argument& e) {
       throw StageError("frame", e.what());
     }
     if (frame_.needs_scale_search) {
-      log_.done(seconds_, "up from " + frame_.up_source + ", scale left to the search (no GPS, known distance or building height)");
+      log_.done(seconds_, "up from " + frame_.up_source + ", scale left to the search (no GPS, known distance, building height or storeys: " +
+                              frame_.storeys.why_not + ")");
       log_.start("scale search");
       // Each candidate height sees what inference would: the cloud confirmed in metres at that height.
       search_ = search_scale(
@@ -282,6 +285,7 @@ class ReconstructRun {
                         {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
                         {"height_m", frame_.height_input * frame_.to_metric.scale}, {"gps", gps_report}};
     if (search_) report_["frame"]["scale_search"] = scale_search_json(*search_, o_.scale_search);
+    if (search_ || frame_.scale_source == "storeys") report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
     log_.done(seconds_, search_ ? "building height " + format_number("%.1f", search_->height_m) + " m (" +
                                       format_number("%.2f", search_ratio(*search_)) + "x the runner-up's score at " +
                                       format_number("%.1f", search_->runner_up_height_m) + " m), " +
@@ -290,6 +294,10 @@ class ReconstructRun {
                                       frame_.scale_source + ")" +
                                       (frame_.scale_source == "gps"
                                            ? ", GPS residual " + format_number("%.2f", gps_report.value("rms_residual_m", 0.0)) + " m"
+                                       : frame_.scale_source == "storeys"
+                                           ? ", " + format_number("%.1f", frame_.storeys.storeys) + " storeys of " +
+                                                 format_number("%.1f", fo.storeys.storey_height_m) + " m, +-" +
+                                                 format_number("%.0f", 100 * fo.storeys.storey_uncertainty) + " %"
                                            : ""));
   }
 

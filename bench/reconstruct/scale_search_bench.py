@@ -77,7 +77,8 @@ def main():
         curve = search.get("curve", [])
         true_height = frame["height_m"] / (found * s)  # the cloud's height in true metres
         row = {"name": name, "true_height_m": true_height, "map_units_per_metre": s, "found_height_m": frame["height_m"],
-               "scale_error": found * s - 1, "up_error_deg": up_err, "ratio": search.get("best_over_runner_up", 0)}
+               "scale_error": found * s - 1, "up_error_deg": up_err, "ratio": search.get("best_over_runner_up", 0),
+               "scale_source": frame["scale_source"], "storeys": frame.get("storeys", {}).get("storeys", 0)}
         for measure in ("edge_evidence", "edge_confidence", "confident_junctions", "junction_mean"):
             if curve:
                 best = max(curve, key=lambda c: (c[measure], -c["height_m"]))
@@ -87,8 +88,8 @@ def main():
             w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
             w.writeheader()
             w.writerows(rows)
-        print("%s: true %.1f m, found %.1f m (%+.1f %%), up error %.1f deg" % (name, true_height, frame["height_m"], 100 * row["scale_error"], up_err),
-              file=sys.stderr)
+        print("%s: true %.1f m, found %.1f m (%+.1f %%, %s), up error %.1f deg" % (name, true_height, frame["height_m"], 100 * row["scale_error"],
+              frame["scale_source"], up_err), file=sys.stderr)
     with open(os.path.join(a.out, "results.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         w.writeheader()
@@ -100,6 +101,10 @@ def main():
     within = sum(abs(r["scale_error"]) <= 0.15 for r in rows)
     ups = [r["up_error_deg"] for r in rows]
     lines.append("| all | %d | %s | %d | %.1f / %.1f |" % (len(rows), stats("scale_error"), within, percentile(ups, 0.5), max(ups)))
+    for source in sorted({r["scale_source"] for r in rows}):
+        subset = [r for r in rows if r["scale_source"] == source]
+        lines.append("| scale from %s | %d | %s | %d | |" % (source, len(subset), stats("scale_error", subset),
+                                                          sum(abs(r["scale_error"]) <= 0.15 for r in subset)))
     lines += ["", "Per measure, the best height of the curve (the search's tries; refined around the default measure's best):", "",
               "| measure | error median / p90 |", "|---|---|"]
     for measure in ("edge_evidence", "edge_confidence", "confident_junctions", "junction_mean"):

@@ -45,6 +45,7 @@ void MetricFrameOptions::Check() const {
   if (!(ground_quantile >= 0 && ground_quantile < top_quantile && top_quantile <= 1))
     throw std::invalid_argument("MetricFrameOptions: need 0 <= ground_quantile < top_quantile <= 1");
   if (up == UpSource::kGiven && !(given_up.norm() > 0)) throw std::invalid_argument("MetricFrameOptions.given_up is zero");
+  storeys.Check();
 }
 
 namespace {
@@ -82,10 +83,19 @@ Vec3 refine_with_vertical_lines(const Vec3& up, const std::vector<Segment3>& seg
   return v.dot(up) < 0 ? Vec3(-v) : v;
 }
 
+// The frame lines turned z up over their ground, in input units: what the storey rhythm is read from.
+StoreyScale storey_scale_of(const std::vector<Segment3>& segments, const Eigen::Matrix3d& R, double ground, double height,
+                            const StoreyScaleOptions& o) {
+  std::vector<Segment3> upright;
+  upright.reserve(segments.size());
+  for (const Segment3& s : segments) upright.push_back({R * s.a - ground * Vec3::UnitZ(), R * s.b - ground * Vec3::UnitZ()});
+  return estimate_storey_scale(upright, height, o);
+}
+
 }  // namespace
 
 MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std::vector<Segment3>& segments,
-                                  const MetricFrameOptions& o) {
+                                  const MetricFrameOptions& o, const std::vector<Segment3>* storey_lines) {
   o.Check();
   if (segments.empty()) throw std::invalid_argument("estimate_metric_frame: no 3D line");
   MetricFrame f;
@@ -148,6 +158,8 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
     if (!(f.height_input > 0)) throw std::invalid_argument("estimate_metric_frame: the cloud has no height to take a scale from");
     if (o.building_height_m > 0) {
       scale = o.building_height_m / f.height_input, f.scale_source = "building height";
+    } else if (f.storeys = storey_scale_of(storey_lines ? *storey_lines : segments, R, ground, f.height_input, o.storeys); f.storeys.found) {
+      scale = f.storeys.metres_per_unit, f.scale_source = "storeys";
     } else {
       scale = 1.0 / f.height_input, f.scale_source = "scale search", f.needs_scale_search = true;
     }

@@ -5,8 +5,9 @@
 //          cameras); refined by the dominant direction of the 3D lines within 15 deg of it (vertical wall
 //          corners); or the input z axis, or a given vector.
 //   scale: from evidence only, in this order: given (metres per input unit), one known distance between
-//          two camera centres, the GPS fit, a given building height; else it is left to the scale search
-//          (model/scale_search.h), and the frame comes back with the cloud's height as its unit.
+//          two camera centres, the GPS fit, a given building height, the facades' storeys (storey_scale.h);
+//          else it is left to the scale search (model/scale_search.h), and the frame comes back with the
+//          cloud's height as its unit.
 //   origin: x/y at the median segment midpoint, z = 0 at the cloud's low quantile (the ground lines).
 #pragma once
 
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/photo/storey_scale.h"
 
 namespace lc2wf {
 
@@ -44,6 +46,7 @@ struct MetricFrameOptions {
   // scale and up, and x east / y north.
   std::optional<Similarity> gps_to_enu;
   double building_height_m = 0.0;            // > 0: the cloud's height above its ground is this many metres
+  StoreyScaleOptions storeys;                // after the building height; storey_height_m = 0 skips it
   double ground_quantile = 0.01;  // of the endpoint heights
   double top_quantile = 0.99;
   void Check() const;
@@ -54,7 +57,8 @@ struct MetricFrame {
   Vec3 up_input = Vec3::UnitZ();  // the up direction found, input frame
   std::string up_source;          // "gps", "cameras", "line directions" (each "+lines" when refined by near-vertical lines), "input z", "given"
   int vertical_lines = 0;         // lines used for the refinement
-  std::string scale_source;       // "given", "known distance", "gps", "building height", "scale search"
+  std::string scale_source;       // "given", "known distance", "gps", "building height", "storeys", "scale search"
+  StoreyScale storeys;            // the storey estimate, when nothing before it gave the scale
   double height_input = 0.0;      // cloud height above its ground, input units
   // Scale source "scale search": no evidence fixed the scale, so to_metric makes the cloud's height 1; the
   // caller multiplies by the height the search finds (scaled_by).
@@ -62,9 +66,11 @@ struct MetricFrame {
   MetricFrame scaled_by(double factor) const;  // the same frame with metric coordinates x factor
 };
 
-// `cameras`: the registered cameras (input frame), `segments`: the 3D lines (input frame). Throws
-// std::invalid_argument for bad options, an empty cloud, a degenerate up or a zero height/distance.
+// `cameras`: the registered cameras (input frame), `segments`: the 3D lines (input frame), `storey_lines`:
+// the lines the storey rhythm is read from (default `segments`; a photo cloud's frame lines are only its
+// best-supported hundred, too few window lines). Throws std::invalid_argument for bad options, an empty cloud,
+// a degenerate up or a zero height/distance.
 MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std::vector<Segment3>& segments,
-                                  const MetricFrameOptions& options = {});
+                                  const MetricFrameOptions& options = {}, const std::vector<Segment3>* storey_lines = nullptr);
 
 }  // namespace lc2wf

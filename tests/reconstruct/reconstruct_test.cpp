@@ -154,12 +154,14 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   EXPECT_EQ(g["scale_source"], "known distance");
   EXPECT_NEAR(g["to_metric"]["scale"].get<double>() * sfm.scale, 1.0, 1e-6);
 
-  // No evidence at all: the scale search runs the networks at 3-60 m and reports its scores per height.
+  // No evidence at all (bare walls: no storeys either): the scale search runs the networks at 3-60 m and
+  // reports its scores per height.
   ReconstructOptions n = options("scale_search");
   n.cameras = model;
   const ReconstructResult rn = reconstruct(n);
   const Json& h = rn.report["frame"];
   EXPECT_EQ(h["scale_source"], "scale search");
+  EXPECT_EQ(h["storeys"]["found"], false) << h["storeys"].dump();
   ASSERT_TRUE(h.contains("scale_search"));
   EXPECT_GE(h["scale_search"]["curve"].size(), 10u);
   const double found = h["scale_search"]["height_m"].get<double>();
