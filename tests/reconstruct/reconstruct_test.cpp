@@ -11,6 +11,7 @@
 #include "core/util/version.h"
 #include "dataset/formats/read_file.h"
 #include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_building.h"
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"
 #include "test_scene.h"
@@ -122,6 +123,30 @@ Similarity arbitrary_sfm_frame() {
   sfm.R = Eigen::AngleAxisd(1.1, Vec3(0.6, 0.2, -0.7).normalized()).toRotationMatrix();
   sfm.t = Vec3(-4, 2, 9);
   return sfm;
+}
+
+// A four-storey block in the photo look, its cameras in an SfM frame of unknown scale: the window rows give the
+// scale (one storey = 3 m) before the scale search would run.
+TEST(ReconstructStoreys, FacadeStoreysGiveTheScaleWithoutOtherEvidence) {
+  const fs::path dir = test::scratch("storeys");
+  RectBuildingSpec spec;
+  spec.length = 18, spec.width = 11, spec.eave_height = 12.0, spec.slope_deg = 20;
+  const test::RenderedFolder scene = test::render_synthetic_folder(dir / "scene", 16, make_rect_building("block", spec), "photo");
+  test::write_tiny_weights(dir / "weights");
+  const Similarity sfm = arbitrary_sfm_frame();
+  write_colmap_model(dir / "colmap_model", scene.cameras, sfm, ".png");
+  ReconstructOptions o;
+  o.images = scene.images, o.weights = dir / "weights", o.out = dir / "out", o.quiet = true, o.threads = 2;
+  o.cameras = dir / "colmap_model";
+  const ReconstructResult r = reconstruct(o);
+  const Json& f = r.report["frame"];
+  ASSERT_EQ(f["scale_source"], "storeys") << f["storeys"].dump();
+  EXPECT_FALSE(f.contains("scale_search"));
+  EXPECT_NEAR(f["storeys"]["storeys"].get<double>() * 3.0, f["height_m"].get<double>(), 1e-6 * f["height_m"].get<double>());
+  EXPECT_EQ(f["storeys"]["relative_uncertainty"], 0.2);
+  // The facade layout's storeys are 12 m / 4 = 3 m: the scale comes back to within the storeys' spread.
+  EXPECT_NEAR(f["to_metric"]["scale"].get<double>() * sfm.scale, 1.0, 0.1);
+  fs::remove_all(dir);
 }
 
 TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {

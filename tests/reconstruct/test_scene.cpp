@@ -19,15 +19,26 @@ namespace lc2wf::test {
 namespace fs = std::filesystem;
 
 RenderedFolder render_synthetic_folder(const fs::path& dir, int views) {
+  return render_synthetic_folder(dir, views, make_l_building("l", LBuildingSpec{}), "paper");
+}
+
+RenderedFolder render_synthetic_folder(const fs::path& dir, int views, const Building& building, const std::string& textures) {
   RenderedFolder f;
-  f.building = make_l_building("l", LBuildingSpec{});
+  f.building = building;
   CameraRingOptions ring;
   ring.views = views;
   ring.seed = 4;
   f.cameras = make_camera_ring(f.building.mesh.vertices, ring);
   RasterOptions raster;
   raster.seed = 9;
-  const RasterRenderer renderer(f.building.mesh, raster);
+  raster.textures = textures;
+  PhotoScene scene;
+  if (textures == "photo") {
+    std::vector<Vec3> centres;
+    for (const Camera& c : f.cameras) centres.push_back(c.center());
+    scene = make_photo_scene(f.building.mesh, centres, PhotoOptions{}, 9);
+  }
+  const RasterRenderer renderer(f.building.mesh, raster, scene);
   f.images = dir / "images";
   fs::create_directories(f.images);
   nlohmann::json cams = nlohmann::json::array();

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -21,8 +22,10 @@ struct RenderedFolder {
 };
 
 // `views` raster renders (640x480, paper textures) of an L-shaped building into dir/images, the cameras
-// into dir/cameras.json (kept outside the image folder).
+// into dir/cameras.json (kept outside the image folder). Or of `building` with `textures` (photo: windows by
+// storey, clutter).
 RenderedFolder render_synthetic_folder(const std::filesystem::path& dir, int views);
+RenderedFolder render_synthetic_folder(const std::filesystem::path& dir, int views, const Building& building, const std::string& textures);
 
 // A similarity as report.json stores it ({"scale", "R" row-major, "t"}).
 Similarity similarity_from_json(const nlohmann::json& j);
