@@ -18,12 +18,21 @@ void PairSupportOptions::Check() const {
 }
 
 SegmentSupport::SegmentSupport(const std::vector<Segment3>& segments) {
-  for (const Segment3& s : segments) {
-    const double length = s.length();
+  std::vector<std::pair<double, size_t>> order;
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const double length = segments[k].length();
     if (!(length > 1e-9) || !std::isfinite(length)) continue;  // no direction to compare
+    order.emplace_back(std::min(segments[k].a.x(), segments[k].b.x()), k);
+  }
+  std::sort(order.begin(), order.end());
+  for (const auto& [min_x, k] : order) {
+    const Segment3& s = segments[k];
+    const double length = s.length();
     a_.push_back(s.a);
     dir_.push_back((s.b - s.a) / length);
     length_.push_back(length);
+    min_x_.push_back(min_x);
+    max_x_extent_ = std::max(max_x_extent_, std::abs(s.b.x() - s.a.x()));
   }
 }
 
@@ -33,7 +42,12 @@ double SegmentSupport::support(const Vec3& u, const Vec3& v, double radius_m, do
   const Vec3 d = (v - u) / length;
   const double min_cos = std::cos(max_angle_deg * M_PI / 180.0), r2 = radius_m * radius_m;
   std::vector<std::pair<double, double>> spans;  // covered parameter ranges along u-v, in metres
-  for (size_t k = 0; k < a_.size(); ++k) {
+  // A counted segment has a point within radius_m of u-v (it lies within radius_m of the line and overlaps
+  // u-v along it), so its x range meets u-v's widened by radius_m. The spans are sorted below: the order
+  // the segments are met in does not matter.
+  const double x_lo = std::min(u.x(), v.x()) - radius_m, x_hi = std::max(u.x(), v.x()) + radius_m;
+  const size_t first = std::lower_bound(min_x_.begin(), min_x_.end(), x_lo - max_x_extent_) - min_x_.begin();
+  for (size_t k = first; k < a_.size() && min_x_[k] <= x_hi; ++k) {
     if (std::abs(dir_[k].dot(d)) < min_cos) continue;
     const Vec3 a = a_[k] - u, b = a + dir_[k] * length_[k];
     const double ta = a.dot(d), tb = b.dot(d);

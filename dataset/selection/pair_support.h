@@ -21,17 +21,21 @@ struct PairSupportOptions {
   void Check() const;  // throws std::invalid_argument naming the bad field
 };
 
-// The segments of one cloud, prepared for many support queries.
+// The segments of one cloud, prepared for many support queries: ordered by their smallest x, so a query
+// scans the ones whose x range meets its own, not the whole cloud.
 class SegmentSupport {
  public:
   explicit SegmentSupport(const std::vector<Segment3>& segments);
   // Share in [0, 1] of the segment u-v covered by the union of the counted segments' projections onto it
-  // (u == v: 1).
+  // (u == v: 1). A segment counts when both its endpoints lie within radius_m of the line u-v and its
+  // direction is within max_angle_deg of it.
   double support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const;
 
  private:
   std::vector<Vec3> a_, dir_;     // first endpoint and unit direction of each non-degenerate segment
   std::vector<double> length_;
+  std::vector<double> min_x_;     // ascending
+  double max_x_extent_ = 0;       // of any segment
 };
 
 // The pairs that pass the option's test, in their order (all of them when the option is off).
