@@ -66,7 +66,7 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
   --min-confidence C  with --weights: junctions paired by the edge model have confidence > C (default 0.05)
   --pair-support S  with --weights: classify only pairs with line support >= S (see lc2wf-infer --help)
   --edge-support S, --edge-cameras N  with --weights: keep only edges with line support >= S or seen by N
-                  cameras (default 0.2 and 2) where the cameras leave a side unseen; --edge-support-everywhere:
+                  cameras (default 0.85 and 0) where the cameras leave a side unseen; --edge-support-everywhere:
                   in every cloud; --judge-degree-above N: elsewhere at junctions of more than N edges
                   (see lc2wf-infer --help)
   --max-pairs N, --max-pairs-per-junction K  with --weights: the pair cap (see lc2wf-infer --help)

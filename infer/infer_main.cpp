@@ -39,21 +39,21 @@ wireframe and a note, never a failure.
                       segments for at least S of its length (0-1; segments within 0.35 m and 20 degrees
                       of it; pairs shorter than 1 m always); default 0 = every pair, as the release
   --edge-support S    after post-processing keep only edges the cloud's segments cover for at least S
-                      of their length (0-1; segments within 0.35 m and 20 degrees of it) or, in a cloud
-                      with cameras, that --edge-cameras of them had in view; junctions left without an
-                      edge go: nothing is drawn on sides no photo saw. Applied when the cloud's cameras
-                      leave a side of the building unseen (default 0.2; 0 keeps every edge, as the
+                      of their length (0-1; segments within 0.35 m and 20 degrees of it) or, with
+                      --edge-cameras N, that N of the cloud's cameras had in view; junctions left without
+                      an edge go: nothing is drawn that no line shows. Applied when the cloud's cameras
+                      leave a side of the building unseen (default 0.85; 0 keeps every edge, as the
                       release)
   --edge-support-everywhere  apply --edge-support to every cloud, also full orbits and clouds without cameras
-  --judge-degree-above N  elsewhere, still apply --edge-support (by lines alone) to the edges of junctions
-                      with more than N edges, where the edge model accepted a near-complete subgraph
-                      (default 8; 0 = never)
+  --judge-degree-above N  elsewhere, still keep only the edges of junctions with more than N edges that
+                      lines cover for at least 0.2 of their length, where the edge model accepted a
+                      near-complete subgraph (default 8; 0 = never)
   --crossing-distance M  of two edges that pass within M metres of each other away from their ends (a
                       building's edges meet only at junctions), keep the higher-scoring one (default 0.25;
                       0 = keep both)
-  --edge-cameras N    cameras that must have had an edge in view (in front, inside the image, not behind
-                      the block over the wireframe's footprint) to keep it without line support
-                      (default 2; 0 = the lines alone decide)
+  --edge-cameras N    also keep an edge without line support when N cameras had it in view (in front,
+                      inside the image, not behind the block over the wireframe's footprint): for clean
+                      clouds whose low-contrast edges draw no line (default 0 = the lines alone decide)
   --max-pairs N       at most N junction pairs go to the edge model (default 1280; 0 = no cap): above N,
                       the pairs with the most line support within 2 m of their junctions, each junction in
                       at most --max-pairs-per-junction K of them (default 64), so the edge model's time

@@ -17,6 +17,7 @@ void EdgeSupportOptions::Check() const {
   if (!(max_angle_deg > 0 && max_angle_deg <= 90)) fail("max_angle_deg must be in (0, 90]");
   if (min_cameras < 0) fail("min_cameras must be >= 0");
   if (judge_degree_above < 0) fail("judge_degree_above must be >= 0 (0: off)");
+  if (!(judge_min_support >= 0 && judge_min_support <= 1)) fail("judge_min_support must be in [0, 1]");
   if (!(occlusion_tolerance_m >= 0) || !std::isfinite(occlusion_tolerance_m))
     fail("occlusion_tolerance_m must be a distance >= 0 in metres");
 }
@@ -44,7 +45,8 @@ SupportedEdges keep_supported_edges(const ScoredWireframe& in, const std::vector
     const Vec3& u = in.wireframe.junctions[a];
     const Vec3& v = in.wireframe.junctions[b];
     const bool exempt = !every && std::max(degree[a], degree[b]) <= options.judge_degree_above;
-    const bool lines = exempt || support.support(u, v, options.radius_m, options.max_angle_deg) >= options.min_support;
+    const double share = every ? options.min_support : options.judge_min_support;
+    const bool lines = exempt || support.support(u, v, options.radius_m, options.max_angle_deg) >= share;
     const bool seen = !lines && ask_cameras &&
                       cameras_seeing(u, v, cameras, occluder, options.occlusion_tolerance_m) >= options.min_cameras;
     if (lines || seen) {

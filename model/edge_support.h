@@ -2,8 +2,9 @@
 // enough of its length (the measure of dataset/selection/pair_support.h) or, when the cloud has cameras, when
 // enough cameras had it in view (model/edge_visibility.h); junctions left without an edge go. On a capture
 // of one or two sides the networks still propose corners and edges of the sides nobody photographed: no line
-// supports those and no camera faced them. The cameras' half keeps the few outer edges a full orbit sees but
-// draws no line along (low contrast between a wall and its roof).
+// supports those and no camera faced them. The cameras' half (off by default) keeps the few outer edges a
+// clean cloud draws no line along (low contrast between a wall and its roof); in photo clouds it kept the
+// edges the networks drew between window corners, which every camera faces (infer/README.md).
 #pragma once
 
 #include <vector>
@@ -15,12 +16,14 @@
 namespace lc2wf {
 
 struct EdgeSupportOptions {
-  double min_support = 0.2;  // keep edges whose length the segments cover at least this share of; 0 keeps all
+  // Keep edges whose length the segments cover at least this share of; 0 keeps all (and turns the judge
+  // below off). Chosen on photo-like street captures of validation buildings (infer/README.md).
+  double min_support = 0.85;
   // Which segment counts, as for pairs (pair_support.h): one rule for "a line runs along it".
   double radius_m = PairSupportOptions{}.radius_m;
   double max_angle_deg = PairSupportOptions{}.max_angle_deg;
   // Or kept when at least this many of the cloud's cameras saw where it is; 0: the lines alone decide.
-  int min_cameras = 2;
+  int min_cameras = 0;
   double occlusion_tolerance_m = 0.5;  // a point this close behind the building's outer surface is still seen
   // Only where the cloud's cameras leave a side of the building unseen (dataset/photo/camera_coverage.h): a
   // full orbit's wireframe stays as the networks drew it (the rule cost 0.4 sAP on the Roof-Image test split),
@@ -32,6 +35,7 @@ struct EdgeSupportOptions {
   // running through the building where no line is, and every camera sees the inside of a building's hull.
   // Chosen on validation (infer/README.md, "Over-connected junctions"): no Roof-Image score moves at 8.
   int judge_degree_above = 8;
+  double judge_min_support = 0.2;  // the share of line cover those edges need (the rule's share before 2026-12-06)
 
   bool enabled() const { return min_support > 0; }
   void Check() const;  // throws std::invalid_argument naming the bad field

@@ -212,7 +212,9 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
                       (judged == JudgedEdges::every_edge
                            ? std::string()
                            : " of junctions with > " + std::to_string(support.judge_degree_above) + " edges") +
-                      " with line support < " + format_number("%g", support.min_support) + " of their length" +
+                      " with line support < " +
+                      format_number("%g", judged == JudgedEdges::every_edge ? support.min_support : support.judge_min_support) +
+                      " of their length" +
                       (cameras_asked ? " and seen by < " + std::to_string(support.min_cameras) + " cameras"
                                      : std::string()) +
                       " dropped, and " + std::to_string(seen.dropped_junctions) + " junction(s) left without an edge");

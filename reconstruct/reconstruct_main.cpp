@@ -90,8 +90,9 @@ Options:
   --min-confidence C     junctions paired by the edge model: confidence > C (default 0.05)
   --pair-support S       classify only pairs with line support >= S (0-1; see lc2wf-infer --help)
   --edge-support S       keep only edges covered by the cloud's segments for >= S of their length or seen
-                         by --edge-cameras cameras (0-1; default 0.2; 0 keeps every edge; see lc2wf-infer --help)
-  --edge-cameras N       cameras that must have had an edge in view to keep it without line support (default 2)
+                         by --edge-cameras cameras (0-1; default 0.85; 0 keeps every edge; see lc2wf-infer --help)
+  --edge-cameras N       also keep an edge without line support that N cameras had in view (default 0: the
+                         lines alone decide)
   --edge-support-everywhere  apply --edge-support also when the cameras saw every side (default: only then not)
   --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
   --crossing-distance M  of two edges crossing within M metres, keep the higher-scoring one (default 0.25;

@@ -85,7 +85,10 @@ TEST(FacadeCapture, AGabledHouseSeenFromOneSideGivesThatSideOnlyAndSaysSo) {
 
   const CameraCoverage coverage = camera_coverage(cloud.cameras, w, cloud.segments);
   std::printf("[facade] coverage: %s\n", coverage.summary().c_str());
-  EXPECT_NEAR(coverage.azimuth_span_deg, 90.0, 5.0);  // around the predicted footprint's centre
+  // The cameras' 90 degree arc, seen from the predicted footprint's centre: nearer the cameras when only the
+  // front is drawn, so somewhat wider.
+  EXPECT_GE(coverage.azimuth_span_deg, 85.0);
+  EXPECT_LE(coverage.azimuth_span_deg, 110.0);
   bool front_seen = false;
   for (const SideCoverage& s : coverage.sides) {
     const double off_front = std::abs(std::remainder(s.outward_azimuth_deg - 90.0, 360.0));

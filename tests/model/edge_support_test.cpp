@@ -112,7 +112,9 @@ TEST(EdgeVisibility, TheFrontIsSeenTheBackIsHidden) {
 TEST(EdgeSupport, CamerasKeepAnUnlinedEdgeInViewAndNotOneOnTheHiddenSide) {
   const FrontView f = front_view();
   const std::vector<Segment3> none;
-  const SupportedEdges r = keep_supported_edges(f.box, none, f.cameras, EdgeSupportOptions{});
+  EdgeSupportOptions with_cameras;
+  with_cameras.min_cameras = 2;
+  const SupportedEdges r = keep_supported_edges(f.box, none, f.cameras, with_cameras);
   const Wireframe& w = r.wireframe.wireframe;
   EXPECT_GT(r.kept_by_cameras, 0);
   EXPECT_EQ(r.kept_by_cameras, static_cast<int>(w.edges.size()));
@@ -123,9 +125,8 @@ TEST(EdgeSupport, CamerasKeepAnUnlinedEdgeInViewAndNotOneOnTheHiddenSide) {
     front_ground |= u.y() > 2.9 && v.y() > 2.9 && u.z() == 0 && v.z() == 0;
   }
   EXPECT_TRUE(front_ground);
-  EdgeSupportOptions lines_only;
-  lines_only.min_cameras = 0;
-  EXPECT_TRUE(keep_supported_edges(f.box, none, f.cameras, lines_only).wireframe.wireframe.edges.empty());
+  // The default: the lines alone decide.
+  EXPECT_TRUE(keep_supported_edges(f.box, none, f.cameras, EdgeSupportOptions{}).wireframe.wireframe.edges.empty());
 }
 
 // The square with both diagonals and a fifth junction at its centre joined to every corner: the corners meet
@@ -143,7 +144,8 @@ ScoredWireframe square_with_clique() {
 
 TEST(EdgeSupport, OverConnectedJunctionsLoseTheirUnlinedEdgesOnly) {
   EdgeSupportOptions o;
-  o.min_support = 0.4;
+  o.min_support = 0.99;  // the share of partial captures: not the judge's
+  o.judge_min_support = 0.4;
   o.judge_degree_above = 3;
   const SupportedEdges r = keep_supported_edges(square_with_clique(), segments(), {}, o, JudgedEdges::over_connected_only);
   // Every junction has > 3 edges, so every edge is judged by its lines: the three lined sides stay.
