@@ -93,7 +93,7 @@ Options:
                          by --edge-cameras cameras (0-1; default 0.85; 0 keeps every edge; see lc2wf-infer --help)
   --edge-cameras N       also keep an edge without line support that N cameras had in view (default 0: the
                          lines alone decide)
-  --edge-support-everywhere  apply --edge-support also when the cameras saw every side (default: only then not)
+  --edge-support-everywhere  accepted for lc2wf-infer's sake: photo clouds are judged everywhere anyway
   --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
   --crossing-distance M  of two edges crossing within M metres, keep the higher-scoring one (default 0.25;
                          0 = keep both; see lc2wf-infer --help)
@@ -203,6 +203,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
   if (o.weights.empty()) throw UsageError("--weights DIR is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
   o.post = post.options();
+  o.post.edge_support.partial_captures_only = ReconstructOptions{}.post.edge_support.partial_captures_only;
   check_options([&] { o.Check(); }, {{"ReconstructOptions.focal_35mm", "--focal-35mm"},
                                      {"ReconstructOptions.intrinsics", "--intrinsics"},
                                      {"ReconstructOptions: a known distance", "--known-distance"},
