@@ -67,8 +67,8 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
   --pair-support S  with --weights: classify only pairs with line support >= S (see lc2wf-infer --help)
   --edge-support S, --edge-cameras N  with --weights: keep only edges with line support >= S or seen by N
                   cameras (default 0.85 and 0) where the cameras leave a side unseen; --edge-support-everywhere:
-                  in every cloud; --judge-degree-above N: elsewhere at junctions of more than N edges
-                  (see lc2wf-infer --help)
+                  in every cloud; --judge-degree-above N: elsewhere at junctions of more than N edges;
+                  --drop-flat-parts N: the small flat parts (see lc2wf-infer --help)
   --max-pairs N, --max-pairs-per-junction K  with --weights: the pair cap (see lc2wf-infer --help)
   --crossing-distance M  with --weights: of two crossing edges keep the higher-scoring one (default 0.25 m;
                   0 = keep both; see lc2wf-infer --help)
@@ -184,7 +184,7 @@ Args parse_args(int argc, char** argv) {
   if (!a.weights.empty() && a.data.empty()) throw UsageError("--weights needs --data DIR (the line clouds to run on)");
   if (a.weights.empty() && (a.post.any() || a.previews || a.format != "auto" || a.precision != "fp32"))
     throw UsageError(
-        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --edge-support, --edge-support-everywhere, --judge-degree-above, --edge-cameras, --nms-radius, --max-offset, --sampling-passes, --density-seeds, --test-time-views, --edge-test-time-views, --max-segment-length, --max-pairs, --max-pairs-per-junction, --crossing-distance, --previews, --format and "
+        "--release-quirks, --no-junction-refine, --min-confidence, --pair-support, --edge-support, --edge-support-everywhere, --judge-degree-above, --edge-cameras, --drop-flat-parts, --nms-radius, --max-offset, --sampling-passes, --density-seeds, --test-time-views, --edge-test-time-views, --max-segment-length, --max-pairs, --max-pairs-per-junction, --crossing-distance, --previews, --format and "
         "--precision only apply with --weights");
   a.post.options();  // checks the values before anything is written
 #if LC2WF_EVAL_WITH_WEIGHTS

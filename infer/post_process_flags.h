@@ -22,6 +22,7 @@ struct PostProcessFlags {
   bool edge_support_everywhere = false;     // --edge-support-everywhere
   std::optional<int64_t> judge_degree;      // --judge-degree-above N
   std::optional<int64_t> edge_cameras;      // --edge-cameras N
+  std::optional<int64_t> flat_parts;        // --drop-flat-parts N
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
@@ -36,7 +37,7 @@ struct PostProcessFlags {
   std::optional<double> crossing_distance;       // --crossing-distance M
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || judge_degree || edge_cameras || nms_radius || max_offset || sampling_passes || metres_per_pass ||
+    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || judge_degree || edge_cameras || flat_parts || nms_radius || max_offset || sampling_passes || metres_per_pass ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
            max_pairs || max_pairs_per_junction || crossing_distance;
   }
@@ -51,6 +52,7 @@ struct PostProcessFlags {
     else if (flag == "--edge-support-everywhere") edge_support_everywhere = true;
     else if (flag == "--judge-degree-above") judge_degree = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--edge-cameras") edge_cameras = parse_count_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--drop-flat-parts") flat_parts = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
@@ -81,6 +83,7 @@ struct PostProcessFlags {
     if (edge_support_everywhere) o.edge_support.partial_captures_only = false;
     if (judge_degree) o.edge_support.judge_degree_above = static_cast<int>(std::min<int64_t>(*judge_degree, 1 << 30));
     if (edge_cameras) o.edge_support.min_cameras = static_cast<int>(std::min<int64_t>(*edge_cameras, 1 << 30));
+    if (flat_parts) o.flat_parts.max_edges = static_cast<int>(std::min<int64_t>(*flat_parts, 1 << 30));
     if (nms_radius) o.selection.nms_radius_m = *nms_radius;
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
@@ -108,6 +111,7 @@ struct PostProcessFlags {
                                        {"JunctionSelectionOptions.min_confidence", "--min-confidence"},
                                        {"PairSupportOptions.min_support", "--pair-support"},
                                        {"EdgeSupportOptions.min_support", "--edge-support"},
+                                       {"FlatPartOptions.max_edges", "--drop-flat-parts"},
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
                                        {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},

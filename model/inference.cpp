@@ -194,14 +194,14 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
     in.pairs.push_back({r.pairs[p].i, r.pairs[p].j, probs[p * C + kPairIdentical], probs[p * C + kPairConnected]});
   PostProcessResult post = post_process(in, options);
   const EdgeSupportOptions& support = options.edge_support;
+  // A partial capture: the cloud's cameras leave a side of the post-processed wireframe unseen.
+  const bool ask_partial = (support.partial_captures_only && support.enabled()) || options.flat_parts.enabled();
+  const bool partial = ask_partial && !cloud.cameras.empty() && [&] {
+    const CameraCoverage c = camera_coverage(cloud.cameras, post.wireframe.wireframe, cloud.segments);
+    return std::any_of(c.sides.begin(), c.sides.end(), [](const SideCoverage& s) { return !s.seen; });
+  }();
   JudgedEdges judged = JudgedEdges::every_edge;
-  if (support.partial_captures_only && support.enabled()) {
-    const bool partial = !cloud.cameras.empty() && [&] {
-      const CameraCoverage c = camera_coverage(cloud.cameras, post.wireframe.wireframe, cloud.segments);
-      return std::any_of(c.sides.begin(), c.sides.end(), [](const SideCoverage& s) { return !s.seen; });
-    }();
-    if (!partial) judged = JudgedEdges::over_connected_only;  // nothing to tell the unseen from
-  }
+  if (support.partial_captures_only && support.enabled() && !partial) judged = JudgedEdges::over_connected_only;  // nothing to tell the unseen from
   SupportedEdges seen = keep_supported_edges(post.wireframe, cloud.segments, cloud.cameras, support, judged);
   r.wireframe = std::move(seen.wireframe);
   r.candidates = std::move(post.candidates);
@@ -218,6 +218,13 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
                       (cameras_asked ? " and seen by < " + std::to_string(support.min_cameras) + " cameras"
                                      : std::string()) +
                       " dropped, and " + std::to_string(seen.dropped_junctions) + " junction(s) left without an edge");
+  if (options.flat_parts.enabled() && (partial || !options.flat_parts.partial_captures_only)) {
+    FlatPartsDropped flat = drop_flat_parts(r.wireframe, options.flat_parts);
+    r.wireframe = std::move(flat.wireframe);
+    if (flat.dropped_parts > 0)
+      r.notes.push_back(std::to_string(flat.dropped_parts) + " flat part(s) of < " + std::to_string(options.flat_parts.max_edges) +
+                        " edges apart from the largest dropped (" + std::to_string(flat.dropped_edges) + " edge(s))");
+  }
   if (r.wireframe.wireframe.edges.empty()) r.notes.push_back("no edge survived post-processing: empty wireframe");
   r.post_seconds += seconds_since(t0);
   return r;

@@ -22,6 +22,7 @@ void PostProcessOptions::Check() const {
   pair_support.Check();
   pair_cap.Check();
   edge_support.Check();
+  flat_parts.Check();
   require(max_segment_length_m == 0.0 || (max_segment_length_m >= 0.05 && max_segment_length_m <= 100.0),
           "max_segment_length_m", "0 (off) or in [0.05, 100] metres", max_segment_length_m);
   require(cut_sampling_passes >= 1 && cut_sampling_passes <= 8, "cut_sampling_passes", "in [1, 8]", cut_sampling_passes);

@@ -8,6 +8,7 @@
 #include "dataset/selection/pair_support.h"
 #include "dataset/geometry/segment_split.h"
 #include "model/edge_support.h"
+#include "model/flat_parts.h"
 
 namespace lc2wf {
 
@@ -68,6 +69,9 @@ struct PostProcessOptions {
   // Not in the release (keeps every edge): after the clean-up, edges the cloud's lines do not run along are
   // dropped, with the junctions left without an edge (model/edge_support.h): nothing on unphotographed sides.
   EdgeSupportOptions edge_support;
+  // Not in the release: then the small flat parts other than the largest go (model/flat_parts.h); off here,
+  // on in lc2wf-reconstruct.
+  FlatPartOptions flat_parts;
 
   void Check() const;  // throws std::invalid_argument naming the bad field
   static PostProcessOptions release_quirks();

@@ -94,6 +94,9 @@ Options:
   --edge-cameras N       also keep an edge without line support that N cameras had in view (default 0: the
                          lines alone decide)
   --edge-support-everywhere  accepted for lc2wf-infer's sake: photo clouds are judged everywhere anyway
+  --drop-flat-parts N    drop the parts of the wireframe other than the largest that have fewer than N edges
+                         and lie within 0.5 m of one plane: window frames, doors, a neighbour's face (default
+                         10; 0 = keep them)
   --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
   --crossing-distance M  of two edges crossing within M metres, keep the higher-scoring one (default 0.25;
                          0 = keep both; see lc2wf-infer --help)
@@ -204,6 +207,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
   if (o.out.empty()) throw UsageError("-o OUT is required");
   o.post = post.options();
   o.post.edge_support.partial_captures_only = ReconstructOptions{}.post.edge_support.partial_captures_only;
+  if (!post.flat_parts) o.post.flat_parts = ReconstructOptions{}.post.flat_parts;
   check_options([&] { o.Check(); }, {{"ReconstructOptions.focal_35mm", "--focal-35mm"},
                                      {"ReconstructOptions.intrinsics", "--intrinsics"},
                                      {"ReconstructOptions: a known distance", "--known-distance"},

@@ -70,11 +70,13 @@ struct ReconstructOptions {
   SimilarityFitOptions gps_fit{.outlier_factor = 3.0, .outlier_floor = 5.0, .rounds = 3, .min_spread_ratio = 0.05};
   ScaleSearchOptions scale_search;  // when nothing else gives the scale
 
-  // Photo clouds are judged by their lines on every capture, full orbits too: the networks draw edges between
-  // the corners of windows and texture on every side (infer/README.md, "Drawing only what was seen").
+  // Photo clouds are judged by their lines on every capture, full orbits too, and their small flat parts
+  // apart from the largest go: the networks draw edges between the corners of windows and texture on every
+  // side (infer/README.md, "Drawing only what was seen" and "Flat fragments").
   PostProcessOptions post = [] {
     PostProcessOptions p;
     p.edge_support.partial_captures_only = false;
+    p.flat_parts.max_edges = 10;
     return p;
   }();
   bool surfaces = true;  // also write wireframe.city.json + wireframe.faces.obj (infer/surfaces/); --no-surfaces

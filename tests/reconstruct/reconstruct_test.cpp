@@ -125,12 +125,14 @@ Similarity arbitrary_sfm_frame() {
   return sfm;
 }
 
-// Photo clouds are judged by their lines on full orbits too (infer/README.md, "Drawing only what was seen"),
-// where lc2wf-infer leaves a full orbit's wireframe as drawn.
+// Photo clouds are judged by their lines on full orbits too and lose their small flat parts (infer/README.md,
+// "Drawing only what was seen", "Flat fragments"), where lc2wf-infer leaves a full orbit's wireframe as drawn.
 TEST(ReconstructDefaults, PhotoCloudsAreJudgedOnEveryCapture) {
   EXPECT_FALSE(ReconstructOptions{}.post.edge_support.partial_captures_only);
   EXPECT_TRUE(PostProcessOptions{}.edge_support.partial_captures_only);
   EXPECT_GT(ReconstructOptions{}.post.edge_support.min_support, 0.0);
+  EXPECT_TRUE(ReconstructOptions{}.post.flat_parts.enabled());
+  EXPECT_FALSE(PostProcessOptions{}.flat_parts.enabled());
 }
 
 // A four-storey block in the photo look, its cameras in an SfM frame of unknown scale: the window rows give the
