@@ -83,7 +83,7 @@ Vec3 refine_with_vertical_lines(const Vec3& up, const std::vector<Segment3>& seg
   return v.dot(up) < 0 ? Vec3(-v) : v;
 }
 
-// The frame lines turned z up over their ground, in input units: what the storey rhythm is read from.
+// Lines turned z up over their ground, in input units: what the storey rhythm is read from.
 StoreyScale storey_scale_of(const std::vector<Segment3>& segments, const Eigen::Matrix3d& R, double ground, double height,
                             const StoreyScaleOptions& o) {
   std::vector<Segment3> upright;
