@@ -31,7 +31,9 @@ std::vector<double> pair_end_support(const std::vector<JunctionPair>& pairs, con
                                      const PairSupportOptions& support, double end_length_m) {
   // Each junction's nearby segments only: a query then scans tens of segments, not the whole map. The
   // segments in order of their smallest x: a junction looks only at those whose x range can reach it.
-  std::vector<Segment3> by_x = segments;
+  std::vector<Segment3> by_x;  // a segment with a non-finite end is never near anything (and cannot be ordered)
+  for (const Segment3& s : segments)
+    if (s.a.allFinite() && s.b.allFinite()) by_x.push_back(s);
   std::sort(by_x.begin(), by_x.end(), [](const Segment3& p, const Segment3& q) { return std::min(p.a.x(), p.b.x()) < std::min(q.a.x(), q.b.x()); });
   std::vector<double> min_x;
   double max_x_extent = 0;
