@@ -73,9 +73,10 @@ struct PostProcessFlags {
     return true;
   }
 
-  // The options asked for; a value out of range is a usage error naming its flag.
-  PostProcessOptions options() const {
-    PostProcessOptions o = release_quirks ? PostProcessOptions::release_quirks() : PostProcessOptions{};
+  // The options asked for over a command's own defaults (lc2wf-reconstruct's differ for photo clouds); a value
+  // out of range is a usage error naming its flag.
+  PostProcessOptions options(const PostProcessOptions& defaults = {}) const {
+    PostProcessOptions o = release_quirks ? PostProcessOptions::release_quirks() : defaults;
     if (no_junction_refine) o.selection.refine.radius = 0.0;
     if (min_confidence) o.selection.min_confidence = *min_confidence;
     if (pair_support) o.pair_support.min_support = *pair_support;

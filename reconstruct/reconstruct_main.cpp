@@ -205,9 +205,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
   if (o.images.empty()) throw UsageError("IMAGES_DIR is required");
   if (o.weights.empty()) throw UsageError("--weights DIR is required");
   if (o.out.empty()) throw UsageError("-o OUT is required");
-  o.post = post.options();
-  o.post.edge_support.partial_captures_only = ReconstructOptions{}.post.edge_support.partial_captures_only;
-  if (!post.flat_parts) o.post.flat_parts = ReconstructOptions{}.post.flat_parts;
+  o.post = post.options(ReconstructOptions{}.post);
   check_options([&] { o.Check(); }, {{"ReconstructOptions.focal_35mm", "--focal-35mm"},
                                      {"ReconstructOptions.intrinsics", "--intrinsics"},
                                      {"ReconstructOptions: a known distance", "--known-distance"},

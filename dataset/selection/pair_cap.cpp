@@ -29,15 +29,9 @@ double point_segment_distance(const Vec3& p, const Segment3& s) {
 
 std::vector<double> pair_end_support(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
                                      const PairSupportOptions& support, double end_length_m) {
-  // Each junction's nearby segments only: a query then scans tens of segments, not the whole map. The
-  // segments in order of their smallest x: a junction looks only at those whose x range can reach it.
-  std::vector<Segment3> by_x;  // a segment with a non-finite end is never near anything (and cannot be ordered)
-  for (const Segment3& s : segments)
-    if (s.a.allFinite() && s.b.allFinite()) by_x.push_back(s);
-  std::sort(by_x.begin(), by_x.end(), [](const Segment3& p, const Segment3& q) { return std::min(p.a.x(), p.b.x()) < std::min(q.a.x(), q.b.x()); });
-  std::vector<double> min_x;
-  double max_x_extent = 0;
-  for (const Segment3& s : by_x) min_x.push_back(std::min(s.a.x(), s.b.x())), max_x_extent = std::max(max_x_extent, std::abs(s.b.x() - s.a.x()));
+  // Each junction's nearby segments only: a query then scans tens of segments, not the whole map, and finding
+  // them looks only at the segments whose x range can reach the junction.
+  const SegmentsByX by_x(segments);
   const double reach = end_length_m + support.radius_m;
   std::map<int, SegmentSupport> near;
   SegmentSupport scratch({});  // a junction without an index is not cached
@@ -45,9 +39,9 @@ std::vector<double> pair_end_support(const std::vector<JunctionPair>& pairs, con
     if (index >= 0)
       if (auto it = near.find(index); it != near.end()) return it->second;
     std::vector<Segment3> close;
-    const size_t first = std::lower_bound(min_x.begin(), min_x.end(), at.x() - reach - max_x_extent) - min_x.begin();
-    for (size_t k = first; k < by_x.size() && min_x[k] <= at.x() + reach; ++k)
-      if (point_segment_distance(at, by_x[k]) <= reach) close.push_back(by_x[k]);
+    const auto [first, last] = by_x.meeting(at.x() - reach, at.x() + reach);
+    for (size_t k = first; k < last; ++k)
+      if (point_segment_distance(at, by_x.segments()[k]) <= reach) close.push_back(by_x.segments()[k]);
     if (index < 0) return scratch = SegmentSupport(close);
     return near.emplace(index, SegmentSupport(close)).first->second;
   };

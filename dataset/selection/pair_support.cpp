@@ -17,22 +17,26 @@ void PairSupportOptions::Check() const {
     fail("keep_shorter_than_m must be a distance >= 0 in metres");
 }
 
-SegmentSupport::SegmentSupport(const std::vector<Segment3>& segments) {
-  std::vector<std::pair<double, size_t>> order;
-  for (size_t k = 0; k < segments.size(); ++k) {
-    const double length = segments[k].length();
-    if (!(length > 1e-9) || !std::isfinite(length)) continue;  // no direction to compare
-    order.emplace_back(std::min(segments[k].a.x(), segments[k].b.x()), k);
-  }
-  std::sort(order.begin(), order.end());
-  for (const auto& [min_x, k] : order) {
-    const Segment3& s = segments[k];
+SegmentsByX::SegmentsByX(const std::vector<Segment3>& segments) {
+  for (const Segment3& s : segments) {
     const double length = s.length();
-    a_.push_back(s.a);
+    if (length > 1e-9 && std::isfinite(length)) segments_.push_back(s);  // no direction to compare otherwise
+  }
+  const auto min_x = [](const Segment3& s) { return std::min(s.a.x(), s.b.x()); };
+  std::stable_sort(segments_.begin(), segments_.end(), [&](const Segment3& p, const Segment3& q) { return min_x(p) < min_x(q); });
+  for (const Segment3& s : segments_) min_x_.push_back(min_x(s)), max_x_extent_ = std::max(max_x_extent_, std::abs(s.b.x() - s.a.x()));
+}
+
+std::pair<size_t, size_t> SegmentsByX::meeting(double x_lo, double x_hi) const {
+  const auto first = std::lower_bound(min_x_.begin(), min_x_.end(), x_lo - max_x_extent_);
+  return {static_cast<size_t>(first - min_x_.begin()), static_cast<size_t>(std::upper_bound(first, min_x_.end(), x_hi) - min_x_.begin())};
+}
+
+SegmentSupport::SegmentSupport(const std::vector<Segment3>& segments) : by_x_(segments) {
+  for (const Segment3& s : by_x_.segments()) {
+    const double length = s.length();
     dir_.push_back((s.b - s.a) / length);
     length_.push_back(length);
-    min_x_.push_back(min_x);
-    max_x_extent_ = std::max(max_x_extent_, std::abs(s.b.x() - s.a.x()));
   }
 }
 
@@ -45,11 +49,10 @@ double SegmentSupport::support(const Vec3& u, const Vec3& v, double radius_m, do
   // A counted segment has a point within radius_m of u-v (it lies within radius_m of the line and overlaps
   // u-v along it), so its x range meets u-v's widened by radius_m. The spans are sorted below: the order
   // the segments are met in does not matter.
-  const double x_lo = std::min(u.x(), v.x()) - radius_m, x_hi = std::max(u.x(), v.x()) + radius_m;
-  const size_t first = std::lower_bound(min_x_.begin(), min_x_.end(), x_lo - max_x_extent_) - min_x_.begin();
-  for (size_t k = first; k < a_.size() && min_x_[k] <= x_hi; ++k) {
+  const auto [first, last] = by_x_.meeting(std::min(u.x(), v.x()) - radius_m, std::max(u.x(), v.x()) + radius_m);
+  for (size_t k = first; k < last; ++k) {
     if (std::abs(dir_[k].dot(d)) < min_cos) continue;
-    const Vec3 a = a_[k] - u, b = a + dir_[k] * length_[k];
+    const Vec3 a = by_x_.segments()[k].a - u, b = a + dir_[k] * length_[k];
     const double ta = a.dot(d), tb = b.dot(d);
     if ((a - ta * d).squaredNorm() > r2 || (b - tb * d).squaredNorm() > r2) continue;
     const double lo = std::max(std::min(ta, tb), 0.0), hi = std::min(std::max(ta, tb), length);

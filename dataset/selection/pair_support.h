@@ -4,6 +4,7 @@
 // always has segments along it. Off by default (the release classifies every pair).
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
@@ -21,8 +22,23 @@ struct PairSupportOptions {
   void Check() const;  // throws std::invalid_argument naming the bad field
 };
 
-// The segments of one cloud, prepared for many support queries: ordered by their smallest x, so a query
-// scans the ones whose x range meets its own, not the whole cloud.
+// A cloud's segments ordered by their smallest x (those without a finite length or a direction left out), so
+// that the ones whose x range meets an interval are found without looking at the others.
+class SegmentsByX {
+ public:
+  explicit SegmentsByX(const std::vector<Segment3>& segments);
+  const std::vector<Segment3>& segments() const { return segments_; }
+  // Indices [first, last) into segments() holding every segment whose x range meets [x_lo, x_hi].
+  std::pair<size_t, size_t> meeting(double x_lo, double x_hi) const;
+
+ private:
+  std::vector<Segment3> segments_;
+  std::vector<double> min_x_;  // ascending
+  double max_x_extent_ = 0;    // of any segment
+};
+
+// The segments of one cloud, prepared for many support queries: a query scans the ones whose x range meets
+// its own, not the whole cloud.
 class SegmentSupport {
  public:
   explicit SegmentSupport(const std::vector<Segment3>& segments);
@@ -32,10 +48,9 @@ class SegmentSupport {
   double support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const;
 
  private:
-  std::vector<Vec3> a_, dir_;     // first endpoint and unit direction of each non-degenerate segment
+  SegmentsByX by_x_;
+  std::vector<Vec3> dir_;  // unit direction of each segment of by_x_
   std::vector<double> length_;
-  std::vector<double> min_x_;     // ascending
-  double max_x_extent_ = 0;       // of any segment
 };
 
 // The pairs that pass the option's test, in their order (all of them when the option is off).

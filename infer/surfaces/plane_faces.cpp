@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 #include <set>
+
+#include "dataset/geometry/wireframe_graph.h"
 
 namespace lc2wf {
 namespace {
@@ -34,11 +35,6 @@ LocalGraph local_graph(const Wireframe& wf, const CandidatePlane& cp) {
     g.adj[e[1]].push_back(e[0]);
   }
   return g;
-}
-
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[i] != i) i = parent[i] = parent[parent[i]];
-  return i;
 }
 
 // Edges on the shortest path from v to w (breadth first), 0 when w cannot be reached.
@@ -128,9 +124,7 @@ std::vector<ClosingEdge> closing_edges(const Wireframe& wf, const CandidatePlane
   if (budget && !budget->charge(8 * static_cast<long>(cp.edges.size()), kStep)) return {};  // the local graph
   const LocalGraph g = local_graph(wf, cp);
   const int n = static_cast<int>(g.ids.size());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const auto& e : g.edges) parent[find_root(parent, e[0])] = find_root(parent, e[1]);
+  const std::vector<int> part = connected_parts(n, g.edges);
   std::vector<int> open;
   for (int v = 0; v < n; ++v)
     if (g.adj[v].size() == 1) open.push_back(v);
@@ -149,7 +143,7 @@ std::vector<ClosingEdge> closing_edges(const Wireframe& wf, const CandidatePlane
   for (int v : open) {
     std::vector<int> partners;
     for (int w : open)
-      if (w != v && find_root(parent, w) == find_root(parent, v)) partners.push_back(w);
+      if (w != v && part[w] == part[v]) partners.push_back(w);
     std::sort(partners.begin(), partners.end(), [&](int x, int y) {
       return (g.pos[x] - g.pos[v]).norm() < (g.pos[y] - g.pos[v]).norm();
     });

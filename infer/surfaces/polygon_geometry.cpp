@@ -1,6 +1,5 @@
 #include "infer/surfaces/polygon_geometry.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -33,23 +32,6 @@ std::vector<Vec2> clip_convex(std::vector<Vec2> subject, const std::array<Vec2, 
 }
 
 }  // namespace
-
-Plane fit_plane(const std::vector<Vec3>& points) {
-  Plane plane;
-  if (points.empty()) return plane;
-  Vec3 mean = Vec3::Zero();
-  for (const Vec3& p : points) mean += p;
-  mean /= static_cast<double>(points.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const Vec3& p : points) cov += (p - mean) * (p - mean).transpose();
-  if (points.size() >= 3) {
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
-    // Two large eigenvalues are needed for a plane; a line's points leave the normal undetermined.
-    if (eig.eigenvalues()(1) > 1e-12 * std::max(1.0, eig.eigenvalues()(2))) plane.normal = eig.eigenvectors().col(0).normalized();
-  }
-  plane.offset = plane.normal.dot(mean);
-  return plane;
-}
 
 Vec3 newell_normal(const std::vector<Vec3>& polygon) {
   Vec3 n = Vec3::Zero();

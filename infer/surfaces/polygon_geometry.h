@@ -1,24 +1,15 @@
-// Planar polygon geometry shared by the face finder, the shell checks and the face metrics: plane fits,
-// 2D frames in a plane, areas, point-in-polygon, crossing tests, ear-clipping triangulation and the overlap
-// (intersection over union) of two simple polygons.
+// Planar polygon geometry shared by the face finder, the shell checks and the face metrics: 2D frames in a
+// plane, areas, point-in-polygon, crossing tests, ear-clipping triangulation and the overlap (intersection over
+// union) of two simple polygons; plane fits are dataset/geometry/plane_fit.h's.
 #pragma once
 
 #include <array>
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/geometry/plane_fit.h"  // Plane, fit_plane
 
 namespace lc2wf {
-
-struct Plane {
-  Vec3 normal = Vec3::UnitZ();  // unit length
-  double offset = 0;            // normal . x = offset on the plane
-  double distance(const Vec3& p) const { return normal.dot(p) - offset; }
-};
-
-// Least-squares plane through the points (smallest principal direction); needs >= 3 points not all on a line
-// for a meaningful normal (fewer: the z=const plane through their mean).
-Plane fit_plane(const std::vector<Vec3>& points);
 
 // Sum of cross products of consecutive vertices (Newell): normal direction times twice the polygon's area,
 // well defined for non-convex and slightly non-planar polygons.

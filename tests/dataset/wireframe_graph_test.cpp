@@ -16,5 +16,12 @@ TEST(WireframeGraph, EdgesAndDegreesPerJunction) {
   EXPECT_TRUE(junction_degrees(Wireframe{}).empty());
 }
 
+TEST(WireframeGraph, ConnectedPartsNumberedByTheirFirstJunction) {
+  // Junctions 0-1-2 joined, 3 alone, 4-5 joined through an edge listed before the first part's.
+  EXPECT_EQ(connected_parts(6, {{5, 4}, {0, 1}, {2, 1}}), (std::vector<int>{0, 0, 0, 1, 2, 2}));
+  EXPECT_EQ(connected_parts(3, {}), (std::vector<int>{0, 1, 2}));
+  EXPECT_TRUE(connected_parts(0, {}).empty());
+}
+
 }  // namespace
 }  // namespace lc2wf
