@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cstdlib>
 #include <list>
@@ -46,6 +47,8 @@ void* heap_allocate(size_t size) {
   return data;
 }
 
+std::atomic<bool> huge_pages{true};
+
 // Large blocks are mapped directly (page aligned), so a block given back is really gone from the process
 // instead of leaving a hole in the malloc heap.
 void* map_block(size_t size) {
@@ -53,7 +56,7 @@ void* map_block(size_t size) {
   if (data == MAP_FAILED) throw std::bad_alloc();
   // Huge pages where the kernel allows them on request: a fresh block then faults in 2 MiB at a time
   // instead of 4 KiB, so a cache miss costs little more than zeroing the memory.
-  madvise(data, size, MADV_HUGEPAGE);
+  if (huge_pages.load(std::memory_order_relaxed)) madvise(data, size, MADV_HUGEPAGE);
   return data;
 }
 
@@ -234,6 +237,10 @@ void set_storage_cache_budget(size_t bytes) { cache().set_budget(bytes); }
 void set_storage_cache_slack(double factor) { cache().set_slack(factor); }
 
 double storage_cache_slack() { return cache().slack(); }
+
+void set_storage_cache_huge_pages(bool on) { huge_pages.store(on, std::memory_order_relaxed); }
+
+bool storage_cache_huge_pages() { return huge_pages.load(std::memory_order_relaxed); }
 
 void storage_cache_clear() { cache().clear(); }
 

@@ -31,6 +31,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
   o.post.Check();
   const MatmulPrecisionGuard precision(o.precision);
   const StorageCacheSlackGuard slack(kBatchInferenceSlack);
+  const StorageCacheHugePagesGuard small_pages(false);  // a one-off fault must not stall (storage_cache.h)
   BatchInferenceSummary s;
   s.threads = num_threads();
   s.precision = to_string(o.precision);

@@ -25,7 +25,8 @@ struct BatchInferenceOptions {
   // Where the preview PNG of a building goes; empty function = no previews.
   std::function<std::filesystem::path(const std::string& name)> preview_path;
   bool quiet = false;
-  // fp32 gives the same numbers on every CPU; bf16 operands are faster where the CPU has AVX512-BF16.
+  // fp32 gives the same numbers at any thread count (the CPU's kernel class moves the last bits); bf16
+  // operands are faster where the CPU has AVX512-BF16.
   MatmulPrecision precision = MatmulPrecision::kFp32;
   // Also write the LoD2 surfaces beside each wireframe (<name>.city.json, <name>.faces.obj; infer/surfaces/).
   bool write_surfaces = false;

@@ -115,7 +115,8 @@ wireframe and a note, never a failure.
                       edges of P(edge) x the geometric mean of their junctions' confidences),
                       edge-evidence (the sum over the kept edges of P(edge) x both confidences),
                       confident-junctions or junction-mean (reconstruct/README.md, "Scale search")
-  --precision P       fp32 (default: the same numbers on every CPU), bf16 (operands rounded to bf16,
+  --precision P       fp32 (default: the same numbers at any thread count; CPUs whose matrix kernels
+                      differ, AVX2 or AVX-512, differ in the last bits), bf16 (operands rounded to bf16,
                       fp32 sums; fast where the CPU has AVX512-BF16, emulated elsewhere) or auto
                       (bf16 where it has, else fp32)
   --no-surfaces       do not write the LoD2 surfaces: by default OUT/<name>.city.json (CityJSON 2.0, one

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "core/util/atomic_file.h"
+#include "infer/png_file.h"
 
 namespace lc2wf {
 
@@ -90,9 +90,15 @@ void write_preview(const std::filesystem::path& png, const LineCloud& cloud, con
     y += 20;
   }
 
-  std::vector<uchar> bytes;
-  if (!cv::imencode(".png", image, bytes)) throw std::runtime_error(png.string() + ": PNG encoding failed");
-  write_file_atomically(png, [&](std::ostream& out) { out.write(reinterpret_cast<const char*>(bytes.data()), bytes.size()); });
+  std::vector<uint8_t> rgb(3 * static_cast<size_t>(o.width) * static_cast<size_t>(o.height));
+  for (int y = 0; y < o.height; ++y)
+    for (int x = 0; x < o.width; ++x) {
+      const cv::Vec3b& bgr = image.at<cv::Vec3b>(y, x);
+      uint8_t* to = &rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(o.width) + static_cast<size_t>(x))];
+      to[0] = bgr[2], to[1] = bgr[1], to[2] = bgr[0];
+    }
+  const std::string bytes = encode_png_rgb(rgb, o.width, o.height);
+  write_file_atomically(png, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
 }  // namespace lc2wf

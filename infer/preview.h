@@ -1,5 +1,5 @@
 // A quick look at one result: the line cloud (grey), the ground truth (green, when known) and the
-// predicted wireframe (red) drawn from an oblique view with OpenCV, written as a PNG.
+// predicted wireframe (red) drawn from an oblique view with OpenCV's drawing, written as a PNG (png_file.h).
 #pragma once
 
 #include <filesystem>

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/parallel.h"
 #include "core/tensor.h"
 #include "dataset/selection/pair_cap.h"
 #include "dataset/sampling/sampling.h"
@@ -164,7 +165,7 @@ InferenceResult predict_wireframe(EdgeNet& edge_net, const LineCloud& cloud, con
   r.pairs = supported_pairs(selection_pairs(r.selection, label_against, PairSamplingOptions{}.fp_distance_m),
                             cloud.segments, options.pair_support);
   if (const size_t before = r.pairs.size(); before > 0) {
-    r.pairs = capped_pairs(r.pairs, cloud.segments, options.pair_cap, options.pair_support);
+    r.pairs = capped_pairs(r.pairs, cloud.segments, options.pair_cap, options.pair_support, num_threads());
     if (r.pairs.size() < before)
       r.notes.push_back(std::to_string(before) + " pairs of " + std::to_string(r.selection.positions.size()) +
                         " junctions capped to the " + std::to_string(r.pairs.size()) + " with the most line support");

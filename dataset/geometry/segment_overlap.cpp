@@ -4,6 +4,13 @@
 #include <cmath>
 
 namespace lc2wf {
+namespace {
+
+// The points' spacing: any spacing finds every segment (the query radius grows with it and the exact test
+// decides); a wide one keeps the index small, since a cloud's segments are many and its queries few.
+constexpr double kOverlapSpacingM = 0.25;
+
+}  // namespace
 
 bool midpoint_runs_along(const Segment3& s, const Segment3& other) {
   const double length = s.length(), other_length = other.length();
@@ -18,7 +25,7 @@ SegmentOverlapIndex::Samples SegmentOverlapIndex::sample_along(const std::vector
   double total_length = 0.0;
   for (const Segment3& s : segments) total_length += s.length();
   // Points close enough that a segment passing within kOverlapRadiusM of a midpoint has one within the radius.
-  const double spacing = std::max(0.05, total_length / static_cast<double>(std::max<int64_t>(1, max_points)));
+  const double spacing = std::max(kOverlapSpacingM, total_length / static_cast<double>(std::max<int64_t>(1, max_points)));
   Samples out;
   for (size_t i = 0; i < segments.size(); ++i) {
     const Segment3& s = segments[i];

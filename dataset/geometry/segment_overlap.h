@@ -18,7 +18,7 @@ constexpr double kOverlapMinCos = 0.9961946980917455;  // directions within 5 de
 // directions are within 5 degrees. False for a degenerate `other`.
 bool midpoint_runs_along(const Segment3& s, const Segment3& other);
 
-// A grid of points along every segment (every 5 cm, sparser for clouds longer than `max_points` x 5 cm), so
+// A grid of points along every segment (every 25 cm, sparser for clouds longer than `max_points` x 25 cm), so
 // that the segments a midpoint runs along are found without comparing every pair. Keeps a reference to
 // `segments`, which must outlive it.
 class SegmentOverlapIndex {

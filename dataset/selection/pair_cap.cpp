@@ -4,8 +4,11 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <string>
+
+#include "core/util/parallel_items.h"
 
 namespace lc2wf {
 
@@ -28,51 +31,62 @@ double point_segment_distance(const Vec3& p, const Segment3& s) {
 }  // namespace
 
 std::vector<double> pair_end_support(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
-                                     const PairSupportOptions& support, double end_length_m) {
-  // Each junction's nearby segments only: a query then scans tens of segments, not the whole map, and finding
-  // them looks only at the segments whose x range can reach the junction.
+                                     const PairSupportOptions& support, double end_length_m, int threads) {
+  // Each junction's nearby segments only, prepared relative to it: a query then tests tens of segments, not
+  // the whole map, and finding them looks only at the segments whose x range can reach the junction.
   const SegmentsByX by_x(segments);
   const double reach = end_length_m + support.radius_m;
-  std::map<int, SegmentSupport> near;
-  SegmentSupport scratch({});  // a junction without an index is not cached
-  auto near_of = [&](int index, const Vec3& at) -> const SegmentSupport& {
-    if (index >= 0)
-      if (auto it = near.find(index); it != near.end()) return it->second;
+  auto near_of = [&](const Vec3& at) {
     std::vector<Segment3> close;
     const auto [first, last] = by_x.meeting(at.x() - reach, at.x() + reach);
     for (size_t k = first; k < last; ++k)
       if (point_segment_distance(at, by_x.segments()[k]) <= reach) close.push_back(by_x.segments()[k]);
-    if (index < 0) return scratch = SegmentSupport(close);
-    return near.emplace(index, SegmentSupport(close)).first->second;
+    return AnchoredSegmentSupport(close, at);
   };
+  // A junction index stands for the position it first comes with (a pair without one is prepared alone).
+  std::vector<const Vec3*> where;
+  for (const JunctionPair& p : pairs)
+    for (const auto& [index, at] : {std::pair<int, const Vec3*>{p.i, &p.u}, {p.j, &p.v}})
+      if (index >= 0) {
+        if (where.size() <= static_cast<size_t>(index)) where.resize(static_cast<size_t>(index) + 1, nullptr);
+        if (!where[static_cast<size_t>(index)]) where[static_cast<size_t>(index)] = at;
+      }
+  std::vector<std::optional<AnchoredSegmentSupport>> near(where.size());
+  for_each_item(static_cast<int64_t>(where.size()), threads, [&](int64_t j) {
+    if (where[static_cast<size_t>(j)]) near[static_cast<size_t>(j)].emplace(near_of(*where[static_cast<size_t>(j)]));
+  }, 8);
   std::vector<double> rank(pairs.size());
-  for (size_t k = 0; k < pairs.size(); ++k) {
-    const JunctionPair& p = pairs[k];
+  for_each_item(static_cast<int64_t>(pairs.size()), threads, [&](int64_t k) {
+    const JunctionPair& p = pairs[static_cast<size_t>(k)];
     const double length = (p.v - p.u).norm();
     if (length < support.keep_shorter_than_m) {
-      rank[k] = 2.0;  // above any support share
-      continue;
+      rank[static_cast<size_t>(k)] = 2.0;  // above any support share
+      return;
     }
     const Vec3 d = (p.v - p.u) / length;
     const double reach = std::min(end_length_m, 0.5 * length);
-    const double at_u = near_of(p.i, p.u).support(p.u, p.u + reach * d, support.radius_m, support.max_angle_deg);
-    const double at_v = near_of(p.j, p.v).support(p.v, p.v - reach * d, support.radius_m, support.max_angle_deg);
-    rank[k] = 0.5 * (at_u + at_v);
-  }
+    auto at_end = [&](int index, const Vec3& at, const Vec3& towards) {
+      if (index >= 0) return near[static_cast<size_t>(index)]->support(towards, support.radius_m, support.max_angle_deg);
+      return near_of(at).support(towards, support.radius_m, support.max_angle_deg);
+    };
+    rank[static_cast<size_t>(k)] = 0.5 * (at_end(p.i, p.u, p.u + reach * d) + at_end(p.j, p.v, p.v - reach * d));
+  }, 256);
   return rank;
 }
 
 std::vector<JunctionPair> capped_pairs(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
-                                       const PairCapOptions& cap, const PairSupportOptions& support) {
+                                       const PairCapOptions& cap, const PairSupportOptions& support, int threads) {
   cap.Check();
   support.Check();
   if (!cap.enabled() || pairs.size() <= static_cast<size_t>(cap.max_pairs)) return pairs;
-  const std::vector<double> rank = pair_end_support(pairs, segments, support, cap.end_length_m);
+  const std::vector<double> rank = pair_end_support(pairs, segments, support, cap.end_length_m, threads);
+  std::vector<double> length2(pairs.size());
+  for (size_t k = 0; k < pairs.size(); ++k) length2[k] = (pairs[k].v - pairs[k].u).squaredNorm();
   std::vector<size_t> order(pairs.size());
   std::iota(order.begin(), order.end(), size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
     if (rank[a] != rank[b]) return rank[a] > rank[b];
-    return (pairs[a].v - pairs[a].u).squaredNorm() < (pairs[b].v - pairs[b].u).squaredNorm();
+    return length2[a] < length2[b];
   });
   std::map<int, int> used;  // pairs kept per junction index
   std::vector<char> keep(pairs.size(), 0);

@@ -29,14 +29,15 @@ struct PairCapOptions {
 
 // The rank of a pair: the mean of the shares of the first min(end_length_m, half its length) from each
 // junction that the cloud's segments run along (the support test of pair_support.h); pairs shorter than
-// support.keep_shorter_than_m rank above every other (two detections of one junction).
+// support.keep_shorter_than_m rank above every other (two detections of one junction). The same ranks on
+// any number of threads.
 std::vector<double> pair_end_support(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
-                                     const PairSupportOptions& support, double end_length_m);
+                                     const PairSupportOptions& support, double end_length_m, int threads = 1);
 
 // `pairs` unchanged when there are no more than max_pairs; else the best-ranked pairs, each junction in at
 // most max_pairs_per_junction of them and max_pairs in all (ties: the shorter pair, then the earlier one),
-// in their input order. Deterministic.
+// in their input order. Deterministic, on any number of threads (they rank the pairs).
 std::vector<JunctionPair> capped_pairs(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,
-                                       const PairCapOptions& cap, const PairSupportOptions& support = {});
+                                       const PairCapOptions& cap, const PairSupportOptions& support = {}, int threads = 1);
 
 }  // namespace lc2wf

@@ -40,24 +40,24 @@ SegmentSupport::SegmentSupport(const std::vector<Segment3>& segments) : by_x_(se
   }
 }
 
-double SegmentSupport::support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const {
-  const double length = (v - u).norm();
-  if (!(length > 1e-9)) return 1.0;
-  const Vec3 d = (v - u) / length;
-  const double min_cos = std::cos(max_angle_deg * M_PI / 180.0), r2 = radius_m * radius_m;
-  std::vector<std::pair<double, double>> spans;  // covered parameter ranges along u-v, in metres
-  // A counted segment has a point within radius_m of u-v (it lies within radius_m of the line and overlaps
-  // u-v along it), so its x range meets u-v's widened by radius_m. The spans are sorted below: the order
-  // the segments are met in does not matter.
-  const auto [first, last] = by_x_.meeting(std::min(u.x(), v.x()) - radius_m, std::max(u.x(), v.x()) + radius_m);
-  for (size_t k = first; k < last; ++k) {
-    if (std::abs(dir_[k].dot(d)) < min_cos) continue;
-    const Vec3 a = by_x_.segments()[k].a - u, b = a + dir_[k] * length_[k];
-    const double ta = a.dot(d), tb = b.dot(d);
-    if ((a - ta * d).squaredNorm() > r2 || (b - tb * d).squaredNorm() > r2) continue;
-    const double lo = std::max(std::min(ta, tb), 0.0), hi = std::min(std::max(ta, tb), length);
-    if (hi > lo) spans.emplace_back(lo, hi);
-  }
+namespace {
+
+// The one test of a support query: the span along u-v (in metres from u) of a segment whose ends relative
+// to u are a and b and whose unit direction is dir, when it counts for the query's unit direction d.
+bool counted_span(const Vec3& a, const Vec3& b, const Vec3& dir, const Vec3& d, double length, double min_cos, double r2,
+                  std::pair<double, double>* span) {
+  if (std::abs(dir.dot(d)) < min_cos) return false;
+  const double ta = a.dot(d), tb = b.dot(d);
+  if ((a - ta * d).squaredNorm() > r2 || (b - tb * d).squaredNorm() > r2) return false;
+  const double lo = std::max(std::min(ta, tb), 0.0), hi = std::min(std::max(ta, tb), length);
+  if (!(hi > lo)) return false;
+  *span = {lo, hi};
+  return true;
+}
+
+// The share of [0, length] the union of the spans covers (the spans are sorted here, so the order the
+// segments were met in does not matter).
+double covered_share(std::vector<std::pair<double, double>>& spans, double length) {
   std::sort(spans.begin(), spans.end());
   double covered = 0, lo = 0, hi = -1;
   for (const auto& [s0, s1] : spans) {
@@ -71,6 +71,62 @@ double SegmentSupport::support(const Vec3& u, const Vec3& v, double radius_m, do
   }
   if (hi > lo) covered += hi - lo;
   return std::min(1.0, covered / length);
+}
+
+}  // namespace
+
+double SegmentSupport::support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const {
+  const double length = (v - u).norm();
+  if (!(length > 1e-9)) return 1.0;
+  const Vec3 d = (v - u) / length;
+  const double min_cos = std::cos(max_angle_deg * M_PI / 180.0), r2 = radius_m * radius_m;
+  std::vector<std::pair<double, double>> spans;  // covered parameter ranges along u-v, in metres
+  // A counted segment has a point within radius_m of u-v (it lies within radius_m of the line and overlaps
+  // u-v along it), so its x range meets u-v's widened by radius_m.
+  const auto [first, last] = by_x_.meeting(std::min(u.x(), v.x()) - radius_m, std::max(u.x(), v.x()) + radius_m);
+  std::pair<double, double> span;
+  for (size_t k = first; k < last; ++k) {
+    const Vec3 a = by_x_.segments()[k].a - u, b = a + dir_[k] * length_[k];
+    if (counted_span(a, b, dir_[k], d, length, min_cos, r2, &span)) spans.push_back(span);
+  }
+  return covered_share(spans, length);
+}
+
+AnchoredSegmentSupport::AnchoredSegmentSupport(const std::vector<Segment3>& segments, const Vec3& anchor) : anchor_(anchor) {
+  // The same segments, directions and lengths SegmentSupport would hold, so the shares agree bit for bit.
+  const SegmentSupport all(segments);
+  for (size_t k = 0; k < all.by_x_.segments().size(); ++k) {
+    const Vec3 a = all.by_x_.segments()[k].a - anchor;
+    a_.push_back(a);
+    b_.push_back(a + all.dir_[k] * all.length_[k]);
+    dir_.push_back(all.dir_[k]);
+    for (int c = 0; c < 3; ++c) dir_xyz_[c].push_back(all.dir_[k][c]);
+  }
+}
+
+double AnchoredSegmentSupport::support(const Vec3& v, double radius_m, double max_angle_deg) const {
+  const double length = (v - anchor_).norm();
+  if (!(length > 1e-9)) return 1.0;
+  const Vec3 d = (v - anchor_) / length;
+  const double min_cos = std::cos(max_angle_deg * M_PI / 180.0), r2 = radius_m * radius_m;
+  // Most segments point elsewhere: a loop the compiler vectorises screens them (with a margin for its
+  // rounding), and the one test decides for the rest.
+  // Each thread's scratch is kept, to spare a query its allocations.
+  thread_local std::vector<double> cosines;
+  thread_local std::vector<std::pair<double, double>> spans;
+  const size_t n = a_.size();
+  cosines.resize(n);
+  const double* x = dir_xyz_[0].data();
+  const double* y = dir_xyz_[1].data();
+  const double* z = dir_xyz_[2].data();
+  double* cosine = cosines.data();
+  for (size_t k = 0; k < n; ++k) cosine[k] = std::abs(x[k] * d.x() + y[k] * d.y() + z[k] * d.z());
+  const double screen = min_cos - 1e-9;
+  spans.clear();
+  std::pair<double, double> span;
+  for (size_t k = 0; k < n; ++k)
+    if (cosine[k] >= screen && counted_span(a_[k], b_[k], dir_[k], d, length, min_cos, r2, &span)) spans.push_back(span);
+  return covered_share(spans, length);
 }
 
 std::vector<JunctionPair> supported_pairs(const std::vector<JunctionPair>& pairs, const std::vector<Segment3>& segments,

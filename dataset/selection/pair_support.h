@@ -48,9 +48,25 @@ class SegmentSupport {
   double support(const Vec3& u, const Vec3& v, double radius_m, double max_angle_deg) const;
 
  private:
+  friend class AnchoredSegmentSupport;
   SegmentsByX by_x_;
   std::vector<Vec3> dir_;  // unit direction of each segment of by_x_
   std::vector<double> length_;
+};
+
+// The segments near one point, prepared for the many support queries that start there (a junction's pairs):
+// every segment is tested against every query, without SegmentSupport's x window, and the share is
+// SegmentSupport's bit for bit. Give it the segments that can reach the queries. Queries may run at once.
+class AnchoredSegmentSupport {
+ public:
+  AnchoredSegmentSupport(const std::vector<Segment3>& segments, const Vec3& anchor);
+  // SegmentSupport::support(anchor, v, radius_m, max_angle_deg) over these segments.
+  double support(const Vec3& v, double radius_m, double max_angle_deg) const;
+
+ private:
+  Vec3 anchor_;
+  std::vector<Vec3> a_, b_, dir_;  // each segment's ends relative to the anchor, its unit direction
+  std::vector<double> dir_xyz_[3];  // the directions' x, y and z apart, for the screening loop
 };
 
 // The pairs that pass the option's test, in their order (all of them when the option is off).

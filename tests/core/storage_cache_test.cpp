@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/tensor.h"
@@ -251,6 +253,44 @@ TEST_F(StorageCacheTest, SlackGuardRestoresThePreviousFactor) {
     EXPECT_EQ(storage_cache_slack(), kBatchInferenceSlack);
   }
   EXPECT_EQ(storage_cache_slack(), 1.5);
+}
+
+// The VmFlags of the mapping holding `address` (/proc/self/smaps; "hg" = MADV_HUGEPAGE was asked for).
+std::string mapping_flags(const void* address) {
+  std::ifstream smaps("/proc/self/smaps");
+  const auto at = reinterpret_cast<uintptr_t>(address);
+  bool inside = false;
+  for (std::string line; std::getline(smaps, line);) {
+    uintptr_t lo = 0, hi = 0;
+    char dash = 0;
+    std::istringstream range(line);
+    if (range >> std::hex >> lo >> dash >> hi && dash == '-' && line.find(':') > line.find(' ')) inside = lo <= at && at < hi;
+    if (inside && line.rfind("VmFlags:", 0) == 0) return line;
+  }
+  return "";
+}
+
+TEST_F(StorageCacheTest, HugePagesAreAskedForUnlessAGuardSaysNo) {
+  EXPECT_TRUE(storage_cache_huge_pages()) << "training's default";
+  auto flags_of_fresh_block = [](size_t bytes) {
+    storage_cache_clear();  // no cached block may serve it
+    const StorageBlock block = storage_allocate(bytes);
+    const std::string flags = mapping_flags(block.data);
+    storage_release(block);
+    return flags;
+  };
+  const std::string with = flags_of_fresh_block(40 * kMiB);
+  ASSERT_NE(with, "") << "the block's mapping in /proc/self/smaps";
+  if (!std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled")) GTEST_SKIP() << "a kernel without huge pages";
+  EXPECT_NE(with.find(" hg"), std::string::npos) << with;
+  {
+    const StorageCacheHugePagesGuard inference(false);
+    EXPECT_FALSE(storage_cache_huge_pages());
+    const std::string without = flags_of_fresh_block(40 * kMiB);
+    ASSERT_NE(without, "");
+    EXPECT_EQ(without.find(" hg"), std::string::npos) << without;
+  }
+  EXPECT_TRUE(storage_cache_huge_pages()) << "restored";
 }
 
 TEST_F(StorageCacheTest, ThousandStepsOfShiftingSizesStayBounded) {

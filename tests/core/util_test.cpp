@@ -1,14 +1,17 @@
-// core/util: workspaces that never delete a folder the user named, the shared hash and median.
+// core/util: workspaces that never delete a folder the user named, the shared hash and median, items over threads.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "core/util/fnv1a.h"
 #include "core/util/median.h"
+#include "core/util/parallel_items.h"
 #include "core/util/workspace.h"
 
 namespace lc2wf {
@@ -89,6 +92,24 @@ TEST(Median, OddEvenAndEmpty) {
   EXPECT_EQ(median({3, 1, 2}), 2.0);
   EXPECT_EQ(median({4, 1, 3, 2}), 2.5);
   EXPECT_EQ(median({5}), 5.0);
+}
+
+TEST(ForEachItem, EveryItemOnceAtAnyThreadCount) {
+  for (int threads : {1, 2, 7}) {
+    std::vector<std::atomic<int>> done(1000);
+    for_each_item(1000, threads, [&](int64_t i) { ++done[static_cast<size_t>(i)]; }, 9);
+    for (size_t i = 0; i < done.size(); ++i) ASSERT_EQ(done[i].load(), 1) << "item " << i << ", " << threads << " threads";
+  }
+  for_each_item(0, 4, [](int64_t) { FAIL() << "no item to do"; });
+}
+
+TEST(ForEachItem, AnItemsExceptionReachesTheCaller) {
+  std::atomic<int> started{0};
+  EXPECT_THROW(for_each_item(10000, 3, [&](int64_t i) {
+    ++started;
+    if (i == 17) throw std::runtime_error("item 17");
+  }, 4), std::runtime_error);
+  EXPECT_LT(started.load(), 10000) << "the other threads stop at their next chunk";
 }
 
 }  // namespace

@@ -83,6 +83,10 @@ TEST(PairCap, AboveTheCapTheSupportedEdgesStayWithinBothLimits) {
   // Kept pairs keep their input order, and the same input gives the same pairs.
   for (size_t k = 1; k < kept.size(); ++k) EXPECT_TRUE(kept[k - 1].i < kept[k].i || (kept[k - 1].i == kept[k].i && kept[k - 1].j < kept[k].j));
   EXPECT_TRUE(same_pairs(capped_pairs(pairs, s.segments, cap), kept));
+  // The ranking spread over threads gives the same ranks, so the same pairs.
+  EXPECT_EQ(pair_end_support(pairs, s.segments, PairSupportOptions{}, cap.end_length_m, 3),
+            pair_end_support(pairs, s.segments, PairSupportOptions{}, cap.end_length_m, 1));
+  EXPECT_TRUE(same_pairs(capped_pairs(pairs, s.segments, cap, PairSupportOptions{}, 3), kept));
 }
 
 TEST(PairCap, CloseDetectionsOfOneJunctionRankFirst) {
@@ -109,6 +113,9 @@ TEST(PairCap, EndSupportIsTheCoveredShareNearBothJunctions) {
   const std::vector<double> rank = pair_end_support(pairs, segments, PairSupportOptions{}, 2.0);
   ASSERT_EQ(rank.size(), 1u);
   EXPECT_NEAR(rank[0], 0.25, 1e-12);
+  // Junctions without an index (-1) are measured where they are, each on its own.
+  const std::vector<JunctionPair> loose = {{{0, 0, 0}, {10, 0, 0}, -1, -1, -1, false}, {{10, 0, 0}, {0, 0, 0}, -1, -1, -1, false}};
+  EXPECT_EQ(pair_end_support(loose, segments, PairSupportOptions{}, 2.0, 2), std::vector<double>({rank[0], rank[0]}));
 }
 
 TEST(PairCap, BadOptionsNameTheField) {

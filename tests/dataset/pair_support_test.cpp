@@ -67,6 +67,35 @@ TEST(PairSupport, OrderedScanFindsWhatEverySegmentGives) {
   }
 }
 
+TEST(PairSupport, AnchoredQueriesGiveTheSameSharesBitForBit) {
+  // The pair cap's ranking asks a junction's nearby segments about many directions from it: the anchored
+  // form (every segment screened, no x window) must give SegmentSupport's share exactly, at borderline
+  // angles too. Segments on a grid, some 20 degrees off (the angle limit) and some beyond it.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> coord(-3, 3), jitter(-0.4, 0.4), len(0.05, 4), turn(-0.4, 0.4);
+  std::vector<Segment3> segments;
+  for (int k = 0; k < 400; ++k) {
+    const Vec3 a(coord(rng), std::round(coord(rng)) + jitter(rng), std::round(coord(rng)) * 0.5);
+    const double t = (k % 5 == 0) ? (k % 2 ? 1 : -1) * kAngle * M_PI / 180.0 : turn(rng);
+    const Vec3 dir = (k % 2 == 0) ? Vec3(std::cos(t), std::sin(t), 0) : Vec3(0, std::cos(t), std::sin(t));
+    segments.push_back({a, a + len(rng) * dir});
+  }
+  const SegmentSupport support(segments);
+  int supported = 0;
+  for (int j = 0; j < 20; ++j) {
+    const Vec3 u(std::round(coord(rng)), std::round(coord(rng)), 0);
+    const AnchoredSegmentSupport anchored(segments, u);
+    for (int q = 0; q < 50; ++q) {
+      const double t = turn(rng), l = len(rng);
+      const Vec3 v = u + l * ((q % 2 == 0) ? Vec3(std::cos(t), std::sin(t), 0) : Vec3(0, std::cos(t), std::sin(t)));
+      const double expected = support.support(u, v, kRadius, kAngle);
+      ASSERT_EQ(anchored.support(v, kRadius, kAngle), expected) << "junction " << j << ", query " << q;
+      supported += expected > 0;
+    }
+  }
+  EXPECT_GT(supported, 200) << "the queries should mostly meet segments";
+}
+
 TEST(PairSupport, CoveredShareOfThePairsLength) {
   const Vec3 u{0, 0, 0}, v{4, 0, 0};
   EXPECT_DOUBLE_EQ(support_of({}, u, v), 0.0);
