@@ -75,6 +75,8 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
   --nms-radius M  with --weights: point-NMS radius of the candidate junctions (default 0.5 m)
   --max-offset M  with --weights: ignore candidates regressed more than M metres from their sample point
                   (default 0.75; 0 = every candidate; see lc2wf-infer --help)
+  --corner-radius M  with --weights: keep junctions where segments of two directions end within M metres
+                  (default 0.3; 0 = every junction; see lc2wf-infer --help)
   --sampling-passes N  with --weights: the junction model's sample points in N passes (default 1; see
                   lc2wf-infer --help)
   --metres-per-pass M  with --weights: at least one pass per M metres of a cloud's longer side (default 40;

@@ -179,7 +179,8 @@ std::string eval_per_building_csv(const EvalReport& r) {
 std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
-  const std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
+  std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
+  if (s.corner_radius_m > 0) offsets += ", two line directions ending within " + format_number("%g", s.corner_radius_m) + " m";
   // The options that differ from a one-pass, one-view, uncut run, in the order of the pipeline.
   std::string passes;
   if (s.sampling_passes > 1) passes += ", " + std::to_string(s.sampling_passes) + " sampling passes";
@@ -219,6 +220,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"min_confidence", s.min_confidence},
           {"nms_radius_m", s.nms_radius_m},
           {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
+          {"corner_radius_m", s.corner_radius_m},
           {"sampling_passes", s.sampling_passes},
           {"test_time_views", s.test_time_views},
           {"density_seeds", s.density_seeds},
@@ -248,6 +250,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.min_confidence = j.value("min_confidence", then.min_confidence);
   s.nms_radius_m = j.value("nms_radius_m", then.nms_radius_m);
   s.max_offset_m = j.contains("max_offset_m") && !j["max_offset_m"].is_null() ? j["max_offset_m"].get<double>() : then.max_offset_m;
+  s.corner_radius_m = j.value("corner_radius_m", 0.0);  // every junction paired before the option existed
   s.sampling_passes = j.value("sampling_passes", 1);  // one pass before the option existed
   s.test_time_views = j.value("test_time_views", 1);  // one view before the option existed
   s.density_seeds = j.value("density_seeds", std::string("release"));  // the release's before the option existed

@@ -66,6 +66,9 @@ wireframe and a note, never a failure.
                       before the cut (default 0.5; the release: 0.25)
   --max-offset M      ignore candidate junctions regressed more than M metres from their patch's sample
                       point (default 0.75; 0 = every candidate, as the release)
+  --corner-radius M   keep a selected junction only where the cloud's segments ending within M metres of
+                      it run in two directions at least 20 degrees apart: a corner, not the middle of an
+                      edge (default 0.3; 0 = every junction, as the release)
                       --release-quirks selects as the release (0.85, 0.25, every candidate); how the
                       defaults were chosen and what they score: infer/README.md
   --sampling-passes N run the junction model on N x 256 sample points, 256 at a time (default 1, the

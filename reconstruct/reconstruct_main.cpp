@@ -105,6 +105,8 @@ Options:
   --nms-radius M         point-NMS radius of the candidate junctions (default 0.5 m; see lc2wf-infer --help)
   --max-offset M         ignore candidates regressed more than M metres from their sample point (default 0.75;
                          0 = every candidate; see lc2wf-infer --help)
+  --corner-radius M      keep junctions where segments of two directions end within M metres (default 0.3;
+                         0 = every junction; see lc2wf-infer --help)
   --sampling-passes N    the junction model's sample points in N passes of 256 (default 1; see lc2wf-infer --help)
   --metres-per-pass M    at least one pass per M metres of the cloud's longer side (default 40; 0 = off)
   --density-seeds S      which endpoints seed the sample points: loose (default), release or

@@ -155,6 +155,9 @@ struct EdgeStageConfig {
   // > 0: candidates regressed farther than this from their sample point take no part, as lc2wf-infer
   // --max-offset; <= 0: every candidate (the release).
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;
+  // Selected junctions stay only where segments of two directions end within this many metres, in the
+  // training pairs, validation and lc2wf-infer --corner-radius alike; 0 = every junction (the release).
+  double corner_radius_m = JunctionSelectionOptions{}.corner.radius_m;
   // The junction model's sample points in passes of G, in the hand-off and so in the training pairs and
   // validation, as lc2wf-infer --sampling-passes (the release: 1).
   int64_t sampling_passes = JunctionSelectionOptions{}.sampling_passes;
@@ -179,6 +182,7 @@ struct EdgeStageConfig {
     v("pair_support", s.pair_support);
     v("nms_radius_m", s.nms_radius_m);
     v("max_offset_m", s.max_offset_m);
+    v("corner_radius_m", s.corner_radius_m);
     v("sampling_passes", s.sampling_passes);
     v("test_time_views", s.test_time_views);
     v("density_seeds", s.density_seeds);

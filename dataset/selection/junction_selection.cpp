@@ -17,6 +17,7 @@ void JunctionSelectionOptions::Check() const {
   if (!valid_view_count(test_time_views)) fail("test_time_views must be 1, 2, 4 or 8");
   density_seeds.Check();
   refine.Check();
+  corner.Check();
 }
 
 JunctionSelectionOptions JunctionSelectionOptions::release() {
@@ -30,6 +31,7 @@ JunctionSelectionOptions JunctionSelectionOptions::release() {
   o.test_time_views = 1;
   o.density_seeds = DensitySeedRule::release();
   o.refine.radius = 0.0;
+  o.corner.radius_m = 0.0;
   return o;
 }
 
@@ -68,11 +70,19 @@ JunctionSelection select_junctions(const PredictedJunctions& c, const std::vecto
     s.confidences.push_back(c.confidence[k]);
   }
   s.positions = refine_junctions(s.positions, segments, o.refine);
+  if (o.corner.enabled()) {
+    const std::vector<char> shown = corner_evidence(s.positions, segments, o.corner);
+    size_t n = 0;
+    for (size_t j = 0; j < shown.size(); ++j)
+      if (shown[j]) s.kept[n] = s.kept[j], s.positions[n] = s.positions[j], s.confidences[n] = s.confidences[j], ++n;
+    s.kept.resize(n), s.positions.resize(n), s.confidences.resize(n);
+  }
   if (c.positions.empty()) s.notes.push_back("no junction candidates");
   if (s.kept.size() < 2) {
     const std::string cut_text =
         cut == SelectionCut::kConfidence ? "with confidence > " + std::to_string(o.min_confidence) + " " : "";
-    s.notes.push_back(std::to_string(s.kept.size()) + " junction(s) " + cut_text + "after NMS: no pair to connect");
+    s.notes.push_back(std::to_string(s.kept.size()) + " junction(s) " + cut_text + "after NMS" +
+                      (o.corner.enabled() ? " and the corner check" : "") + ": no pair to connect");
   }
   return s;
 }

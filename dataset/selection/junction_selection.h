@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/selection/corner_evidence.h"
 #include "dataset/selection/junction_refine.h"
 #include "dataset/selection/point_nms.h"
 #include "dataset/sampling/sampling.h"
@@ -62,6 +63,10 @@ struct JunctionSelectionOptions {
   // Not in the release (its junctions stay where they were regressed): see junction_refine.h. The robust
   // scale was chosen on the validation split (experiments/README.md, "Robust junction refinement").
   JunctionRefineOptions refine{.radius = 0.5, .robust_scale = 0.05};
+  // Not in the release (every junction is paired): after refinement a junction stays only where segments of
+  // two directions end within corner.radius_m of it (corner_evidence.h; the radius was chosen on the
+  // validation clouds, infer/README.md "Corner evidence").
+  CornerEvidenceOptions corner{.radius_m = 0.3};
 
   void Check() const;  // throws std::invalid_argument naming the bad field
   static JunctionSelectionOptions release();

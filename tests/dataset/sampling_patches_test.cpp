@@ -524,11 +524,15 @@ TEST(Samples, PairSamplesOnASyntheticBuilding) {
   pred.offset_m.assign(pred.positions.size(), 0.0);  // regressed onto their sample points
   PairSampleOptions o;
   o.augment_enabled = true;
-  const auto T = make_pair_training_sample(c, select_junctions(pred, c.segments, {}, SelectionCut::kTopK), o, 5);
+  // The false vote lies in empty space: the corner check would drop it, and its pairs are what is tested.
+  JunctionSelectionOptions every;
+  every.corner.radius_m = 0;
+  EXPECT_EQ(select_junctions(pred, c.segments, {}).kept.size(), c.wireframe.junctions.size());
+  const auto T = make_pair_training_sample(c, select_junctions(pred, c.segments, every, SelectionCut::kTopK), o, 5);
   EXPECT_EQ(T.num_pairs, 512);
   EXPECT_EQ(T.lines, 64);
   EXPECT_EQ(T.features.size(), 512u * 64 * 6);
-  const std::vector<JunctionPair> pairs = selection_pairs(select_junctions(pred, c.segments, {}), &c.wireframe, 0.35);
+  const std::vector<JunctionPair> pairs = selection_pairs(select_junctions(pred, c.segments, every), &c.wireframe, 0.35);
   const auto E = build_pair_patches(SegmentSet(c.segments), pairs, o.patch);
   EXPECT_EQ(E.num_pairs, 55);  // C(11, 2)
   int connected = 0, fp = 0;

@@ -57,9 +57,10 @@ TEST(EvalFrame, ACloudMovedWithItsOriginScoresAlikeThroughWeightsAndPred) {
   for (Vec3& j : cloud.wireframe.junctions) j += shift;
   cloud.units.origin_raw -= shift * cloud.units.raw_per_metre;
   write_line_cloud(data / "moved.lcloud", cloud);
-  // Every candidate junction and every edge: the random weights' confidences and offsets, and their pairs
-  // no line runs along (the facade rule of this partial capture), would leave nothing to score.
-  const std::string select = " --min-confidence 0 --max-offset 0 --edge-support 0";
+  // Every candidate junction and every edge: the random weights' confidences, offsets and places (no
+  // corner there), and their pairs no line runs along (the facade rule of this partial capture), would
+  // leave nothing to score.
+  const std::string select = " --min-confidence 0 --max-offset 0 --corner-radius 0 --edge-support 0";
   const std::string eval = LC2WF_EVAL_BIN, infer = std::string(LC2WF_INFER_BIN) + select;
 
   const fs::path through_weights = dir.path() / "weights_eval";

@@ -51,6 +51,7 @@ PostProcessOptions keep_every_junction() {
   PostProcessOptions o;
   o.selection.min_confidence = 0.0;  // random weights are never confident: let every candidate through
   o.selection.max_offset_m = std::numeric_limits<double>::infinity();  // nor regressed near their sample points
+  o.selection.corner.radius_m = 0.0;  // nor on the cloud's corners
   return o;
 }
 

@@ -266,6 +266,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "min_confidence"}, -0.5, "edge.min_confidence"},
       {{"edge", "nms_radius_m"}, 0.0, "edge.nms_radius_m"},
       {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
+      {{"edge", "corner_radius_m"}, -0.3, "edge.corner_radius_m"},
       {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
       {{"edge", "test_time_views"}, 3, "edge.test_time_views"},
       {{"edge", "density_seeds"}, "dense", "edge.density_seeds"},
@@ -338,6 +339,7 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     c.pair_support = 0.1;
     c.top_k = 40;
     c.max_offset_m = 1.0;
+    c.corner_radius_m = 0.4;
     c.sampling_passes = 2;
     c.test_time_views = 4;
     c.density_seeds = "6,0.45,0.25";
@@ -349,8 +351,10 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     EXPECT_DOUBLE_EQ(o.selection.nms_radius_m, 0.6) << mode;
     EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.1) << mode;
     EXPECT_DOUBLE_EQ(o.selection.max_offset_m, 1.0) << mode;
+    EXPECT_DOUBLE_EQ(o.selection.corner.radius_m, 0.4) << mode;
     const JunctionSelectionOptions training = edge_training_selection(c);
     EXPECT_DOUBLE_EQ(training.nms_radius_m, 0.6) << mode;
+    EXPECT_DOUBLE_EQ(training.corner.radius_m, 0.4) << mode << ": the training pairs come from the same selection";
     EXPECT_EQ(training.top_k, 40) << mode;
     c.max_offset_m = -1;  // <= 0: every candidate, whatever the options' default
     EXPECT_TRUE(std::isinf(edge_post_process_options(c).selection.max_offset_m)) << mode;
