@@ -89,7 +89,8 @@
 #   photo6-train [FLAGS...]  experiments/configs/photo6.json: photo5's schedule on it -> runs/photo6-model
 # Today's rasteriser (steps/light.sh):
 #   light-data     general4's mix with every raster cloud rendered again at lc2wf-dataset's defaults (the ambient
-#                 light dims with the viewing angle, so walls in shade show their corners) -> runs/light
+#                 light dims with the viewing angle, so walls in shade show their corners) and its Roof-Image
+#                 parts in Blender -> runs/light
 #   light-train [FLAGS...]  experiments/configs/light.json: models/general fine-tuned on it -> runs/light-model
 #   light-val WEIGHTS TAG [FLAGS...]  general4-val's table on its validation clouds -> runs/light-val/TAG
 # Training state (steps/snapshots.sh):

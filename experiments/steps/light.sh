@@ -1,9 +1,10 @@
-# Step light-data: general4's mix with every raster cloud rendered again by today's rasteriser, whose paper look
-# dims the ambient light with the angle a surface is seen at (lc2wf-dataset --view-light, default 0.8;
-# experiments/README.md, "Where the real score is lost"): without retraining it lifts the real validation split
-# 44.5 / 30.9 -> 45.8 / 32.8, and no model has yet seen such clouds. Same buildings as general4's mix, at
-# lc2wf-dataset's defaults (pixel rule and light); the Blender clouds of the mix (Roof-Image, photo-like) are
-# linked as they are. Validation first (real, generated), then the training parts, each resumable.
+# Step light-data: general4's mix rebuilt from what one session can render: every raster part again by today's
+# rasteriser, whose paper look dims the ambient light with the angle a surface is seen at (lc2wf-dataset
+# --view-light, default 0.8; experiments/README.md, "Where the real score is lost": without retraining it lifts
+# the real validation split 44.5 / 30.9 -> 45.8 / 32.8, and no model has yet seen such clouds), general2's 300
+# Roof-Image training buildings and general's 100 Roof-Image validation buildings in Blender (30 views, as the
+# paper's benchmark), and the photo-like Blender parts of the earlier mixes where they still exist (hours of
+# Blender: not rendered again here). Validation first, then the training parts, each resumable.
 
 # render_light MESHES OUT [NAMES]: one raster part at lc2wf-dataset's defaults -> runs/light/OUT.
 render_light() {
@@ -17,7 +18,7 @@ step_light_data() {
   need_binary "$build_dir/tools/lc2wf-dataset" lc2wf-dataset
   # The raster parts need only the meshes (seconds) and the committed list of the mix's real training buildings
   # (experiments/lists/light-real.txt, general4's all-real.txt), so a fresh machine renders them without the
-  # earlier mixes; linking the mix needs general4-data's lists and Blender clouds.
+  # earlier mixes.
   [[ -f runs/general/meshes-gen/buildings.json && -d runs/general/ri-train-sub && -d runs/lod2-all ]] || general_meshes
   mkdir -p runs/light
   render_light runs/lod2-all realval configs/splits/lod2/val.txt
@@ -26,11 +27,16 @@ step_light_data() {
   render_light runs/general/meshes-gen gen
   render_light runs/general/meshes-riaug riaug
   render_light runs/general/ri-train-sub ri
-  [[ -s runs/general4/train.txt && -s runs/general4/val.txt ]] || die 3 "light-data: rendered; linking the mix needs general4-data's lists and Blender clouds"
-  general_list light runs/light/train.txt general/photo-blender general2/{ri-blender,photo-blender} light/{gen,real,riaug,ri}
+  # The Roof-Image parts in Blender (≈ 2 s per building): general2's training and general's validation choice.
+  [[ -s runs/general2/ri-blender-names.txt ]] || { mkdir -p runs/general2 && sed -n '751,1050p' runs/general/ri-train-sub.txt > runs/general2/ri-blender-names.txt; }
+  [[ -s runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
+  local ri=("${fixed_size[@]}" --meshes "$meshes" --renderer blender --views 30 -j 2 -q)
+  "$build_dir/tools/lc2wf-dataset" "${ri[@]}" --names runs/general/rival-names.txt --out runs/general/rival-blender > runs/general/rival.json || true
+  "$build_dir/tools/lc2wf-dataset" "${ri[@]}" --names runs/general2/ri-blender-names.txt --out runs/general2/ri-blender > runs/general2/ri.json || true
+  local photo=() part
+  for part in general/photo-blender general2/photo-blender; do [[ -d runs/$part/clouds ]] && photo+=("$part"); done
+  general_list light runs/light/train.txt light/{gen,real,riaug,ri} general2/ri-blender "${photo[@]}"
   general_list light runs/light/val.txt general/rival-blender light/{genval,realval}
-  cmp -s runs/light/train.txt runs/general4/train.txt && cmp -s runs/light/val.txt runs/general4/val.txt ||
-    die 3 "light-data: the lists differ from general4's (a part failed to render? see runs/light/*.json)"
   echo "light-data: $(wc -l < runs/light/train.txt) training and $(wc -l < runs/light/val.txt) validation clouds in runs/light/clouds"
 }
 
