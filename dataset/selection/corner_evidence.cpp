@@ -33,6 +33,14 @@ std::vector<char> corner_evidence(const std::vector<Vec3>& junctions, const std:
   std::vector<int> near;
   for (size_t j = 0; j < junctions.size(); ++j) {
     grid.query(junctions[j], o.radius_m, near);
+    // Every pair is compared, so a crowd of ends is thinned to an even spread of kMaxEndsCompared first: the
+    // time stays bounded however many lines a map piles on one spot (real clouds have at most ≈ 230 there).
+    if (near.size() > kMaxEndsCompared) {
+      const size_t stride = (near.size() + kMaxEndsCompared - 1) / kMaxEndsCompared;
+      size_t n = 0;
+      for (size_t k = 0; k < near.size(); k += stride) near[n++] = near[k];
+      near.resize(n);
+    }
     bool turns = false;
     for (size_t a = 0; a < near.size() && !turns; ++a)
       for (size_t b = a + 1; b < near.size() && !turns; ++b)

@@ -5,6 +5,7 @@
 // (infer/README.md, "Corner evidence").
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
@@ -17,6 +18,9 @@ struct CornerEvidenceOptions {
   bool enabled() const { return radius_m > 0; }
   void Check() const;           // throws std::invalid_argument naming the bad field
 };
+
+// Ends compared at one junction at most (an even spread of them when more lie within radius_m).
+constexpr size_t kMaxEndsCompared = 512;
 
 // For each junction: true when the segments with an endpoint within radius_m of it include two whose
 // directions differ by at least min_angle_deg (either orientation), or when the options are off.

@@ -41,6 +41,16 @@ TEST(CornerEvidence, TheAngleDecidesInEitherOrientation) {
   EXPECT_TRUE(corner(150));
 }
 
+TEST(CornerEvidence, ACrowdOfEndsIsThinnedNotComparedPairByPair) {
+  // 200,000 segments ending at the origin (2e10 pairs if all were compared): one direction only, then every
+  // 50th of them turned by 90 degrees.
+  std::vector<Segment3> bundle;
+  for (int k = 0; k < 200000; ++k) bundle.push_back({{0, 0, 0}, {1, 1e-7 * k, 0}});
+  EXPECT_FALSE(corner_evidence({{0, 0, 0}}, bundle, at(0.3))[0]);
+  for (size_t k = 0; k < bundle.size(); k += 50) bundle[k].b = {0, 0, 1};
+  EXPECT_TRUE(corner_evidence({{0, 0, 0}}, bundle, at(0.3))[0]);
+}
+
 TEST(CornerEvidence, OffKeepsEveryJunctionAndBadOptionsNameTheField) {
   EXPECT_EQ(corner_evidence({{0, 0, 0}, {1, 1, 1}}, {}, CornerEvidenceOptions{}), (std::vector<char>{1, 1}));
   EXPECT_TRUE(corner_evidence({}, {{{0, 0, 0}, {1, 0, 0}}}, at(0.3)).empty());
