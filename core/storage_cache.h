@@ -59,17 +59,6 @@ double storage_cache_slack();
 // 0.077-0.081 s per building, peak RSS 427 instead of 281 MB (bench/README.md).
 constexpr double kBatchInferenceSlack = 4.0;
 
-// Sets the slack while alive and restores the previous one.
-class StorageCacheSlackGuard {
- public:
-  explicit StorageCacheSlackGuard(double factor) : previous_(storage_cache_slack()) { set_storage_cache_slack(factor); }
-  ~StorageCacheSlackGuard() { set_storage_cache_slack(previous_); }
-  StorageCacheSlackGuard(const StorageCacheSlackGuard&) = delete;
-  StorageCacheSlackGuard& operator=(const StorageCacheSlackGuard&) = delete;
-
- private:
-  double previous_;
-};
 // Whether blocks mapped from now on ask for huge pages (MADV_HUGEPAGE; default on). Training wants them
 // (fewer TLB misses over its 128-384 MiB operands: a junction step 30.9 -> 18.8 user-s, bench/README.md);
 // inference does not: a process faults its blocks in once, and where the kernel compacts memory on such a
@@ -78,17 +67,20 @@ class StorageCacheSlackGuard {
 void set_storage_cache_huge_pages(bool on);
 bool storage_cache_huge_pages();
 
-// Sets the huge-page choice while alive and restores the previous one.
-class StorageCacheHugePagesGuard {
+// Sets one of the cache's process-wide choices while alive and restores the previous one.
+template <class T, T (*Get)(), void (*Set)(T)>
+class StorageCacheSettingGuard {
  public:
-  explicit StorageCacheHugePagesGuard(bool on) : previous_(storage_cache_huge_pages()) { set_storage_cache_huge_pages(on); }
-  ~StorageCacheHugePagesGuard() { set_storage_cache_huge_pages(previous_); }
-  StorageCacheHugePagesGuard(const StorageCacheHugePagesGuard&) = delete;
-  StorageCacheHugePagesGuard& operator=(const StorageCacheHugePagesGuard&) = delete;
+  explicit StorageCacheSettingGuard(T value) : previous_(Get()) { Set(value); }
+  ~StorageCacheSettingGuard() { Set(previous_); }
+  StorageCacheSettingGuard(const StorageCacheSettingGuard&) = delete;
+  StorageCacheSettingGuard& operator=(const StorageCacheSettingGuard&) = delete;
 
  private:
-  bool previous_;
+  T previous_;
 };
+using StorageCacheSlackGuard = StorageCacheSettingGuard<double, storage_cache_slack, set_storage_cache_slack>;
+using StorageCacheHugePagesGuard = StorageCacheSettingGuard<bool, storage_cache_huge_pages, set_storage_cache_huge_pages>;
 
 // Returns every cached block to the system and restarts the high-water mark from the live bytes.
 void storage_cache_clear();
