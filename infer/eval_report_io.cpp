@@ -179,8 +179,9 @@ std::string eval_per_building_csv(const EvalReport& r) {
 std::string inference_markdown(const InferenceTiming& s) {
   const double n = std::max(1, s.buildings);
   const std::string support = s.pair_support > 0 ? " (pairs with line support >= " + format_number("%g", s.pair_support) + ")" : "";
-  std::string offsets = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
-  if (s.corner_radius_m > 0) offsets += ", two line directions ending within " + format_number("%g", s.corner_radius_m) + " m";
+  // The screens after the NMS: the offset limit and the corner check.
+  std::string screens = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
+  if (s.corner_radius_m > 0) screens += ", two line directions ending within " + format_number("%g", s.corner_radius_m) + " m";
   // The options that differ from a one-pass, one-view, uncut run, in the order of the pipeline.
   std::string passes;
   if (s.sampling_passes > 1) passes += ", " + std::to_string(s.sampling_passes) + " sampling passes";
@@ -201,7 +202,7 @@ std::string inference_markdown(const InferenceTiming& s) {
                 "%.3f, selection and post-processing %.3f; max %.3f), %.1f classified pairs per building%s; junctions with "
                 "confidence > %g after NMS %g m%s%s.\n",
                 s.buildings, s.threads, s.precision.c_str(), s.total_seconds / n, s.junction_seconds / n, s.edge_seconds / n, s.post_seconds / n,
-                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str(), s.min_confidence, s.nms_radius_m, offsets.c_str(), passes.c_str());
+                s.max_seconds, static_cast<double>(s.pairs) / n, support.c_str(), s.min_confidence, s.nms_radius_m, screens.c_str(), passes.c_str());
   return line;
 }
 

@@ -90,14 +90,9 @@ void write_preview(const std::filesystem::path& png, const LineCloud& cloud, con
     y += 20;
   }
 
-  std::vector<uint8_t> rgb(3 * static_cast<size_t>(o.width) * static_cast<size_t>(o.height));
-  for (int y = 0; y < o.height; ++y)
-    for (int x = 0; x < o.width; ++x) {
-      const cv::Vec3b& bgr = image.at<cv::Vec3b>(y, x);
-      uint8_t* to = &rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(o.width) + static_cast<size_t>(x))];
-      to[0] = bgr[2], to[1] = bgr[1], to[2] = bgr[0];
-    }
-  const std::string bytes = encode_png_rgb(rgb, o.width, o.height);
+  cv::Mat rgb;
+  cv::cvtColor(image, rgb, cv::COLOR_BGR2RGB);  // a new matrix: continuous, rows unpadded
+  const std::string bytes = encode_png_rgb(std::vector<uint8_t>(rgb.datastart, rgb.dataend), o.width, o.height);
   write_file_atomically(png, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 

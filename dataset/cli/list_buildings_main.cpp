@@ -1,22 +1,20 @@
 // lc2wf-list-buildings: every building of folders/files of meshes and city models, loaded and cleaned as
 // lc2wf-dataset would, with per-building facts (for splits by file) and a summary of what was skipped.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "core/util/atomic_file.h"
 #include "core/util/cli.h"
 #include "core/util/json_text.h"
+#include "core/util/parallel_items.h"
 #include "core/util/seconds_since.h"
 #include "core/util/thread_count.h"
 #include "dataset/formats/building_sources.h"
@@ -113,46 +111,40 @@ int run(const Args& a) {
     }
     const auto& entries = catalog.entries();
     std::vector<Row> part(entries.size());
-    std::atomic<size_t> next{0};
-    const int nthreads = resolve_thread_count(a.threads);
-    auto work = [&] {
-      for (size_t i; (i = next++) < entries.size();) {
-        Row& r = part[i];
-        r.name = entries[i].name;
-        r.file = entries[i].file.string();
-        r.group = entries[i].file.parent_path().filename().string();
-        CityLoadInfo info;
-        try {
-          const Building b = catalog.load(r.name, {}, &info);
-          double zmax = 0;
-          for (const Vec3& v : b.mesh.vertices) zmax = std::max(zmax, v.z());
-          r.height = zmax;
-          std::tie(r.long_side, r.short_side) = footprint_sides(b.mesh.vertices);
-          r.faces = static_cast<int>(b.mesh.faces.size());
-          r.roof_faces = static_cast<int>(std::count(b.mesh.labels.begin(), b.mesh.labels.end(), FaceLabel::Roof));
-          r.v_after = static_cast<int>(b.wireframe.junctions.size());
-          r.e_after = static_cast<int>(b.wireframe.edges.size());
-        } catch (const Lod2Skipped& e) {
-          r.status = "skipped";
-          r.reason = e.reason();
-          r.detail = e.what();
-        } catch (const std::exception& e) {
-          r.status = "skipped";
-          r.reason = "error";
-          r.detail = e.what();
-        }
-        r.lod = info.lod;
-        r.v_before = info.cleanup.vertices_before;
-        r.e_before = info.cleanup.edges_before;
-        if (entries[i].format == BuildingFormat::kPolyshape) {
-          r.v_before = r.v_after;
-          r.e_before = r.e_after;
-        }
+    for_each_item(static_cast<int64_t>(entries.size()), resolve_thread_count(a.threads), [&](int64_t k) {
+      const size_t i = static_cast<size_t>(k);
+      Row& r = part[i];
+      r.name = entries[i].name;
+      r.file = entries[i].file.string();
+      r.group = entries[i].file.parent_path().filename().string();
+      CityLoadInfo info;
+      try {
+        const Building b = catalog.load(r.name, {}, &info);
+        double zmax = 0;
+        for (const Vec3& v : b.mesh.vertices) zmax = std::max(zmax, v.z());
+        r.height = zmax;
+        std::tie(r.long_side, r.short_side) = footprint_sides(b.mesh.vertices);
+        r.faces = static_cast<int>(b.mesh.faces.size());
+        r.roof_faces = static_cast<int>(std::count(b.mesh.labels.begin(), b.mesh.labels.end(), FaceLabel::Roof));
+        r.v_after = static_cast<int>(b.wireframe.junctions.size());
+        r.e_after = static_cast<int>(b.wireframe.edges.size());
+      } catch (const Lod2Skipped& e) {
+        r.status = "skipped";
+        r.reason = e.reason();
+        r.detail = e.what();
+      } catch (const std::exception& e) {
+        r.status = "skipped";
+        r.reason = "error";
+        r.detail = e.what();
       }
-    };
-    std::vector<std::thread> pool;
-    for (int t = 0; t < nthreads; ++t) pool.emplace_back(work);
-    for (auto& t : pool) t.join();
+      r.lod = info.lod;
+      r.v_before = info.cleanup.vertices_before;
+      r.e_before = info.cleanup.edges_before;
+      if (entries[i].format == BuildingFormat::kPolyshape) {
+        r.v_before = r.v_after;
+        r.e_before = r.e_after;
+      }
+    }, 1);
     rows.insert(rows.end(), part.begin(), part.end());
   }
   std::map<std::string, std::map<std::string, int>> per_group;

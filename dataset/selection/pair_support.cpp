@@ -99,7 +99,6 @@ AnchoredSegmentSupport::AnchoredSegmentSupport(const std::vector<Segment3>& segm
     const Vec3 a = all.by_x_.segments()[k].a - anchor;
     a_.push_back(a);
     b_.push_back(a + all.dir_[k] * all.length_[k]);
-    dir_.push_back(all.dir_[k]);
     for (int c = 0; c < 3; ++c) dir_xyz_[c].push_back(all.dir_[k][c]);
   }
 }
@@ -125,7 +124,8 @@ double AnchoredSegmentSupport::support(const Vec3& v, double radius_m, double ma
   spans.clear();
   std::pair<double, double> span;
   for (size_t k = 0; k < n; ++k)
-    if (cosine[k] >= screen && counted_span(a_[k], b_[k], dir_[k], d, length, min_cos, r2, &span)) spans.push_back(span);
+    if (cosine[k] >= screen && counted_span(a_[k], b_[k], Vec3(x[k], y[k], z[k]), d, length, min_cos, r2, &span))
+      spans.push_back(span);
   return covered_share(spans, length);
 }
 

@@ -65,8 +65,8 @@ class AnchoredSegmentSupport {
 
  private:
   Vec3 anchor_;
-  std::vector<Vec3> a_, b_, dir_;  // each segment's ends relative to the anchor, its unit direction
-  std::vector<double> dir_xyz_[3];  // the directions' x, y and z apart, for the screening loop
+  std::vector<Vec3> a_, b_;         // each segment's ends relative to the anchor
+  std::vector<double> dir_xyz_[3];  // its unit direction's x, y and z apart (the screening loop reads them so)
 };
 
 // The pairs that pass the option's test, in their order (all of them when the option is off).

@@ -1,15 +1,13 @@
 #include "dataset/splits/city_split.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
-#include <thread>
 
+#include "core/util/parallel_items.h"
 #include "dataset/geometry/footprint.h"
 #include "dataset/geometry/roof_kind.h"
 
@@ -67,34 +65,28 @@ CitySplitResult make_city_split(const CitySplitOptions& o) {
     for (const BuildingEntry& e : c->entries()) jobs.push_back({c.get(), &e});
   std::vector<CitySplitBuilding> rows(jobs.size());
   std::vector<std::string> errors(jobs.size());
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t i = next++; i < jobs.size(); i = next++) {
-      const BuildingEntry& e = *jobs[i].entry;
-      CitySplitBuilding& r = rows[i];
-      r.name = e.name;
-      r.file = relative_to(e.file, o.root);
-      r.source = source_of(r.file, o.source_rules);
-      if (r.source.empty()) r.source = fs::path(r.file).parent_path().filename().string();
-      try {
-        CityLoadInfo info;
-        const Building b = jobs[i].catalog->load(e.name, BuildingOptions{}, &info);
-        const Vec3 at = map_position(b, info);
-        r.x = at.x(), r.y = at.y();
-        for (const Vec3& v : b.mesh.vertices) r.height_m = std::max(r.height_m, v.z());
-        std::tie(r.long_side_m, r.short_side_m) = footprint_sides(b.mesh.vertices);
-        r.roof_kind = roof_kind_name(classify_roof(b.mesh));
-        r.junctions = static_cast<int>(b.wireframe.junctions.size());
-        r.edges = static_cast<int>(b.wireframe.edges.size());
-      } catch (const std::exception& ex) {
-        errors[i] = ex.what();
-      }
+  for_each_item(static_cast<int64_t>(jobs.size()), o.threads, [&](int64_t k) {
+    const size_t i = static_cast<size_t>(k);
+    const BuildingEntry& e = *jobs[i].entry;
+    CitySplitBuilding& r = rows[i];
+    r.name = e.name;
+    r.file = relative_to(e.file, o.root);
+    r.source = source_of(r.file, o.source_rules);
+    if (r.source.empty()) r.source = fs::path(r.file).parent_path().filename().string();
+    try {
+      CityLoadInfo info;
+      const Building b = jobs[i].catalog->load(e.name, BuildingOptions{}, &info);
+      const Vec3 at = map_position(b, info);
+      r.x = at.x(), r.y = at.y();
+      for (const Vec3& v : b.mesh.vertices) r.height_m = std::max(r.height_m, v.z());
+      std::tie(r.long_side_m, r.short_side_m) = footprint_sides(b.mesh.vertices);
+      r.roof_kind = roof_kind_name(classify_roof(b.mesh));
+      r.junctions = static_cast<int>(b.wireframe.junctions.size());
+      r.edges = static_cast<int>(b.wireframe.edges.size());
+    } catch (const std::exception& ex) {
+      errors[i] = ex.what();
     }
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < o.threads; ++t) pool.emplace_back(work);
-  work();
-  for (auto& t : pool) t.join();
+  }, 1);
 
   std::map<std::string, size_t> first_of_name;  // one building listed by two inputs counts once
   std::map<std::string, std::pair<std::string, std::string>> first_of_id;  // id -> name, file: one building in two files counts once
