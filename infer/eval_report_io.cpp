@@ -182,6 +182,8 @@ std::string inference_markdown(const InferenceTiming& s) {
   // The screens after the NMS: the offset limit and the corner check.
   std::string screens = std::isfinite(s.max_offset_m) ? ", offsets <= " + format_number("%g", s.max_offset_m) + " m" : "";
   if (s.corner_radius_m > 0) screens += ", two line directions ending within " + format_number("%g", s.corner_radius_m) + " m";
+  if (s.footing_radius_m > 0)
+    screens += ", ground junctions with lines above within " + format_number("%g", s.footing_radius_m) + " m";
   // The options that differ from a one-pass, one-view, uncut run, in the order of the pipeline.
   std::string passes;
   if (s.sampling_passes > 1) passes += ", " + std::to_string(s.sampling_passes) + " sampling passes";
@@ -222,6 +224,7 @@ nlohmann::json inference_json(const InferenceTiming& s) {
           {"nms_radius_m", s.nms_radius_m},
           {"max_offset_m", std::isfinite(s.max_offset_m) ? nlohmann::json(s.max_offset_m) : nlohmann::json(nullptr)},
           {"corner_radius_m", s.corner_radius_m},
+          {"footing_radius_m", s.footing_radius_m},
           {"sampling_passes", s.sampling_passes},
           {"test_time_views", s.test_time_views},
           {"density_seeds", s.density_seeds},
@@ -252,6 +255,7 @@ InferenceTiming inference_from_json(const nlohmann::json& j) {
   s.nms_radius_m = j.value("nms_radius_m", then.nms_radius_m);
   s.max_offset_m = j.contains("max_offset_m") && !j["max_offset_m"].is_null() ? j["max_offset_m"].get<double>() : then.max_offset_m;
   s.corner_radius_m = j.value("corner_radius_m", 0.0);  // every junction paired before the option existed
+  s.footing_radius_m = j.value("footing_radius_m", 0.0);
   s.sampling_passes = j.value("sampling_passes", 1);  // one pass before the option existed
   s.test_time_views = j.value("test_time_views", 1);  // one view before the option existed
   s.density_seeds = j.value("density_seeds", std::string("release"));  // the release's before the option existed

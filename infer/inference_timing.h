@@ -24,6 +24,7 @@ struct InferenceTiming {
   double min_confidence = JunctionSelectionOptions{}.min_confidence, nms_radius_m = JunctionSelectionOptions{}.nms_radius_m;
   double max_offset_m = JunctionSelectionOptions{}.max_offset_m;  // infinity: every candidate
   double corner_radius_m = JunctionSelectionOptions{}.corner.radius_m;  // 0: every junction paired
+  double footing_radius_m = JunctionSelectionOptions{}.footing.radius_m;  // 0: every ground junction paired
   int sampling_passes = JunctionSelectionOptions{}.sampling_passes;
   int test_time_views = JunctionSelectionOptions{}.test_time_views;
   std::string density_seeds = JunctionSelectionOptions{}.density_seeds.str();
@@ -39,6 +40,7 @@ struct InferenceTiming {
     nms_radius_m = s.nms_radius_m;
     max_offset_m = s.max_offset_m;
     corner_radius_m = s.corner.radius_m;
+    footing_radius_m = s.footing.radius_m;
     sampling_passes = s.sampling_passes;
     test_time_views = s.test_time_views;
     density_seeds = s.density_seeds.str();

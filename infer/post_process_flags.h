@@ -26,6 +26,7 @@ struct PostProcessFlags {
   std::optional<double> nms_radius;         // --nms-radius M
   std::optional<double> max_offset;         // --max-offset M
   std::optional<double> corner_radius;      // --corner-radius M
+  std::optional<double> footing_radius;     // --footing-radius M
   std::optional<int64_t> sampling_passes;   // --sampling-passes N
   std::optional<double> metres_per_pass;    // --metres-per-pass M
   std::optional<std::string> density_seeds; // --density-seeds release|loose|A,C,R
@@ -38,7 +39,7 @@ struct PostProcessFlags {
   std::optional<double> crossing_distance;       // --crossing-distance M
 
   bool any() const {
-    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || judge_degree || edge_cameras || flat_parts || nms_radius || max_offset || corner_radius || sampling_passes || metres_per_pass ||
+    return release_quirks || no_junction_refine || min_confidence || pair_support || edge_support || edge_support_everywhere || judge_degree || edge_cameras || flat_parts || nms_radius || max_offset || corner_radius || footing_radius || sampling_passes || metres_per_pass ||
            density_seeds || test_time_views || edge_test_time_views || max_segment_length || max_segment_length_auto ||
            max_pairs || max_pairs_per_junction || crossing_distance;
   }
@@ -57,6 +58,7 @@ struct PostProcessFlags {
     else if (flag == "--nms-radius") nms_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--max-offset") max_offset = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--corner-radius") corner_radius = number_flag(flag, flag_value(argc, argv, i));
+    else if (flag == "--footing-radius") footing_radius = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--sampling-passes") sampling_passes = parse_count_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--metres-per-pass") metres_per_pass = number_flag(flag, flag_value(argc, argv, i));
     else if (flag == "--density-seeds") density_seeds = flag_value(argc, argv, i);
@@ -91,6 +93,7 @@ struct PostProcessFlags {
     // --max-offset 0 (or less): every candidate, as the release (the config's edge.max_offset_m <= 0 too).
     if (max_offset) o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(*max_offset);
     if (corner_radius) o.selection.corner.radius_m = *corner_radius;
+    if (footing_radius) o.selection.footing.radius_m = *footing_radius;
     if (sampling_passes) o.selection.sampling_passes = static_cast<int>(std::min<int64_t>(*sampling_passes, 1000));
     if (metres_per_pass) o.selection.metres_per_pass = *metres_per_pass;
     if (density_seeds) {
@@ -119,6 +122,7 @@ struct PostProcessFlags {
                                        {"JunctionSelectionOptions.nms_radius_m", "--nms-radius"},
                                        {"JunctionSelectionOptions.max_offset_m", "--max-offset"},
                                        {"CornerEvidenceOptions.radius_m", "--corner-radius"},
+                                       {"FootingEvidenceOptions.radius_m", "--footing-radius"},
                                        {"JunctionSelectionOptions.sampling_passes", "--sampling-passes"},
                                        {"JunctionSelectionOptions.metres_per_pass", "--metres-per-pass"},
                                        {"JunctionSelectionOptions.test_time_views", "--test-time-views"},

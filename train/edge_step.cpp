@@ -29,6 +29,7 @@ PostProcessOptions edge_post_process_options(const EdgeStageConfig& c) {
   // The config decides either way, so a later default of the options never leaks into a run.
   o.selection.max_offset_m = JunctionSelectionOptions::offset_limit(c.max_offset_m);
   o.selection.corner.radius_m = c.corner_radius_m;
+  o.selection.footing.radius_m = c.footing_radius_m;
   o.selection.sampling_passes = static_cast<int>(c.sampling_passes);
   o.selection.test_time_views = static_cast<int>(c.test_time_views);
   o.selection.density_seeds = DensitySeedRule::parse(c.density_seeds);

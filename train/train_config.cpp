@@ -120,6 +120,7 @@ void EdgeStageConfig::Check() const {
   require(nms_radius_m > 0 && std::isfinite(nms_radius_m), "edge.nms_radius_m", "must be a positive distance in metres");
   require(std::isfinite(max_offset_m), "edge.max_offset_m", "must be a number of metres (<= 0: every candidate)");
   require(corner_radius_m >= 0 && std::isfinite(corner_radius_m), "edge.corner_radius_m", "must be a distance >= 0 in metres (0: off)");
+  require(footing_radius_m >= 0 && std::isfinite(footing_radius_m), "edge.footing_radius_m", "must be a distance >= 0 in metres (0: off)");
   require(sampling_passes >= 1 && sampling_passes <= 8, "edge.sampling_passes", "must be in [1, 8]");
   require(JunctionSelectionOptions::valid_view_count(test_time_views), "edge.test_time_views", "must be 1, 2, 4 or 8");
   require_seed_rule(density_seeds, "edge.density_seeds");

@@ -158,6 +158,9 @@ struct EdgeStageConfig {
   // Selected junctions stay only where segments of two directions end within this many metres, in the
   // training pairs, validation and lc2wf-infer --corner-radius alike; 0 = every junction (the release).
   double corner_radius_m = JunctionSelectionOptions{}.corner.radius_m;
+  // Selected junctions on the ground stay only where segment ends stand over them within this many metres
+  // (horizontally), in the training pairs, validation and lc2wf-infer --footing-radius alike; 0 = every one.
+  double footing_radius_m = JunctionSelectionOptions{}.footing.radius_m;
   // The junction model's sample points in passes of G, in the hand-off and so in the training pairs and
   // validation, as lc2wf-infer --sampling-passes (the release: 1).
   int64_t sampling_passes = JunctionSelectionOptions{}.sampling_passes;
@@ -183,6 +186,7 @@ struct EdgeStageConfig {
     v("nms_radius_m", s.nms_radius_m);
     v("max_offset_m", s.max_offset_m);
     v("corner_radius_m", s.corner_radius_m);
+    v("footing_radius_m", s.footing_radius_m);
     v("sampling_passes", s.sampling_passes);
     v("test_time_views", s.test_time_views);
     v("density_seeds", s.density_seeds);

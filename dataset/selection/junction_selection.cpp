@@ -18,6 +18,7 @@ void JunctionSelectionOptions::Check() const {
   density_seeds.Check();
   refine.Check();
   corner.Check();
+  footing.Check();
 }
 
 JunctionSelectionOptions JunctionSelectionOptions::release() {
@@ -32,6 +33,7 @@ JunctionSelectionOptions JunctionSelectionOptions::release() {
   o.density_seeds = DensitySeedRule::release();
   o.refine.radius = 0.0;
   o.corner.radius_m = 0.0;
+  o.footing.radius_m = 0.0;
   return o;
 }
 
@@ -70,19 +72,23 @@ JunctionSelection select_junctions(const PredictedJunctions& c, const std::vecto
     s.confidences.push_back(c.confidence[k]);
   }
   s.positions = refine_junctions(s.positions, segments, o.refine);
-  if (o.corner.enabled()) {
-    const std::vector<char> shown = corner_evidence(s.positions, segments, o.corner);
+  // The cloud's evidence for each refined junction: lines of two directions end there, and on the ground the
+  // building stands over it.
+  auto keep_where = [&s](const std::vector<char>& shown) {
     size_t n = 0;
     for (size_t j = 0; j < shown.size(); ++j)
       if (shown[j]) s.kept[n] = s.kept[j], s.positions[n] = s.positions[j], s.confidences[n] = s.confidences[j], ++n;
     s.kept.resize(n), s.positions.resize(n), s.confidences.resize(n);
-  }
+  };
+  if (o.corner.enabled()) keep_where(corner_evidence(s.positions, segments, o.corner));
+  if (o.footing.enabled()) keep_where(footing_evidence(s.positions, segments, o.footing));
   if (c.positions.empty()) s.notes.push_back("no junction candidates");
   if (s.kept.size() < 2) {
     const std::string cut_text =
         cut == SelectionCut::kConfidence ? "with confidence > " + std::to_string(o.min_confidence) + " " : "";
     s.notes.push_back(std::to_string(s.kept.size()) + " junction(s) " + cut_text + "after NMS" +
-                      (o.corner.enabled() ? " and the corner check" : "") + ": no pair to connect");
+                      (o.corner.enabled() ? " and the corner check" : "") +
+                      (o.footing.enabled() ? " and the footing check" : "") + ": no pair to connect");
   }
   return s;
 }

@@ -11,6 +11,7 @@
 
 #include "dataset/geometry/geometry.h"
 #include "dataset/selection/corner_evidence.h"
+#include "dataset/selection/footing_evidence.h"
 #include "dataset/selection/junction_refine.h"
 #include "dataset/selection/point_nms.h"
 #include "dataset/sampling/sampling.h"
@@ -67,6 +68,9 @@ struct JunctionSelectionOptions {
   // two directions end within corner.radius_m of it (corner_evidence.h; the radius was chosen on the
   // validation clouds, infer/README.md "Corner evidence").
   CornerEvidenceOptions corner{.radius_m = 0.3};
+  // Not in the release (every junction is paired): a junction on the ground stays only where segment ends
+  // stand over it within footing.radius_m (footing_evidence.h; infer/README.md "Footing evidence").
+  FootingEvidenceOptions footing{.radius_m = 0.5};
 
   void Check() const;  // throws std::invalid_argument naming the bad field
   static JunctionSelectionOptions release();

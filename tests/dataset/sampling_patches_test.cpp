@@ -524,9 +524,11 @@ TEST(Samples, PairSamplesOnASyntheticBuilding) {
   pred.offset_m.assign(pred.positions.size(), 0.0);  // regressed onto their sample points
   PairSampleOptions o;
   o.augment_enabled = true;
-  // The false vote lies in empty space: the corner check would drop it, and its pairs are what is tested.
+  // The false vote lies in empty space on the ground: the corner and footing checks would drop it, and its
+  // pairs are what is tested.
   JunctionSelectionOptions every;
   every.corner.radius_m = 0;
+  every.footing.radius_m = 0;
   EXPECT_EQ(select_junctions(pred, c.segments, {}).kept.size(), c.wireframe.junctions.size());
   const auto T = make_pair_training_sample(c, select_junctions(pred, c.segments, every, SelectionCut::kTopK), o, 5);
   EXPECT_EQ(T.num_pairs, 512);

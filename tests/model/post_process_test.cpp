@@ -292,6 +292,9 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
   EXPECT_DOUBLE_EQ(none.selection.corner.radius_m, 0.3);
   EXPECT_DOUBLE_EQ(parse_flags({"--corner-radius", "0"}).options().selection.corner.radius_m, 0.0);
   EXPECT_TRUE(parse_flags({"--corner-radius", "0.4"}).any());
+  EXPECT_DOUBLE_EQ(none.selection.footing.radius_m, 0.5);
+  EXPECT_DOUBLE_EQ(parse_flags({"--footing-radius", "0"}).options().selection.footing.radius_m, 0.0);
+  EXPECT_TRUE(parse_flags({"--footing-radius", "0.4"}).any());
   EXPECT_DOUBLE_EQ(parse_flags({"--max-offset", "1"}).options().selection.max_offset_m, 1.0);
   EXPECT_TRUE(std::isinf(parse_flags({"--max-offset", "0"}).options().selection.max_offset_m));  // every candidate
   const PostProcessOptions release = parse_flags({"--release-quirks"}).options();
@@ -299,6 +302,7 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
   EXPECT_DOUBLE_EQ(release.selection.nms_radius_m, 0.25);  // the release's 5 raw units
   EXPECT_TRUE(std::isinf(release.selection.max_offset_m));  // every candidate, as the release
   EXPECT_DOUBLE_EQ(release.selection.corner.radius_m, 0.0);  // every junction paired, as the release
+  EXPECT_DOUBLE_EQ(release.selection.footing.radius_m, 0.0);
   EXPECT_GT(none.selection.refine.radius, 0.0);
   EXPECT_EQ(parse_flags({"--no-junction-refine"}).options().selection.refine.radius, 0.0);
   EXPECT_DOUBLE_EQ(parse_flags({"--crossing-distance", "0.2"}).options().crossing_distance_m, 0.2);
@@ -323,6 +327,7 @@ TEST(PostProcessFlags, BadValuesAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(message({"--max-offset", "inf"}), HasSubstr("--max-offset expects a finite number"));
   EXPECT_EQ(message({"--max-offset", "-1"}), "");  // <= 0: every candidate
   EXPECT_THAT(message({"--corner-radius", "-0.1"}), HasSubstr("--corner-radius must be a distance >= 0"));
+  EXPECT_THAT(message({"--footing-radius", "-0.1"}), HasSubstr("--footing-radius must be a distance >= 0"));
   EXPECT_THAT(message({"--sampling-passes", "0"}), HasSubstr("--sampling-passes"));
   EXPECT_THAT(message({"--crossing-distance", "-1"}), HasSubstr("--crossing-distance must be in [0, 10]"));
   EXPECT_THAT(message({"--sampling-passes", "9"}), HasSubstr("--sampling-passes must be in [1, 8]"));

@@ -100,7 +100,8 @@ TEST_F(CliContract, InferUsageAndDataErrors) {
       {"--min-confidence", {"1.5", "-0.1", "nan", "some"}},
       {"--nms-radius", {"0", "-0.1", "nan", "some"}},
       {"--max-offset", {"nan", "inf", "some"}},  // --max-offset <= 0 is valid: every candidate
-      {"--corner-radius", {"-0.1", "nan", "inf", "some"}}};
+      {"--corner-radius", {"-0.1", "nan", "inf", "some"}},
+      {"--footing-radius", {"-0.1", "nan", "inf", "some"}}};
   for (const auto& [flag, values] : bad_values)
     for (const std::string& value : values) {
       r = run_cli(kInfer + " --weights w -o out " + flag + " " + value + " c.lcloud");

@@ -267,6 +267,7 @@ TEST(TrainConfig, RejectsBadValuesByName) {
       {{"edge", "nms_radius_m"}, 0.0, "edge.nms_radius_m"},
       {{"edge", "max_offset_m"}, "far", "edge.max_offset_m"},
       {{"edge", "corner_radius_m"}, -0.3, "edge.corner_radius_m"},
+      {{"edge", "footing_radius_m"}, -0.5, "edge.footing_radius_m"},
       {{"edge", "sampling_passes"}, 0, "edge.sampling_passes"},
       {{"edge", "test_time_views"}, 3, "edge.test_time_views"},
       {{"edge", "density_seeds"}, "dense", "edge.density_seeds"},
@@ -340,6 +341,7 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     c.top_k = 40;
     c.max_offset_m = 1.0;
     c.corner_radius_m = 0.4;
+    c.footing_radius_m = 0.7;
     c.sampling_passes = 2;
     c.test_time_views = 4;
     c.density_seeds = "6,0.45,0.25";
@@ -352,9 +354,11 @@ TEST(TrainConfig, EdgeSelectionKeysReachThePostProcessing) {
     EXPECT_DOUBLE_EQ(o.pair_support.min_support, 0.1) << mode;
     EXPECT_DOUBLE_EQ(o.selection.max_offset_m, 1.0) << mode;
     EXPECT_DOUBLE_EQ(o.selection.corner.radius_m, 0.4) << mode;
+    EXPECT_DOUBLE_EQ(o.selection.footing.radius_m, 0.7) << mode;
     const JunctionSelectionOptions training = edge_training_selection(c);
     EXPECT_DOUBLE_EQ(training.nms_radius_m, 0.6) << mode;
     EXPECT_DOUBLE_EQ(training.corner.radius_m, 0.4) << mode << ": the training pairs come from the same selection";
+    EXPECT_DOUBLE_EQ(training.footing.radius_m, 0.7) << mode;
     EXPECT_EQ(training.top_k, 40) << mode;
     c.max_offset_m = -1;  // <= 0: every candidate, whatever the options' default
     EXPECT_TRUE(std::isinf(edge_post_process_options(c).selection.max_offset_m)) << mode;

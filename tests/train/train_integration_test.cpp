@@ -291,6 +291,7 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   EXPECT_EQ(timing["nms_radius_m"].get<double>(), PostProcessOptions{}.selection.nms_radius_m);
   EXPECT_EQ(timing["max_offset_m"].get<double>(), PostProcessOptions{}.selection.max_offset_m);
   EXPECT_EQ(timing["corner_radius_m"].get<double>(), PostProcessOptions{}.selection.corner.radius_m);
+  EXPECT_EQ(timing["footing_radius_m"].get<double>(), PostProcessOptions{}.selection.footing.radius_m);
   // Scoring those saved predictions again in the same folder (as for --html) keeps the record.
   ASSERT_EQ(run(std::string(LC2WF_EVAL_BIN) + " --quiet --pred " + quote(eval / "predictions") + " --data " +
                 quote(dir_ / "clouds") + " --split " + quote(dir_ / "val.txt") + " --out " + quote(eval)),
