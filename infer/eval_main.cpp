@@ -78,7 +78,7 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
   --corner-radius M  with --weights: keep junctions where segments of two directions end within M metres
                   (default 0.3; 0 = every junction; see lc2wf-infer --help)
   --footing-radius M  with --weights: keep ground junctions only where lines rise within M metres of them
-                  (default 0.5; 0 = every junction; see lc2wf-infer --help)
+                  (default 0.3; 0 = every junction; see lc2wf-infer --help)
   --sampling-passes N  with --weights: the junction model's sample points in N passes (default 1; see
                   lc2wf-infer --help)
   --metres-per-pass M  with --weights: at least one pass per M metres of a cloud's longer side (default 40;

@@ -71,7 +71,7 @@ wireframe and a note, never a failure.
                       edge (default 0.3; 0 = every junction, as the release)
   --footing-radius M  keep a selected junction on the cloud's ground level only where segment ends at
                       least 1 m higher lie within M metres of it horizontally: a wall stands on it, not a
-                      cast shadow's or a path's corner (default 0.5; 0 = every junction, as the release)
+                      cast shadow's or a path's corner (default 0.3; 0 = every junction, as the release)
                       --release-quirks selects as the release (0.85, 0.25, every candidate); how the
                       defaults were chosen and what they score: infer/README.md
   --sampling-passes N run the junction model on N x 256 sample points, 256 at a time (default 1, the

@@ -107,7 +107,7 @@ Options:
                          0 = every candidate; see lc2wf-infer --help)
   --corner-radius M      keep junctions where segments of two directions end within M metres (default 0.3;
                          0 = every junction; see lc2wf-infer --help)
-  --footing-radius M     keep ground junctions only where lines rise within M metres of them (default 0.5;
+  --footing-radius M     keep ground junctions only where lines rise within M metres of them (default 0.3;
                          0 = every junction; see lc2wf-infer --help)
   --sampling-passes N    the junction model's sample points in N passes of 256 (default 1; see lc2wf-infer --help)
   --metres-per-pass M    at least one pass per M metres of the cloud's longer side (default 40; 0 = off)

@@ -14,7 +14,7 @@ void FootingEvidenceOptions::Check() const {
   if (!(radius_m >= 0) || !std::isfinite(radius_m)) fail("radius_m must be a distance >= 0 in metres (0: off)");
   if (!(min_rise_m > 0) || !std::isfinite(min_rise_m)) fail("min_rise_m must be a height > 0 in metres");
   if (!(ground_band_m >= 0) || !std::isfinite(ground_band_m)) fail("ground_band_m must be a height >= 0 in metres");
-  if (!(ground_quantile >= 0 && ground_quantile < 1)) fail("ground_quantile must be in [0, 1)");
+  if (!std::isfinite(ground_z_m)) fail("ground_z_m must be a finite height in metres");
 }
 
 std::vector<char> footing_evidence(const std::vector<Vec3>& junctions, const std::vector<Segment3>& segments,
@@ -22,18 +22,11 @@ std::vector<char> footing_evidence(const std::vector<Vec3>& junctions, const std
   o.Check();
   std::vector<char> stands(junctions.size(), 1);
   if (!o.enabled() || junctions.empty()) return stands;
-  std::vector<double> heights;
-  for (const Segment3& s : segments)
-    for (const Vec3& p : {s.a, s.b})
-      if (p.allFinite()) heights.push_back(p.z());
-  if (heights.empty()) return stands;
-  const size_t q = static_cast<size_t>(o.ground_quantile * static_cast<double>(heights.size() - 1));
-  std::nth_element(heights.begin(), heights.begin() + static_cast<std::ptrdiff_t>(q), heights.end());
-  const double ground = heights[q];
   std::vector<size_t> tested;
-  double lowest = ground + o.ground_band_m;
+  const double top = o.ground_z_m + o.ground_band_m;
+  double lowest = top;
   for (size_t j = 0; j < junctions.size(); ++j)
-    if (junctions[j].z() <= ground + o.ground_band_m) tested.push_back(j), lowest = std::min(lowest, junctions[j].z());
+    if (junctions[j].z() <= top) tested.push_back(j), lowest = std::min(lowest, junctions[j].z());
   if (tested.empty()) return stands;
   // Only ends high enough to stand over some tested junction matter; they are searched in plan (z = 0).
   std::vector<Vec3> plan;

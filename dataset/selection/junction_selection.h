@@ -70,7 +70,7 @@ struct JunctionSelectionOptions {
   CornerEvidenceOptions corner{.radius_m = 0.3};
   // Not in the release (every junction is paired): a junction on the ground stays only where segment ends
   // stand over it within footing.radius_m (footing_evidence.h; infer/README.md "Footing evidence").
-  FootingEvidenceOptions footing{.radius_m = 0.5};
+  FootingEvidenceOptions footing{.radius_m = 0.3};
 
   void Check() const;  // throws std::invalid_argument naming the bad field
   static JunctionSelectionOptions release();

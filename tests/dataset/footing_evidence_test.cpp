@@ -45,11 +45,18 @@ TEST(FootingEvidence, NoHeightIsAssumed) {
   EXPECT_EQ(footing_evidence({{0, 0, 0}}, box_with_shadow(0.5), at(0.5)), std::vector<char>{0}) << "nothing rises 1 m";
 }
 
-TEST(FootingEvidence, TheGroundIsTheCloudsLowQuantileNotZero) {
-  // The same box standing on ground at z = 100: the shadow's corner is still on the ground.
-  std::vector<Segment3> lifted = box_with_shadow(3);
-  for (Segment3& s : lifted) s.a.z() += 100, s.b.z() += 100;
-  EXPECT_EQ(footing_evidence({{0, 0, 100}, {8, 1, 100}}, lifted, at(0.5)), (std::vector<char>{1, 0}));
+TEST(FootingEvidence, TheGroundIsTheFramesNotTheLowestLines) {
+  // Outliers 6 m below the ground (a tenth of the lines) leave the ground where the frame puts it.
+  std::vector<Segment3> lines = box_with_shadow(3);
+  for (int k = 0; k < 2; ++k) lines.push_back({{k + 2.0, 2, -6}, {k + 2.5, 2, -6}});
+  EXPECT_EQ(footing_evidence({{0, 0, 0}, {8, 1, 0}, {2, 2, -6}}, lines, at(0.5)), (std::vector<char>{1, 0, 0}))
+      << "a junction below the ground with nothing over it goes too";
+  // A frame whose ground is elsewhere says so.
+  for (Segment3& s : lines) s.a.z() += 100, s.b.z() += 100;
+  FootingEvidenceOptions lifted = at(0.5);
+  EXPECT_EQ(footing_evidence({{8, 1, 100}}, lines, lifted), std::vector<char>{1}) << "nothing on the ground at 0";
+  lifted.ground_z_m = 100;
+  EXPECT_EQ(footing_evidence({{0, 0, 100}, {8, 1, 100}}, lines, lifted), (std::vector<char>{1, 0}));
 }
 
 TEST(FootingEvidence, TheRadiusIsHorizontal) {
@@ -61,17 +68,17 @@ TEST(FootingEvidence, TheRadiusIsHorizontal) {
 
 TEST(FootingEvidence, OffKeepsEveryJunctionAndBadOptionsNameTheField) {
   EXPECT_EQ(footing_evidence({{8, 1, 0}}, box_with_shadow(3), FootingEvidenceOptions{}), std::vector<char>{1});
-  EXPECT_EQ(footing_evidence({{8, 1, 0}}, {}, at(0.5)), std::vector<char>{1}) << "no segments: no ground to judge by";
+  EXPECT_EQ(footing_evidence({{8, 1, 0}}, {}, at(0.5)), std::vector<char>{0}) << "no segments: nothing stands over it";
   EXPECT_TRUE(footing_evidence({}, box_with_shadow(3), at(0.5)).empty());
   const double nan = std::nan("");
   EXPECT_EQ(footing_evidence({{8, 1, 0}}, {{{8, 1, nan}, {8, 1, 0.2}}, {{0, 0, 0}, {1, 0, 0}}}, at(0.5)), std::vector<char>{0})
-      << "a non-finite end neither stands over the junction nor moves the ground";
+      << "a non-finite end does not stand over the junction";
   EXPECT_EQ(footing_evidence({{8, 1, 0}}, {{{8, 1, nan}, {8, 1, 5}}, {{0, 0, 0}, {1, 0, 0}}}, at(0.5)), std::vector<char>{1})
       << "the segment's finite end does";
   for (auto [field, bad] : std::vector<std::pair<std::string, FootingEvidenceOptions>>{
            {"radius_m", at(-1)}, {"min_rise_m", [] { auto o = at(0.5); o.min_rise_m = 0; return o; }()},
            {"ground_band_m", [nan] { auto o = at(0.5); o.ground_band_m = nan; return o; }()},
-           {"ground_quantile", [] { auto o = at(0.5); o.ground_quantile = 1; return o; }()}}) {
+           {"ground_z_m", [nan] { auto o = at(0.5); o.ground_z_m = nan; return o; }()}}) {
     try {
       bad.Check();
       ADD_FAILURE() << field;

@@ -119,8 +119,9 @@ TEST(SelectJunctions, EmptyAndSingleJunctionGiveNotesNotCrashes) {
   const JunctionSelection none = select_junctions({}, {}, JunctionSelectionOptions{});
   EXPECT_TRUE(none.kept.empty());
   EXPECT_FALSE(none.notes.empty());
-  JunctionSelectionOptions without_lines;  // no segment shows a corner: the check would take both
+  JunctionSelectionOptions without_lines;  // no segment shows a corner or stands over one: the checks would take both
   without_lines.corner.radius_m = 0;
+  without_lines.footing.radius_m = 0;
   const JunctionSelection one = select_junctions(candidates({{0, 0, 0}, {1, 0, 0}}, {.95, .01}), {}, without_lines);
   EXPECT_EQ(one.kept.size(), 1u);
   EXPECT_FALSE(one.notes.empty());

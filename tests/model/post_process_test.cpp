@@ -292,7 +292,7 @@ TEST(PostProcessFlags, AnyOrderGivesTheSameOptions) {
   EXPECT_DOUBLE_EQ(none.selection.corner.radius_m, 0.3);
   EXPECT_DOUBLE_EQ(parse_flags({"--corner-radius", "0"}).options().selection.corner.radius_m, 0.0);
   EXPECT_TRUE(parse_flags({"--corner-radius", "0.4"}).any());
-  EXPECT_DOUBLE_EQ(none.selection.footing.radius_m, 0.5);
+  EXPECT_DOUBLE_EQ(none.selection.footing.radius_m, 0.3);
   EXPECT_DOUBLE_EQ(parse_flags({"--footing-radius", "0"}).options().selection.footing.radius_m, 0.0);
   EXPECT_TRUE(parse_flags({"--footing-radius", "0.4"}).any());
   EXPECT_DOUBLE_EQ(parse_flags({"--max-offset", "1"}).options().selection.max_offset_m, 1.0);
