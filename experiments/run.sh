@@ -93,6 +93,11 @@
 #                 parts in Blender -> runs/light
 #   light-train [FLAGS...]  experiments/configs/light.json: models/general fine-tuned on it -> runs/light-model
 #   light-val WEIGHTS TAG [FLAGS...]  general4-val's table on its validation clouds -> runs/light-val/TAG
+# The light round with photo-look raster clouds (steps/light2.sh):
+#   light2-data    a third to a half of each light part again, the photo look as raster renders (real and generated
+#                 training buildings, every 10th real validation building) -> runs/light2
+#   light2-train [FLAGS...]  experiments/configs/light2.json: light.json's schedule on it -> runs/light2-model
+#   light2-val WEIGHTS TAG [FLAGS...]  vAP / sAP / WED on its four validation parts -> runs/light2-val/TAG
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -112,7 +117,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val snapshot restore)
 
 step=${1:-}
 case $step in
