@@ -155,6 +155,21 @@ train_mix() {
   "$build_dir/train/lc2wf-train" "$config" "${resume[@]}" "$@"
 }
 
+# metrics_row TAG FLAGS METRICS.JSON...: one markdown table row, "vAP / sAP / WED" per lc2wf-eval metrics file
+# ("-" where a file does not exist), so every validation table of the lab reads the same.
+metrics_row() {
+  python3 - "$@" <<'PY'
+import json, os, sys
+tag, flags, paths = sys.argv[1], sys.argv[2], sys.argv[3:]
+def cell(path):
+    if not os.path.exists(path):
+        return '-'
+    m = json.load(open(path))
+    return f"{100*m['vertex_avg']['ap']:.1f} / {100*m['edge_avg']['ap']:.1f} / {m['wed']['total_num']:.2f}"
+print(f"| {tag} | {flags} | " + ' | '.join(cell(p) for p in paths) + ' |')
+PY
+}
+
 # score_validation ROOT REAL_CLOUDS GEN_CLOUDS WEIGHTS TAG [FLAGS...]: the validation table of a mix (general2-val,
 # general4-val): the real split's buildings of REAL_CLOUDS per group, the Roof-Image validation clouds, the
 # generated validation buildings of GEN_CLOUDS and, once photo-data has rendered them, the photo-like validation
@@ -175,18 +190,7 @@ score_validation() {
     "$build_dir/infer/lc2wf-eval" --weights "$weights" --data runs/photo/realval-blender/clouds \
       --split experiments/lists/photo-realval.txt -o "$out/photo" -q --method "$tag" "$@" > /dev/null
   fi
-  python3 - "$out" "$tag" "$*" >> "$root/table.md" <<'PY'
-import json, os, sys
-out, tag, flags = sys.argv[1:4]
-def cell(path):
-    m = json.load(open(path))
-    return f"{100*m['vertex_avg']['ap']:.1f} / {100*m['edge_avg']['ap']:.1f} / {m['wed']['total_num']:.2f}"
-def group(name):
-    p = os.path.join(out, 'real', 'eval', name, 'metrics.json')
-    return cell(p) if os.path.exists(p) else '-'
-print(f"| {tag} | {flags or '-'} | {group('all')} | {group('height_ge20_m')} | {group('source_vienna')} | "
-      f"{cell(os.path.join(out, 'ri', 'metrics.json'))} | {cell(os.path.join(out, 'gen', 'metrics.json'))} | "
-      f"{cell(os.path.join(out, 'photo', 'metrics.json')) if os.path.exists(os.path.join(out, 'photo', 'metrics.json')) else '-'} |")
-PY
+  metrics_row "$tag" "${*:--}" "$out"/real/eval/{all,height_ge20_m,source_vienna}/metrics.json "$out"/{ri,gen,photo}/metrics.json \
+    >> "$root/table.md"
   tail -1 "$root/table.md"
 }

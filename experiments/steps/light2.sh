@@ -83,14 +83,6 @@ step_light2_val() {
     [[ -f $out/$part/metrics.json ]] || "$build_dir/infer/lc2wf-eval" --weights "$weights" --data "${data[$part]}/clouds" \
       --split "${names[$part]}" -o "$out/$part" -q --method "$tag" "$@" > /dev/null
   done
-  python3 - "$out" "$tag" "$*" >> runs/light2-val/table.md <<'PY'
-import json, sys
-out, tag, flags = sys.argv[1:4]
-cells = []
-for part in ('real', 'ri', 'gen', 'photo'):
-    m = json.load(open(f'{out}/{part}/metrics.json'))
-    cells.append(f"{100*m['vertex_avg']['ap']:.1f} / {100*m['edge_avg']['ap']:.1f} / {m['wed']['total_num']:.2f}")
-print(f"| {tag} {flags} | " + ' | '.join(cells) + ' |')
-PY
+  metrics_row "$tag" "${*:--}" "$out"/{real,ri,gen,photo}/metrics.json >> runs/light2-val/table.md
   tail -1 runs/light2-val/table.md
 }
