@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/util/atomic_file.h"
+#include "core/util/quantile.h"
 #include "infer/png_file.h"
 
 namespace lc2wf {
@@ -20,6 +21,8 @@ void PreviewOptions::Check() const {
   if (height < 64 || height > 8192) throw std::invalid_argument("PreviewOptions.height must be in [64, 8192]");
   if (!(elevation_deg >= -90 && elevation_deg <= 90)) throw std::invalid_argument("PreviewOptions.elevation_deg must be in [-90, 90]");
   if (!std::isfinite(azimuth_deg)) throw std::invalid_argument("PreviewOptions.azimuth_deg must be finite");
+  if (!(cloud_frame_quantile >= 0 && cloud_frame_quantile < 0.5))
+    throw std::invalid_argument("PreviewOptions.cloud_frame_quantile must be in [0, 0.5)");
 }
 
 namespace {
@@ -44,17 +47,28 @@ void write_preview(const std::filesystem::path& png, const LineCloud& cloud, con
                    const Wireframe* gt, const PreviewOptions& o) {
   o.Check();
   const Oblique project(o);
+  // The frame holds the wireframes and the bulk of the cloud: a few triangulation outliers hundreds of metres
+  // off would otherwise shrink the building to a dot (they are drawn where they fall in the frame).
   Vec2 lo(std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()), hi = -lo;
-  auto grow = [&](const Vec3& p) {
-    if (!p.allFinite()) return;
-    const Vec2 q = project(p);
+  auto grow = [&](const Vec2& q) {
     lo = lo.cwiseMin(q);
     hi = hi.cwiseMax(q);
   };
-  for (const Segment3& s : cloud.segments) grow(s.a), grow(s.b);
-  for (const Vec3& p : prediction.junctions) grow(p);
-  if (gt)
-    for (const Vec3& p : gt->junctions) grow(p);
+  std::vector<double> xs, ys;
+  for (const Segment3& s : cloud.segments)
+    for (const Vec3* p : {&s.a, &s.b})
+      if (p->allFinite()) {
+        const Vec2 q = project(*p);
+        xs.push_back(q.x()), ys.push_back(q.y());
+      }
+  if (!xs.empty()) {
+    grow({quantile(xs, o.cloud_frame_quantile), quantile(ys, o.cloud_frame_quantile)});
+    grow({quantile(xs, 1 - o.cloud_frame_quantile), quantile(ys, 1 - o.cloud_frame_quantile)});
+  }
+  for (const Wireframe* w : {&prediction, gt})
+    if (w)
+      for (const Vec3& p : w->junctions)
+        if (p.allFinite()) grow(project(p));
   if (!(lo.x() <= hi.x())) lo = hi = Vec2::Zero();  // nothing to draw: an empty frame
 
   const double margin = 40.0;

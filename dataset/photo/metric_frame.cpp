@@ -1,5 +1,6 @@
 #include "dataset/photo/metric_frame.h"
 
+#include "core/util/quantile.h"
 #include "dataset/photo/line_up.h"
 
 #include <Eigen/Eigenvalues>
@@ -49,12 +50,6 @@ void MetricFrameOptions::Check() const {
 }
 
 namespace {
-
-double quantile(std::vector<double> v, double q) {
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
 
 // OpenCV cameras: image y points down, so the camera's up in the world is -(second row of R).
 Vec3 mean_camera_up(const std::vector<Camera>& cameras) {

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/util/median.h"
+
 namespace lc2wf {
 
 void SimilarityFitOptions::Check() const {
@@ -27,11 +29,6 @@ double spread_ratio(const std::vector<Vec3>& p, const std::vector<int>& ids) {
   for (size_t k = 0; k < ids.size(); ++k) c.col(k) = p[ids[k]] - mean;
   const Vec3 sv = Eigen::JacobiSVD<Eigen::Matrix3Xd>(c).singularValues();
   return sv(0) > 0 ? sv(1) / sv(0) : 0.0;
-}
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(v.size() / 2), v.end());
-  return v[v.size() / 2];
 }
 
 }  // namespace

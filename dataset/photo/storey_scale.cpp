@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/util/quantile.h"
+
 namespace lc2wf {
 
 void StoreyScaleOptions::Check() const {
@@ -40,8 +42,7 @@ void cap_crowds(std::vector<double>& p) {
   for (double v : p)
     if (v > 0) nonzero.push_back(v);
   if (nonzero.empty()) return;
-  std::nth_element(nonzero.begin(), nonzero.begin() + nonzero.size() * 9 / 10, nonzero.end());
-  const double cap = nonzero[nonzero.size() * 9 / 10];
+  const double cap = quantile(std::move(nonzero), 0.9);
   for (double& v : p) v = std::min(v, cap);
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/util/quantile.h"
 #include "dataset/selection/point_nms.h"
 #include "dataset/sampling/rng.h"
 #include "dataset/geometry/spatial_grid.h"
@@ -93,13 +94,7 @@ int passes_for_extent(const std::vector<Segment3>& segments, double metres_per_p
     std::vector<double> v;
     v.reserve(2 * segments.size());
     for (const Segment3& s : segments) v.push_back(s.a[axis]), v.push_back(s.b[axis]);
-    const auto at = [&](double q) {
-      const size_t k = static_cast<size_t>(q * static_cast<double>(v.size() - 1));
-      std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-      return v[k];
-    };
-    const double lo = at(0.02), hi = at(0.98);
-    extent = std::max(extent, hi - lo);
+    extent = std::max(extent, quantile(v, 0.98) - quantile(v, 0.02));
   }
   const double passes = std::ceil(extent / metres_per_pass);
   return static_cast<int>(std::clamp(passes, 1.0, static_cast<double>(std::max(1, max_passes))));

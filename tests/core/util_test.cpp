@@ -1,4 +1,4 @@
-// core/util: workspaces that never delete a folder the user named, the shared hash and median, items over threads.
+// core/util: workspaces that never delete a folder the user named, the shared hash, median and quantile, items over threads.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -11,6 +11,7 @@
 
 #include "core/util/fnv1a.h"
 #include "core/util/median.h"
+#include "core/util/quantile.h"
 #include "core/util/parallel_items.h"
 #include "core/util/workspace.h"
 
@@ -92,6 +93,19 @@ TEST(Median, OddEvenAndEmpty) {
   EXPECT_EQ(median({3, 1, 2}), 2.0);
   EXPECT_EQ(median({4, 1, 3, 2}), 2.5);
   EXPECT_EQ(median({5}), 5.0);
+}
+
+TEST(Quantile, NearestRankOfTheSortedValues) {
+  EXPECT_EQ(quantile({}, 0.5), 0.0);
+  const std::vector<double> v{50, 10, 40, 20, 30};  // sorted 10 20 30 40 50: rank round(q * 4)
+  EXPECT_EQ(quantile(v, 0.0), 10.0);
+  EXPECT_EQ(quantile(v, 1.0), 50.0);
+  EXPECT_EQ(quantile(v, 0.5), 30.0);
+  EXPECT_EQ(quantile(v, 0.3), 20.0);   // rank 1.2 -> 1
+  EXPECT_EQ(quantile(v, 0.4), 30.0);   // rank 1.6 -> 2
+  EXPECT_EQ(quantile(v, -1.0), 10.0);  // q clamped to [0, 1]
+  EXPECT_EQ(quantile(v, 2.0), 50.0);
+  EXPECT_EQ(quantile({7}, 0.9), 7.0);
 }
 
 TEST(ForEachItem, EveryItemOnceAtAnyThreadCount) {

@@ -21,7 +21,7 @@ std::vector<Segment3> line_of_segments(double length_m, int count) {
 TEST(SampleBudget, OnePassPerMetresOfTheLongerSide) {
   EXPECT_EQ(passes_for_extent(line_of_segments(10, 200), 40), 1);
   EXPECT_EQ(passes_for_extent(line_of_segments(39, 200), 40), 1);
-  EXPECT_EQ(passes_for_extent(line_of_segments(41.5, 200), 40), 2);
+  EXPECT_EQ(passes_for_extent(line_of_segments(42, 200), 40), 2);  // its 2nd-98th percentile span: 40.3 m
   EXPECT_EQ(passes_for_extent(line_of_segments(150, 200), 40), 4);
   EXPECT_EQ(passes_for_extent(line_of_segments(10000, 200), 40), 8);     // capped
   EXPECT_EQ(passes_for_extent(line_of_segments(10000, 200), 40, 3), 3);  // a smaller cap

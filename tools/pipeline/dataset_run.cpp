@@ -17,6 +17,7 @@
 #include "core/util/fnv1a.h"
 #include "core/util/json_text.h"  // mesh names and error texts need not be UTF-8
 #include "core/util/median.h"
+#include "core/util/quantile.h"
 #include "core/util/progress.h"
 #include "core/util/version_json.h"
 #include "core/util/workspace.h"
@@ -100,14 +101,6 @@ double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
   const Vec3 ab = b - a;
   const double t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
   return (p - (a + t * ab)).norm();
-}
-
-// Value at quantile q (0..1) of unsorted values; 0 for none.
-double quantile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::floor(q * (v.size() - 1) + 0.5)));
-  std::nth_element(v.begin(), v.begin() + k, v.end());
-  return v[k];
 }
 
 // Counts and shape statistics of a finished cloud, for the status record.
