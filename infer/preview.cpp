@@ -94,7 +94,12 @@ void write_preview(const std::filesystem::path& png, const LineCloud& cloud, con
 
   const std::string title = cloud.name + ": " + std::to_string(prediction.edges.size()) + " predicted edges" +
                             (gt ? ", " + std::to_string(gt->edges.size()) + " GT edges" : std::string());
-  cv::putText(image, title, {12, 24}, cv::FONT_HERSHEY_SIMPLEX, 0.6, black, 1, cv::LINE_AA);
+  // Long building names (city models' ids) would run off the picture: the title shrinks to fit its width.
+  double title_scale = 0.6;
+  int baseline = 0;
+  const double title_width = cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, title_scale, 1, &baseline).width;
+  if (title_width > o.width - 24) title_scale *= (o.width - 24) / title_width;
+  cv::putText(image, title, {12, 24}, cv::FONT_HERSHEY_SIMPLEX, title_scale, black, 1, cv::LINE_AA);
   int y = 48;
   for (const auto& [label, colour] : std::vector<std::pair<std::string, cv::Scalar>>{
            {"line cloud", grey}, {"prediction", red}, {"ground truth", green}}) {

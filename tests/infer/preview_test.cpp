@@ -1,8 +1,9 @@
-// infer/preview: the frame fits the building, not the triangulation outliers far off it.
+// infer/preview: the frame fits the building, not the triangulation outliers far off it; the title fits the width.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -88,6 +89,22 @@ TEST_F(Preview, APredictionOutsideTheCloudStaysInTheFrame) {
     }
   EXPECT_GT(red_rows, 50);
   EXPECT_GT(green_width_share(dir_ / "far.png"), 0.1);
+}
+
+TEST_F(Preview, ALongNameFitsTheTitleLine) {
+  const Wireframe gt = box();
+  LineCloud cloud = cloud_of(gt);
+  cloud.name = std::string(120, 'W');  // a city model's file stem and building id run this long
+  write_preview(dir_ / "long.png", cloud, gt, &gt);
+  const cv::Mat image = cv::imread((dir_ / "long.png").string());
+  int dark_left = 0, dark_right = 0;  // title pixels in the first and the last 10 columns of its line
+  for (int y = 8; y < 30; ++y)
+    for (int x = 0; x < 10; ++x) {
+      dark_left += image.at<cv::Vec3b>(y, 12 + x)[0] < 100;
+      dark_right += image.at<cv::Vec3b>(y, image.cols - 1 - x)[0] < 100;
+    }
+  EXPECT_GT(dark_left, 0);
+  EXPECT_EQ(dark_right, 0);
 }
 
 TEST_F(Preview, EmptyCloudAndBadOptions) {
