@@ -3,7 +3,7 @@
 moved into a random frame (scale log-uniform in [0.05, 20] map units per metre, a random rotation unless
 --keep-up, a random shift), lc2wf-infer finds up and scale, and the recovered scale is compared with the truth.
 
-  scale_search_bench.py --infer BIN --convert BIN --weights DIR --out OUT [--keep-up] [--seed S] CLOUD...
+  scale_search_bench.py --infer BIN --convert BIN --weights DIR --out OUT [--keep-up] [--seed S] [--infer-arg A]... CLOUD...
 
 Writes OUT/results.csv (one row per cloud) and OUT/summary.md (median / p90 scale error, per measure over the
 search's curve, and the up error). Standard library only.
@@ -41,6 +41,7 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--keep-up", action="store_true", help="z stays up (--up z): the scale search alone")
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--infer-arg", action="append", default=[], help="one more lc2wf-infer argument (repeatable)")
     ap.add_argument("clouds", nargs="+")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
@@ -67,6 +68,7 @@ def main():
         cmd = [a.infer, "--weights", a.weights, moved, "-o", pred, "-q", "--no-surfaces"]
         if a.keep_up:
             cmd += ["--up", "z"]
+        cmd += a.infer_arg
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
         frame = json.load(open(os.path.join(pred, name + ".frame.json")))
         found = frame["to_metric"]["scale"]  # metres per map unit; the truth is 1 / s
