@@ -155,6 +155,16 @@ train_mix() {
   "$build_dir/train/lc2wf-train" "$config" "${resume[@]}" "$@"
 }
 
+# render_part MIX MESHES OUT [FLAGS...]: one part of a training mix as raster clouds (30 views, lc2wf-dataset's
+# defaults and FLAGS, e.g. --names LIST) -> runs/MIX/OUT, its summary in runs/MIX/OUT.json; resumable
+# (lc2wf-dataset skips the buildings it has done), and a failed building does not stop the step.
+render_part() {
+  local mix=$1 meshes_dir=$2 out=$3
+  shift 3
+  "$build_dir/tools/lc2wf-dataset" --meshes "$meshes_dir" --out "runs/$mix/$out" --renderer raster --views 30 -j 2 -q "$@" \
+    > "runs/$mix/$out.json" || true
+}
+
 # metrics_row TAG FLAGS METRICS.JSON...: one markdown table row, "vAP / sAP / WED" per lc2wf-eval metrics file
 # ("-" where a file does not exist), so every validation table of the lab reads the same.
 metrics_row() {

@@ -20,8 +20,8 @@ struct PreviewOptions {
   void Check() const;           // throws std::invalid_argument naming the bad field
 };
 
-// Orthographic oblique projection fitted to the wireframes and the bulk of the cloud (cloud_frame_quantile). `gt` may be null. Written atomically;
-// throws std::runtime_error naming the file when it cannot be written.
+// Orthographic oblique projection fitted to the wireframes and the bulk of the cloud (cloud_frame_quantile).
+// `gt` may be null. Written atomically; throws std::runtime_error naming the file when it cannot be written.
 void write_preview(const std::filesystem::path& png, const LineCloud& cloud, const Wireframe& prediction,
                    const Wireframe* gt, const PreviewOptions& options = {});
 

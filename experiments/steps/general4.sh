@@ -25,13 +25,6 @@ large_meshes() {
   large_buildings "runs/general4/$(basename "$1").csv"
 }
 
-# render_fine MESHES NAMES OUT: one part of the mix, raster from 30 views at the default pixel rule ->
-# runs/general4/OUT (resumable: lc2wf-dataset skips the buildings it has done).
-render_fine() {
-  "$build_dir/tools/lc2wf-dataset" --meshes "$1" --names "$2" --out "runs/general4/$3" --renderer raster "${constant_ambient[@]}" \
-    --views 30 -j 2 -q > "runs/general4/$3.json" || true
-}
-
 step_general4_data() {
   need_binary "$build_dir/tools/lc2wf-dataset" lc2wf-dataset
   [[ -s runs/general2/train.txt ]] || die 3 "no general2 mix: run experiments/run.sh general2-data first"
@@ -45,11 +38,11 @@ step_general4_data() {
   [[ -f runs/general4/gen-large.txt ]] || large_meshes runs/general/meshes-gen > runs/general4/gen-large.txt
   [[ -f runs/general4/genval-large.txt ]] || large_meshes runs/general/meshes-genval > runs/general4/genval-large.txt
   [[ -f runs/general4/riaug-large.txt ]] || large_meshes runs/general/meshes-riaug > runs/general4/riaug-large.txt
-  render_fine runs/lod2-all runs/general4/real-large.txt real-fine
-  render_fine runs/lod2-all runs/general4/realval-large.txt realval-fine
-  render_fine runs/general/meshes-genval runs/general4/genval-large.txt genval-fine
-  render_fine runs/general/meshes-gen runs/general4/gen-large.txt gen-fine
-  render_fine runs/general/meshes-riaug runs/general4/riaug-large.txt riaug-fine
+  render_part general4 runs/lod2-all real-fine --names runs/general4/real-large.txt "${constant_ambient[@]}"
+  render_part general4 runs/lod2-all realval-fine --names runs/general4/realval-large.txt "${constant_ambient[@]}"
+  render_part general4 runs/general/meshes-genval genval-fine --names runs/general4/genval-large.txt "${constant_ambient[@]}"
+  render_part general4 runs/general/meshes-gen gen-fine --names runs/general4/gen-large.txt "${constant_ambient[@]}"
+  render_part general4 runs/general/meshes-riaug riaug-fine --names runs/general4/riaug-large.txt "${constant_ambient[@]}"
   # The fine parts come last, so their links replace the 640 x 480 clouds of the same names.
   general_list general4 runs/general4/train.txt general/{gen-raster,real-raster,riaug-raster,ri-raster,photo-blender} \
     general2/{real-raster,ri-blender,photo-blender} general4/{real-fine,gen-fine,riaug-fine}

@@ -6,14 +6,6 @@
 # paper's benchmark), and the photo-like Blender parts of the earlier mixes where they still exist (hours of
 # Blender: not rendered again here). Validation first, then the training parts, each resumable.
 
-# render_light MESHES OUT [NAMES]: one raster part at lc2wf-dataset's defaults -> runs/light/OUT.
-render_light() {
-  local names=()
-  [[ $# -ge 3 ]] && names=(--names "$3")
-  "$build_dir/tools/lc2wf-dataset" --meshes "$1" "${names[@]}" --out "runs/light/$2" --renderer raster --views 30 -j 2 -q \
-    > "runs/light/$2.json" || true
-}
-
 step_light_data() {
   need_binary "$build_dir/tools/lc2wf-dataset" lc2wf-dataset
   # The raster parts need only the meshes (seconds) and the committed list of the mix's real training buildings
@@ -21,12 +13,12 @@ step_light_data() {
   # earlier mixes.
   [[ -f runs/general/meshes-gen/buildings.json && -d runs/general/ri-train-sub && -d runs/lod2-all ]] || general_meshes
   mkdir -p runs/light
-  render_light runs/lod2-all realval configs/splits/lod2/val.txt
-  render_light runs/general/meshes-genval genval
-  render_light runs/lod2-all real experiments/lists/light-real.txt
-  render_light runs/general/meshes-gen gen
-  render_light runs/general/meshes-riaug riaug
-  render_light runs/general/ri-train-sub ri
+  render_part light runs/lod2-all realval --names configs/splits/lod2/val.txt
+  render_part light runs/general/meshes-genval genval
+  render_part light runs/lod2-all real --names experiments/lists/light-real.txt
+  render_part light runs/general/meshes-gen gen
+  render_part light runs/general/meshes-riaug riaug
+  render_part light runs/general/ri-train-sub ri
   # The Roof-Image parts in Blender (≈ 2 s per building): general2's training and general's validation choice.
   [[ -s runs/general2/ri-blender-names.txt ]] || { mkdir -p runs/general2 && sed -n '751,1050p' runs/general/ri-train-sub.txt > runs/general2/ri-blender-names.txt; }
   [[ -s runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt

@@ -5,14 +5,6 @@
 # the whole mix again. A third to a half of each light part keeps the render near an hour; validation first,
 # then the training parts, each resumable.
 
-# render_light2 MESHES OUT NAMES [FLAGS...]: one raster part at lc2wf-dataset's defaults -> runs/light2/OUT.
-render_light2() {
-  local meshes_dir=$1 out=$2 names=$3
-  shift 3
-  "$build_dir/tools/lc2wf-dataset" --meshes "$meshes_dir" --names "$names" --out "runs/light2/$out" --renderer raster \
-    --views 30 -j 2 -q "$@" > "runs/light2/$out.json" || true
-}
-
 # every_nth FILE N OUT: every N-th line of FILE (the first, then every N-th after it) -> OUT, written once.
 every_nth() { [[ -s $3 ]] || awk -v n="$2" 'NR % n == 1' "$1" > "$3"; }
 
@@ -44,16 +36,16 @@ step_light2_data() {
   [[ -s runs/general/rival-names.txt ]] || head -100 configs/splits/val.txt > runs/general/rival-names.txt
   local ri=("${fixed_size[@]}" --meshes "$meshes" --renderer blender --views 30 -j 2 -q)
   "$build_dir/tools/lc2wf-dataset" "${ri[@]}" --names runs/general/rival-names.txt --out runs/general/rival-blender > runs/general/rival.json || true
-  render_light2 runs/general/lod2-photo photoval runs/light2/photoval-names.txt --textures photo
-  render_light2 runs/lod2-all realval configs/splits/lod2/val.txt
-  render_light2 runs/general/meshes-genval genval runs/light2/genval-names.txt
+  render_part light2 runs/general/lod2-photo photoval --names runs/light2/photoval-names.txt --textures photo
+  render_part light2 runs/lod2-all realval --names configs/splits/lod2/val.txt
+  render_part light2 runs/general/meshes-genval genval --names runs/light2/genval-names.txt
   # Training: the photo look first (the part the light round lacked), then the clean parts.
-  render_light2 runs/general/lod2-photo realphoto runs/light2/realphoto-names.txt --textures photo
-  render_light2 runs/light2/meshes-genphoto genphoto runs/light2/genphoto-names.txt --textures photo
-  render_light2 runs/lod2-all real runs/light2/real-names.txt
-  render_light2 runs/general/meshes-gen gen runs/light2/gen-names.txt
-  render_light2 runs/general/meshes-riaug riaug runs/light2/riaug-names.txt
-  render_light2 "$meshes" ri runs/light2/ri-names.txt
+  render_part light2 runs/general/lod2-photo realphoto --names runs/light2/realphoto-names.txt --textures photo
+  render_part light2 runs/light2/meshes-genphoto genphoto --names runs/light2/genphoto-names.txt --textures photo
+  render_part light2 runs/lod2-all real --names runs/light2/real-names.txt
+  render_part light2 runs/general/meshes-gen gen --names runs/light2/gen-names.txt
+  render_part light2 runs/general/meshes-riaug riaug --names runs/light2/riaug-names.txt
+  render_part light2 "$meshes" ri --names runs/light2/ri-names.txt
   # Roof-Image in Blender, as the benchmark renders it: the light round's edge stage gained its Roof-Image sAP there.
   [[ -s runs/light2/ri-blender-names.txt ]] || sed -n '751,950p' runs/general/ri-train-sub.txt > runs/light2/ri-blender-names.txt
   "$build_dir/tools/lc2wf-dataset" "${ri[@]}" --names runs/light2/ri-blender-names.txt --out runs/light2/ri-blender > runs/light2/ri-blender.json || true
