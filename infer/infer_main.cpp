@@ -104,10 +104,12 @@ wireframe and a note, never a failure.
                       ground at 0). auto: up from the lines' dominant directions (the one most lines are
                       perpendicular to, its sign putting the widest structure at the bottom), refined by
                       the near-vertical lines; ground at the lowest structure; scale from --scale,
-                      --known-distance or --building-height, the facades' storeys (the heights of the
-                      horizontal lines repeat once per storey of --storey-height metres), else the scale
-                      search (the networks run on the map at building heights of 3-60 m, the most
-                      confident wireframe wins). The wireframe is written in that frame and
+                      --known-distance or --building-height, the facades' storeys (the heights the
+                      short vertical lines - window and door sides - cover repeat once per storey of
+                      --storey-height metres), the height the weights' height model reads from the
+                      lengths and directions of the lines (--height-model), else the scale search (the
+                      networks run on the map at building heights of 3-60 m, the most confident
+                      wireframe wins). The wireframe is written in that frame and
                       OUT/<name>.frame.json holds the similarity from the map, the up and scale found,
                       where they came from and the search's scores. as-read: the map's coordinates are
                       taken as metres, z up
@@ -117,6 +119,9 @@ wireframe and a note, never a failure.
   --building-height M the building's height above its ground, metres
   --storey-height M   floor-to-floor height of the building's storeys, metres (default 3; old city houses
                       and offices 3.5-4); 0 skips the storey estimate
+  --height-model FILE|none  the height model (lc2wf-fit-height) that scales a map nothing before it
+                      scales (default: height.json in the --weights folder when there is one; none
+                      leaves such maps to the scale search)
   --scale-measure M   what the scale search maximises: edge-confidence (default: the mean over the kept
                       edges of P(edge) x the geometric mean of their junctions' confidences),
                       edge-evidence (the sum over the kept edges of P(edge) x both confidences),
@@ -144,6 +149,7 @@ double positive_flag(const std::string& flag, const std::string& value) {
 struct Args {
   fs::path weights, out;
   std::string preview;
+  std::string height_model;  // --height-model: "none", a file, or empty (the weights folder's height.json)
   std::vector<fs::path> clouds;
   BatchInferenceOptions options;
   PostProcessFlags post;
@@ -170,6 +176,7 @@ Args parse_args(int argc, char** argv) {
     } else if (f == "--up") a.options.map_frame.up = value();
     else if (f == "--scale") a.options.map_frame.scale = positive_flag(f, value());
     else if (f == "--building-height") a.options.map_frame.building_height_m = positive_flag(f, value());
+    else if (f == "--height-model") a.height_model = value();
     else if (f == "--storey-height") {
       a.options.map_frame.storeys.storey_height_m = number_flag(f, value());
       if (!(a.options.map_frame.storeys.storey_height_m >= 0 && a.options.map_frame.storeys.storey_height_m <= 20))
@@ -227,8 +234,10 @@ Args parse_args(int argc, char** argv) {
 
 int run(const Args& a) {
   set_num_threads(a.threads);
+  BatchInferenceOptions options = a.options;
+  options.map_frame.height_model = choose_height_model(a.height_model, a.weights);  // a small file: checked first
   const WireframePredictor predictor(a.weights);
-  const BatchInferenceSummary s = infer_clouds(predictor, a.clouds, a.out, a.options);
+  const BatchInferenceSummary s = infer_clouds(predictor, a.clouds, a.out, options);
   for (const std::string& name : s.names) std::printf("%s\n", (a.out / (name + ".obj")).string().c_str());
   if (!a.options.quiet && a.surfaces && s.buildings > 0)
     std::fprintf(stderr, "lc2wf-infer: surfaces: %d of %d closed solid(s); %.2f ms per building\n", s.closed_solids, s.buildings,

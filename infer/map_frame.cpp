@@ -62,6 +62,7 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   if (fo.scale == 0 && o.known_distance_m > 0) fo.scale = o.known_distance_m / (o.known_b - o.known_a).norm();
   fo.building_height_m = o.building_height_m;
   fo.storeys = o.storeys;
+  fo.height_model = o.height_model;
   FramedInference f;
   f.frame = estimate_metric_frame({}, map.segments, fo);
   if (o.scale == 0 && o.known_distance_m > 0) f.frame.scale_source = "known distance";
@@ -96,11 +97,16 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
     f.cloud = transformed(map, f.frame.to_metric);
     f.inference = predictor.predict(f.cloud, post);
     scale_text = format_number("%.4g", f.frame.to_metric.scale) + " m per map unit (" + f.frame.scale_source + ")";
+    if (f.frame.scale_source == "line statistics")
+      scale_text += ", building height " + format_number("%.1f", f.frame.line_height_m) + " m read from the lines (+-" +
+                    format_number("%.0f", 100 * o.height_model->cv_median_error) + " % median)";
   }
+  if (o.height_model && (f.frame.needs_scale_search || f.frame.scale_source == "line statistics"))
+    rep["line_statistics"] = line_height_json(f.frame.line_height_m, f.frame.line_height_why_not, *o.height_model);
   rep["up_source"] = o.up == "auto" ? f.frame.up_source : "given " + o.up;
   rep["up_input"] = vec_json(f.frame.up_input);
   rep["scale_source"] = f.frame.scale_source;
-  if (f.frame.needs_scale_search || f.frame.scale_source == "storeys") rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
+  if (f.frame.needs_scale_search || f.frame.scale_source == "storeys" || f.frame.scale_source == "line statistics") rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
   rep["to_metric"] = similarity_json(f.frame.to_metric);
   rep["height_m"] = f.frame.height_input * f.frame.to_metric.scale;
   rep["note"] = "the wireframe is written in this frame (metres, z up, ground 0); map point p -> scale * R * p + t";

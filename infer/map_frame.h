@@ -2,7 +2,8 @@
 // inference they are put in the networks' frame (metres, z up, ground at 0) by the machinery lc2wf-reconstruct
 // uses: up from the lines' dominant directions (dataset/photo/line_up.h) refined by the near-vertical lines,
 // or given; ground from the lowest structure; scale given, from a known distance, a building height or the
-// facades' storeys (dataset/photo/storey_scale.h), else found by the scale search (model/scale_search.h). Our
+// facades' storeys (dataset/photo/storey_scale.h), the height a model reads from the lines' statistics
+// (dataset/photo/line_height.h), else found by the scale search (model/scale_search.h). Our
 // own clouds are metric and z up and are never touched.
 #pragma once
 
@@ -25,6 +26,7 @@ struct MapFrameOptions {
   Vec3 known_a = Vec3::Zero(), known_b = Vec3::Zero();
   double known_distance_m = 0;
   StoreyScaleOptions storeys;      // the facades' storeys, before the scale search (storey_height_m = 0: off)
+  std::optional<HeightModel> height_model;  // the height read from the lines' statistics, after the storeys
   ScaleSearchOptions search;
   bool applies_to(const LineCloud& cloud) const { return enabled && cloud.external_line_map; }
   void Check() const;  // throws std::invalid_argument naming the field

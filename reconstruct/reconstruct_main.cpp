@@ -43,10 +43,12 @@ ground at z = 0:
           (>= 3 registered photos with position and altitude, not on one line: the camera centres
           are fitted to them, which also gives up and north; --no-gps ignores it); --building-height
           M (the cloud's height above its ground, the 99th - 1st percentile of the endpoint heights,
-          is M metres); the facades' storeys (the heights of the horizontal lines - windows, sills,
-          floor bands - repeat once per storey; a storey is --storey-height metres); else the scale
-          search: the networks run on the cloud at building heights of 3-60 m and the most confident
-          wireframe wins (report.json: its scores per height)
+          is M metres); the facades' storeys (the heights the short vertical lines - window and
+          door sides - cover repeat once per storey; a storey is --storey-height metres); the height the
+          weights' height model reads from the lengths and directions of the lines (windows, doors
+          and eaves have sizes of their own; --height-model); else the scale search: the networks run
+          on the cloud at building heights of 3-60 m and the most confident wireframe wins
+          (report.json: its scores per height)
   origin  x/y at the median segment midpoint, z = 0 at the 1st percentile of endpoint heights
 Up, height and origin are measured on the best-supported lines (>= k supporting 2D segments, k the
 largest up to 8 that leaves >= 100 lines), so texture clutter above the roof and below the ground does
@@ -82,6 +84,9 @@ Options:
                          distance or GPS gives the scale)
   --storey-height M      floor-to-floor height of the building's storeys, metres (default 3; old city
                          houses and offices 3.5-4); 0 skips the storey estimate
+  --height-model FILE|none  the height model (lc2wf-fit-height) that scales the cloud when nothing before
+                         it does (default: height.json in the --weights folder when there is one; none
+                         leaves such clouds to the scale search)
   --no-gps               do not take scale and up from the photos' EXIF GPS
   --reference-cameras F  evaluation: also write wireframe_aligned.obj in the frame of these cameras
                          (cameras JSON, one per image; similarity fitted on the camera centres)
@@ -155,6 +160,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
       o.frame.building_height_m = number_flag(f, value());
       if (!(o.frame.building_height_m > 0)) throw UsageError("--building-height must be > 0");
     }
+    else if (f == "--height-model") o.height_model = value();
     else if (f == "--storey-height") {
       o.frame.storeys.storey_height_m = number_flag(f, value());
       if (!(o.frame.storeys.storey_height_m >= 0 && o.frame.storeys.storey_height_m <= 20)) throw UsageError("--storey-height must be in [0, 20]");

@@ -68,6 +68,9 @@ struct ReconstructOptions {
   int min_gps_photos = 3;
   // GPS fixes are metres off: a camera is left out of the fit only beyond 3 x the median residual and 5 m.
   SimilarityFitOptions gps_fit{.outlier_factor = 3.0, .outlier_floor = 5.0, .rounds = 3, .min_spread_ratio = 0.05};
+  // The height model read after the storeys (dataset/photo/line_height.h): "none", a file, or empty for
+  // the weights folder's height.json when there is one.
+  std::string height_model;
   ScaleSearchOptions scale_search;  // when nothing else gives the scale
 
   // Photo clouds are judged by their lines on every capture, full orbits too, and their small flat parts

@@ -165,6 +165,7 @@ class ReconstructRun {
     log_.start("weights");
     try {
       predictor_.emplace(o_.weights);
+      height_model_ = choose_height_model(o_.height_model, o_.weights);
     } catch (const std::exception& e) {
       throw StageError("weights", e.what());
     }
@@ -243,6 +244,7 @@ class ReconstructRun {
     int min_supports = 0;
     const std::vector<Segment3> segments = frame_lines(min_supports);
     MetricFrameOptions fo = o_.frame;
+    fo.height_model = height_model_;
     if (cams_.metric_z_up && !o_.up_given) fo.up = UpSource::kInputZ;  // the project's cameras are metric and z-up
     if (cams_.metric_z_up && !o_.scale_given) fo.scale = 1.0;
     if (fo.known_distance_m > 0) {
@@ -263,8 +265,9 @@ class ReconstructRun {
       throw StageError("frame", e.what());
     }
     if (frame_.needs_scale_search) {
-      log_.done(seconds_, "up from " + frame_.up_source + ", scale left to the search (no GPS, known distance, building height or storeys: " +
-                              frame_.storeys.why_not + ")");
+      log_.done(seconds_, "up from " + frame_.up_source + ", scale left to the search (no GPS, known distance, building height, storeys (" +
+                              frame_.storeys.why_not + ") or height model" +
+                              (frame_.line_height_why_not.empty() ? std::string() : " (" + frame_.line_height_why_not + ")") + ")");
       log_.start("scale search");
       // Each candidate height sees what inference would: the cloud confirmed in metres at that height.
       search_ = search_scale(
@@ -285,7 +288,10 @@ class ReconstructRun {
                         {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
                         {"height_m", frame_.height_input * frame_.to_metric.scale}, {"gps", gps_report}};
     if (search_) report_["frame"]["scale_search"] = scale_search_json(*search_, o_.scale_search);
-    if (search_ || frame_.scale_source == "storeys") report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
+    if (search_ || frame_.scale_source == "storeys" || frame_.scale_source == "line statistics")
+      report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
+    if (height_model_ && (search_ || frame_.scale_source == "line statistics"))
+      report_["frame"]["line_statistics"] = line_height_json(frame_.line_height_m, frame_.line_height_why_not, *height_model_);
     log_.done(seconds_, search_ ? "building height " + format_number("%.1f", search_->height_m) + " m (" +
                                       format_number("%.2f", search_ratio(*search_)) + "x the runner-up's score at " +
                                       format_number("%.1f", search_->runner_up_height_m) + " m), " +
@@ -298,6 +304,9 @@ class ReconstructRun {
                                            ? ", " + format_number("%.1f", frame_.storeys.storeys) + " storeys of " +
                                                  format_number("%.1f", fo.storeys.storey_height_m) + " m, +-" +
                                                  format_number("%.0f", 100 * fo.storeys.storey_uncertainty) + " %"
+                                       : frame_.scale_source == "line statistics"
+                                           ? ", building height " + format_number("%.1f", frame_.line_height_m) + " m read from the lines (+-" +
+                                                 format_number("%.0f", 100 * height_model_->cv_median_error) + " % median)"
                                            : ""));
   }
 
@@ -430,6 +439,7 @@ class ReconstructRun {
   Json report_;
   Json seconds_ = Json::object();
   std::optional<WireframePredictor> predictor_;
+  std::optional<HeightModel> height_model_;
   ImageFolder folder_;
   CameraSet cams_;
   std::vector<int> image_of_view_;  // registered images only

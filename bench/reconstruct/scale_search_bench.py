@@ -33,6 +33,17 @@ def percentile(values, q):
     return v[k]
 
 
+def write_rows(path, rows):
+    # Every column any row has: clouds scaled before the search have no curve, and no error per measure.
+    fields = []
+    for r in rows:
+        fields += [k for k in r if k not in fields]
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        w.writerows(rows)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--infer", required=True)
@@ -86,16 +97,10 @@ def main():
                 best = max(curve, key=lambda c: (c[measure], -c["height_m"]))
                 row["error_" + measure] = best["height_m"] / true_height - 1
         rows.append(row)
-        with open(os.path.join(a.out, "results.csv"), "w", newline="") as f:  # after every cloud: a cut run keeps its rows
-            w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-            w.writeheader()
-            w.writerows(rows)
+        write_rows(os.path.join(a.out, "results.csv"), rows)  # after every cloud: a cut run keeps its rows
         print("%s: true %.1f m, found %.1f m (%+.1f %%, %s), up error %.1f deg" % (name, true_height, frame["height_m"], 100 * row["scale_error"],
               frame["scale_source"], up_err), file=sys.stderr)
-    with open(os.path.join(a.out, "results.csv"), "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
-        w.writeheader()
-        w.writerows(rows)
+    write_rows(os.path.join(a.out, "results.csv"), rows)
     def stats(key, subset=rows):
         e = [abs(r[key]) for r in subset if key in r]
         return "%.1f %% / %.1f %%" % (100 * percentile(e, 0.5), 100 * percentile(e, 0.9)) if e else "-"

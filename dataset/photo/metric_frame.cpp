@@ -43,6 +43,7 @@ void MetricFrameOptions::Check() const {
   if (!(building_height_m >= 0) || !std::isfinite(building_height_m)) throw std::invalid_argument("MetricFrameOptions.building_height_m must be >= 0");
   if (gps_to_enu && !(gps_to_enu->scale > 0 && std::isfinite(gps_to_enu->scale) && gps_to_enu->R.allFinite()))
     throw std::invalid_argument("MetricFrameOptions.gps_to_enu is not a similarity");
+  if (height_model) height_model->Check();
   if (!(ground_quantile >= 0 && ground_quantile < top_quantile && top_quantile <= 1))
     throw std::invalid_argument("MetricFrameOptions: need 0 <= ground_quantile < top_quantile <= 1");
   if (up == UpSource::kGiven && !(given_up.norm() > 0)) throw std::invalid_argument("MetricFrameOptions.given_up is zero");
@@ -78,13 +79,12 @@ Vec3 refine_with_vertical_lines(const Vec3& up, const std::vector<Segment3>& seg
   return v.dot(up) < 0 ? Vec3(-v) : v;
 }
 
-// Lines turned z up over their ground, in input units: what the storey rhythm is read from.
-StoreyScale storey_scale_of(const std::vector<Segment3>& segments, const Eigen::Matrix3d& R, double ground, double height,
-                            const StoreyScaleOptions& o) {
+// Lines turned z up over their ground, in input units: what the storey rhythm and the line statistics are read from.
+std::vector<Segment3> upright_lines(const std::vector<Segment3>& segments, const Eigen::Matrix3d& R, double ground) {
   std::vector<Segment3> upright;
   upright.reserve(segments.size());
   for (const Segment3& s : segments) upright.push_back({R * s.a - ground * Vec3::UnitZ(), R * s.b - ground * Vec3::UnitZ()});
-  return estimate_storey_scale(upright, height, o);
+  return upright;
 }
 
 }  // namespace
@@ -153,10 +153,20 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
     if (!(f.height_input > 0)) throw std::invalid_argument("estimate_metric_frame: the cloud has no height to take a scale from");
     if (o.building_height_m > 0) {
       scale = o.building_height_m / f.height_input, f.scale_source = "building height";
-    } else if (f.storeys = storey_scale_of(storey_lines ? *storey_lines : segments, R, ground, f.height_input, o.storeys); f.storeys.found) {
-      scale = f.storeys.metres_per_unit, f.scale_source = "storeys";
     } else {
-      scale = 1.0 / f.height_input, f.scale_source = "scale search", f.needs_scale_search = true;
+      const std::vector<Segment3> upright = upright_lines(storey_lines ? *storey_lines : segments, R, ground);
+      if (f.storeys = estimate_storey_scale(upright, f.height_input, o.storeys); f.storeys.found) {
+        scale = f.storeys.metres_per_unit, f.scale_source = "storeys";
+      } else if (o.height_model) {
+        try {
+          const LineStatistics stats = line_statistics(upright, o.ground_quantile, o.top_quantile);
+          f.line_height_m = o.height_model->predict_height_m(stats);
+          scale = f.line_height_m / stats.height, f.scale_source = "line statistics";
+        } catch (const std::invalid_argument& e) {
+          f.line_height_why_not = e.what();
+        }
+      }
+      if (scale == 0) scale = 1.0 / f.height_input, f.scale_source = "scale search", f.needs_scale_search = true;
     }
   }
   f.to_metric.scale = scale;

@@ -5,9 +5,9 @@
 //          cameras); refined by the dominant direction of the 3D lines within 15 deg of it (vertical wall
 //          corners); or the input z axis, or a given vector.
 //   scale: from evidence only, in this order: given (metres per input unit), one known distance between
-//          two camera centres, the GPS fit, a given building height, the facades' storeys (storey_scale.h);
-//          else it is left to the scale search (model/scale_search.h), and the frame comes back with the
-//          cloud's height as its unit.
+//          two camera centres, the GPS fit, a given building height, the facades' storeys (storey_scale.h),
+//          the height a model reads from the lines' statistics (line_height.h); else it is left to the scale
+//          search (model/scale_search.h), and the frame comes back with the cloud's height as its unit.
 //   origin: x/y at the median segment midpoint, z = 0 at the cloud's low quantile (the ground lines).
 #pragma once
 
@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/photo/line_height.h"
 #include "dataset/photo/storey_scale.h"
 
 namespace lc2wf {
@@ -47,6 +48,7 @@ struct MetricFrameOptions {
   std::optional<Similarity> gps_to_enu;
   double building_height_m = 0.0;            // > 0: the cloud's height above its ground is this many metres
   StoreyScaleOptions storeys;                // after the building height; storey_height_m = 0 skips it
+  std::optional<HeightModel> height_model;   // after the storeys; none: the scale search
   double ground_quantile = 0.01;  // of the endpoint heights
   double top_quantile = 0.99;
   void Check() const;
@@ -57,8 +59,10 @@ struct MetricFrame {
   Vec3 up_input = Vec3::UnitZ();  // the up direction found, input frame
   std::string up_source;          // "gps", "cameras", "line directions" (each "+lines" when refined by near-vertical lines), "input z", "given"
   int vertical_lines = 0;         // lines used for the refinement
-  std::string scale_source;       // "given", "known distance", "gps", "building height", "storeys", "scale search"
+  std::string scale_source;       // "given", "known distance", "gps", "building height", "storeys", "line statistics", "scale search"
   StoreyScale storeys;            // the storey estimate, when nothing before it gave the scale
+  double line_height_m = 0;       // scale source "line statistics": the height the model read from the lines
+  std::string line_height_why_not;  // when the model was given but could not be used
   double height_input = 0.0;      // cloud height above its ground, input units
   // Scale source "scale search": no evidence fixed the scale, so to_metric makes the cloud's height 1; the
   // caller multiplies by the height the search finds (scaled_by).

@@ -85,6 +85,35 @@ TEST(MetricFrame, WithoutEvidenceTheScaleIsLeftToTheSearch) {
   for (const Vec3& j : s.building.wireframe.junctions) EXPECT_NEAR(g.to_metric.apply(sfm.apply(j)).z(), j.z(), 1e-9);
 }
 
+// A height model (line_height.h) reads the height when nothing before it gives the scale; a building height
+// given by the user still wins, and a cloud too small for the statistics goes to the search, saying why.
+TEST(MetricFrame, AHeightModelScalesWhatNothingElseDoes) {
+  const Similarity sfm = random_sfm_frame();
+  const Scene s = scene_in(sfm);
+  ASSERT_GE(s.segments.size(), 10u);
+  HeightModel model;  // reads every cloud as s.height metres tall: the frame must use exactly what it reads
+  model.mean.assign(kLineStatisticsSize, 0.0), model.stddev.assign(kLineStatisticsSize, 1.0), model.weights.assign(kLineStatisticsSize, 0.0);
+  model.bias = std::log(s.height);
+  MetricFrameOptions o;
+  o.min_vertical_lines = 4;
+  o.height_model = model;
+  const MetricFrame f = estimate_metric_frame(s.cameras, s.segments, o);
+  EXPECT_EQ(f.scale_source, "line statistics");
+  EXPECT_FALSE(f.needs_scale_search);
+  EXPECT_NEAR(f.line_height_m, s.height, 1e-9 * s.height);
+  EXPECT_NEAR(f.to_metric.scale * sfm.scale, 1.0, 1e-9);
+  o.building_height_m = 2 * s.height;
+  EXPECT_EQ(estimate_metric_frame(s.cameras, s.segments, o).scale_source, "building height");
+  o.building_height_m = 0;
+  const std::vector<Segment3> few(s.segments.begin(), s.segments.begin() + 6);
+  const MetricFrame g = estimate_metric_frame(s.cameras, few, o);
+  EXPECT_EQ(g.scale_source, "scale search");
+  EXPECT_NE(g.line_height_why_not.find("10 lines"), std::string::npos) << g.line_height_why_not;
+  model.stddev[0] = -1;  // a broken model is refused with the options
+  o.height_model = model;
+  EXPECT_THROW(estimate_metric_frame(s.cameras, s.segments, o), std::invalid_argument);
+}
+
 // Camera centres fitted to GPS give scale, up and north: x east, y north.
 TEST(MetricFrame, GpsGivesScaleUpAndNorth) {
   const Similarity sfm = random_sfm_frame();

@@ -204,6 +204,34 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   EXPECT_LE(found, 60.0);
   EXPECT_NEAR(h["height_m"].get<double>(), found, 1e-6 * found);
   EXPECT_TRUE(rn.report["seconds"].contains("scale search"));
+
+  // A height model (--height-model; here one that reads every cloud as the building's true height) scales the
+  // cloud before the search would: the frame uses the height it reads, and the report says so.
+  HeightModel height_model;
+  height_model.mean.assign(kLineStatisticsSize, 0.0), height_model.stddev.assign(kLineStatisticsSize, 1.0), height_model.weights.assign(kLineStatisticsSize, 0.0);
+  height_model.bias = std::log(height);
+  height_model.cv_median_error = 0.12;
+  write_height_model(*dir_ / "height.json", height_model);
+  ReconstructOptions m = options("height_model");
+  m.cameras = model;
+  m.height_model = (*dir_ / "height.json").string();
+  const ReconstructResult rm = reconstruct(m);
+  const Json& hm = rm.report["frame"];
+  EXPECT_EQ(hm["scale_source"], "line statistics") << hm.dump();
+  EXPECT_FALSE(hm.contains("scale_search"));
+  EXPECT_NEAR(hm["line_statistics"]["height_m"].get<double>(), height, 1e-6 * height);
+  EXPECT_EQ(hm["line_statistics"]["cv_median_error"], 0.12);
+  EXPECT_NEAR(hm["to_metric"]["scale"].get<double>() * sfm.scale, 1.0, 0.05);  // the cloud's height is the building's, to its noise
+  // A model file that is not one stops the run at the weights, naming the file.
+  std::ofstream(*dir_ / "bad_height.json") << "{\"format\": \"something else\"}";
+  m.height_model = (*dir_ / "bad_height.json").string();
+  m.out = *dir_ / "bad_height_out";
+  try {
+    reconstruct(m);
+    ADD_FAILURE() << "a bad height model was accepted";
+  } catch (const std::exception& e) {
+    EXPECT_THAT(std::string(e.what()), HasSubstr("bad_height.json"));
+  }
 }
 
 // A drone's photos: every camera centre written into its JPEG as a GPS fix (building x east, y north, z up,

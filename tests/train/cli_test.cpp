@@ -1,4 +1,4 @@
-// Command-line contracts of lc2wf-synthetic-data, lc2wf-infer and lc2wf-train --print-config: --help, usage
+// Command-line contracts of lc2wf-synthetic-data, lc2wf-fit-height, lc2wf-infer and lc2wf-train --print-config: --help, usage
 // errors (exit 2, naming the flag), data errors (exit 1, naming the file), and a deterministic synthetic dataset.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -24,6 +24,7 @@ using testing::run_cli;
 
 const std::string kSynthetic = LC2WF_SYNTHETIC_DATA_BIN;
 const std::string kInfer = LC2WF_INFER_BIN;
+const std::string kFitHeight = LC2WF_FIT_HEIGHT_BIN;
 const std::string kTrain = LC2WF_TRAIN_BIN;
 const fs::path kConfigs = fs::path(LC2WF_SOURCE_DIR) / "configs";
 
@@ -77,6 +78,44 @@ TEST_F(CliContract, SyntheticDataIsDeterministicAndSplitsAsAsked) {
     EXPECT_FALSE(a.empty()) << name;
     EXPECT_EQ(a, file_bytes(dir_ / "b" / name)) << name;
   }
+}
+
+// lc2wf-fit-height on the synthetic clouds: a model every run writes the same, a broken cloud skipped by name
+// (exit 1), and its model read by lc2wf-infer (a file that is not one: exit 3, naming it).
+TEST_F(CliContract, FitHeightWritesADeterministicModel) {
+  auto r = run_cli(kFitHeight + " --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_THAT(r.out, HasSubstr("Usage: lc2wf-fit-height"));
+  r = run_cli(kFitHeight + " " + dir_.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("-o MODEL.json is required")) << r.err;
+  r = run_cli(kFitHeight + " -o m.json --folds 1 " + dir_.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--folds")) << r.err;
+  r = run_cli(kFitHeight + " -o m.json --lambdas 1,x " + dir_.string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--lambdas expects a number, got 'x'")) << r.err;
+  ASSERT_EQ(run_cli(kSynthetic + " -q --count 14 --out " + (dir_ / "data").string()).code, 0);
+  r = run_cli(kFitHeight + " -q -o " + (dir_ / "a.json").string() + " --folds 3 " + (dir_ / "data").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_cli(kFitHeight + " -o " + (dir_ / "b.json").string() + " --folds 3 -j 1 " + (dir_ / "data").string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("14 clouds (0 skipped)")) << r.err;
+  EXPECT_EQ(file_bytes(dir_ / "a.json"), file_bytes(dir_ / "b.json"));  // whatever the thread count
+  const nlohmann::json m = nlohmann::json::parse(file_bytes(dir_ / "a.json"));
+  EXPECT_EQ(m["format"], "lc2wf-height-model");
+  EXPECT_EQ(m["training_clouds"], 14);
+  std::ofstream(dir_ / "data" / "clouds" / "broken.lcloud") << "not a cloud";
+  r = run_cli(kFitHeight + " -o " + (dir_ / "c.json").string() + " --folds 3 " + (dir_ / "data").string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("skipped " + (dir_ / "data" / "clouds" / "broken.lcloud").string())) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "c.json"));
+  // lc2wf-infer refuses a height model that is not one before it reads any cloud.
+  std::ofstream(dir_ / "not_a_model.json") << "[1, 2]";
+  r = run_cli(kInfer + " --weights " + dir_.string() + " --height-model " + (dir_ / "not_a_model.json").string() + " -o " +
+              (dir_ / "out").string() + " " + (dir_ / "data" / "clouds" / "synth_0000.lcloud").string());
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.err, HasSubstr("not_a_model.json: not an lc2wf-height-model file")) << r.err;
 }
 
 TEST_F(CliContract, InferUsageAndDataErrors) {

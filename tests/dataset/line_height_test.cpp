@@ -1,0 +1,148 @@
+// A building's height from its line statistics (dataset/photo/line_height.h): the statistics do not change
+// with the cloud's scale or place, a model fitted on hand-made facades (windows of one size, buildings of
+// 1-15 storeys) reads the height of new ones back from their windows, and bad model files are refused.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "dataset/photo/line_height.h"
+
+namespace lc2wf {
+namespace {
+
+// A box building of `storeys` storeys on a w x d footprint: eaves, base, corners, and on every wall a row of
+// 1.2 x 1.3 m windows per storey (sill, lintel, two sides, ends jittered by triangulation noise).
+std::vector<Segment3> windowed_box(int storeys, double storey_m, double w, double d, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> noise(0.0, 0.03);
+  const double h = storeys * storey_m;
+  std::vector<Segment3> s;
+  const Vec3 corners[4] = {{0, 0, 0}, {w, 0, 0}, {w, d, 0}, {0, d, 0}};
+  for (int c = 0; c < 4; ++c) {
+    const Vec3 a = corners[c], b = corners[(c + 1) % 4], up(0, 0, h);
+    s.push_back({a, b});
+    s.push_back({a + up, b + up});
+    s.push_back({a, a + up});
+    const Vec3 along = (b - a).normalized();
+    const double len = (b - a).norm();
+    for (int k = 0; k < storeys; ++k)
+      for (double x = 1.0; x + 1.2 < len - 0.5; x += 2.8) {
+        const double sill = k * storey_m + 0.9, lintel = sill + 1.3;
+        const Vec3 p = a + x * along, q = a + (x + 1.2) * along;
+        for (double z : {sill, lintel}) s.push_back({p + Vec3(0, 0, z + noise(rng)), q + Vec3(0, 0, z + noise(rng))});
+        for (const Vec3& side : {p, q}) s.push_back({side + Vec3(0, 0, sill + noise(rng)), side + Vec3(0, 0, lintel + noise(rng))});
+      }
+  }
+  return s;
+}
+
+std::vector<Segment3> moved(const std::vector<Segment3>& s, double scale, const Vec3& shift) {
+  std::vector<Segment3> out;
+  for (const Segment3& x : s) out.push_back({scale * x.a + shift, scale * x.b + shift});
+  return out;
+}
+
+TEST(LineHeight, StatisticsIgnoreScaleAndPlace) {
+  const std::vector<Segment3> s = windowed_box(4, 3.1, 17, 9, 3);
+  const LineStatistics a = line_statistics(s), b = line_statistics(moved(s, 0.037, Vec3(512, -80, 3)));
+  ASSERT_EQ(a.features.size(), static_cast<size_t>(kLineStatisticsSize));
+  EXPECT_NEAR(b.height, 0.037 * a.height, 1e-9 * a.height);
+  for (int k = 0; k < kLineStatisticsSize; ++k) EXPECT_NEAR(a.features[k], b.features[k], 1e-9) << "feature " << k;
+  double shares = 0;
+  for (int k = 0; k < 3 * kLineLengthBins; ++k) shares += a.features[k];
+  EXPECT_NEAR(shares, 1.0, 1e-9);  // every line falls in one length bin of one direction class
+}
+
+TEST(LineHeight, LinesFallInTheirDirectionAndLengthBins) {
+  std::vector<Segment3> s;
+  for (int i = 0; i < 10; ++i) s.push_back({Vec3(i, 0, 0), Vec3(i, 0, 8)});    // full height, vertical: the last bin
+  for (int i = 0; i < 10; ++i) s.push_back({Vec3(0, i, 4), Vec3(2, i, 4)});    // a quarter of it, horizontal
+  const LineStatistics st = line_statistics(s, 0.0, 1.0);
+  EXPECT_DOUBLE_EQ(st.height, 8.0);
+  EXPECT_DOUBLE_EQ(st.features[kLineLengthBins - 1], 0.5);
+  EXPECT_DOUBLE_EQ(st.features[kLineLengthBins + 10], 0.5);  // log2(1/4) = -2: bin (−2 + 7) / 0.5
+}
+
+TEST(LineHeight, AModelFittedOnFacadesReadsTheHeightFromTheWindows) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> storeys(1, 15);
+  std::uniform_real_distribution<double> storey_m(2.8, 3.4), side(8, 40), frame(0.01, 100);
+  auto sample = [&](unsigned seed, std::vector<LineStatistics>* clouds, std::vector<double>* heights) {
+    const std::vector<Segment3> metric = windowed_box(storeys(rng), storey_m(rng), side(rng), side(rng), seed);
+    const LineStatistics m = line_statistics(metric);
+    clouds->push_back(line_statistics(moved(metric, frame(rng), Vec3(3, 4, 5))));  // what the model sees: any frame
+    heights->push_back(m.height);
+  };
+  std::vector<LineStatistics> train, test;
+  std::vector<double> train_h, test_h;
+  for (unsigned i = 0; i < 60; ++i) sample(i, &train, &train_h);
+  for (unsigned i = 100; i < 120; ++i) sample(i, &test, &test_h);
+  const HeightModel m = fit_height_model(train, train_h);
+  EXPECT_EQ(m.training_clouds, 60);
+  std::vector<double> errors;
+  for (size_t i = 0; i < test.size(); ++i) errors.push_back(std::abs(m.predict_height_m(test[i]) / test_h[i] - 1));
+  std::sort(errors.begin(), errors.end());
+  EXPECT_LT(errors[errors.size() / 2], 0.15);
+  // The heights span 2.8-51 m: the best constant guess (the training heights' median) misses by far more.
+  std::vector<double> sorted_h = train_h, guess_errors;
+  std::sort(sorted_h.begin(), sorted_h.end());
+  for (double h : test_h) guess_errors.push_back(std::abs(sorted_h[sorted_h.size() / 2] / h - 1));
+  std::sort(guess_errors.begin(), guess_errors.end());
+  EXPECT_GT(guess_errors[guess_errors.size() / 2], 0.3);
+  std::printf("height from the windows: median error %.3f (a constant guess %.3f)\n", errors[errors.size() / 2], guess_errors[guess_errors.size() / 2]);
+  EXPECT_LT(m.cv_median_error, 0.15);
+  // Written and read back, the model predicts the same.
+  const auto path = std::filesystem::path(testing::TempDir()) / "height_model_test.json";
+  write_height_model(path, m);
+  const HeightModel back = read_height_model(path);
+  EXPECT_NEAR(back.predict_height_m(test[0]), m.predict_height_m(test[0]), 1e-9 * test_h[0]);
+  std::filesystem::remove(path);
+}
+
+TEST(LineHeight, BadInputsAndModelFilesAreRefused) {
+  EXPECT_THROW(line_statistics({{Vec3(0, 0, 0), Vec3(1, 0, 1)}}), std::invalid_argument);  // too few lines
+  std::vector<Segment3> flat;
+  for (int i = 0; i < 20; ++i) flat.push_back({Vec3(i, 0, 0), Vec3(i, 1, 0)});
+  EXPECT_THROW(line_statistics(flat), std::invalid_argument);  // no height
+  HeightFitOptions bad;
+  bad.folds = 1;
+  EXPECT_THROW(bad.Check(), std::invalid_argument);
+  EXPECT_THROW(fit_height_model({}, {}), std::invalid_argument);
+
+  HeightModel m;
+  m.mean.assign(kLineStatisticsSize, 0.0), m.stddev.assign(kLineStatisticsSize, 1.0), m.weights.assign(kLineStatisticsSize, 0.0);
+  m.bias = std::log(10.0);
+  nlohmann::json j = height_model_json(m);
+  EXPECT_NO_THROW(height_model_from_json(j, "ok.json"));
+  auto refused = [](nlohmann::json x, const std::string& what) {
+    try {
+      height_model_from_json(x, "model.json");
+      ADD_FAILURE() << what << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("model.json"), std::string::npos) << e.what();
+    }
+  };
+  nlohmann::json x = j;
+  x["format"] = "lc2wf-model-card";
+  refused(x, "another format");
+  x = j, x["weights"].erase(0);
+  refused(x, "a short weight vector");
+  x = j, x["stddev"][3] = 0.0;
+  refused(x, "a zero stddev");
+  x = j, x["bias"] = 40.0;
+  refused(x, "a height of e^40 m");
+  x = j, x.erase("mean");
+  refused(x, "a missing key");
+  const auto path = std::filesystem::path(testing::TempDir()) / "height_model_garbage.json";
+  std::ofstream(path) << "{ not json";
+  EXPECT_THROW(read_height_model(path), std::invalid_argument);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace lc2wf
