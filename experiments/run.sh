@@ -98,6 +98,9 @@
 #                 training buildings, every 10th real validation building) -> runs/light2
 #   light2-train [FLAGS...]  experiments/configs/light2.json: light.json's schedule on it -> runs/light2-model
 #   light2-val WEIGHTS TAG [FLAGS...]  vAP / sAP / WED on its four validation parts -> runs/light2-val/TAG
+# The height model that scales photo clouds and line maps nothing else scales (steps/height.sh):
+#   height-model  more photo-look raster clouds of training buildings, then lc2wf-fit-height on them and the
+#                 light2 mix's real and generated training clouds -> runs/height/height.json
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -117,7 +120,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val height-model snapshot restore)
 
 step=${1:-}
 case $step in

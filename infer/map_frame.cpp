@@ -101,8 +101,8 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
       scale_text += ", building height " + format_number("%.1f", f.frame.line_height_m) + " m read from the lines (+-" +
                     format_number("%.0f", 100 * o.height_model->cv_median_error) + " % median)";
   }
-  if (o.height_model && (f.frame.needs_scale_search || f.frame.scale_source == "line statistics"))
-    rep["line_statistics"] = line_height_json(f.frame.line_height_m, f.frame.line_height_why_not, *o.height_model);
+  if (o.height_model && (f.frame.needs_scale_search || f.frame.scale_source == "storeys" || f.frame.scale_source == "line statistics"))
+    rep["line_statistics"] = line_height_json(f.frame, *o.height_model);
   rep["up_source"] = o.up == "auto" ? f.frame.up_source : "given " + o.up;
   rep["up_input"] = vec_json(f.frame.up_input);
   rep["scale_source"] = f.frame.scale_source;

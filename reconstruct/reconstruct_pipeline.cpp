@@ -290,8 +290,8 @@ class ReconstructRun {
     if (search_) report_["frame"]["scale_search"] = scale_search_json(*search_, o_.scale_search);
     if (search_ || frame_.scale_source == "storeys" || frame_.scale_source == "line statistics")
       report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
-    if (height_model_ && (search_ || frame_.scale_source == "line statistics"))
-      report_["frame"]["line_statistics"] = line_height_json(frame_.line_height_m, frame_.line_height_why_not, *height_model_);
+    if (height_model_ && (search_ || frame_.scale_source == "storeys" || frame_.scale_source == "line statistics"))
+      report_["frame"]["line_statistics"] = line_height_json(frame_, *height_model_);
     log_.done(seconds_, search_ ? "building height " + format_number("%.1f", search_->height_m) + " m (" +
                                       format_number("%.2f", search_ratio(*search_)) + "x the runner-up's score at " +
                                       format_number("%.1f", search_->runner_up_height_m) + " m), " +
@@ -306,7 +306,8 @@ class ReconstructRun {
                                                  format_number("%.0f", 100 * fo.storeys.storey_uncertainty) + " %"
                                        : frame_.scale_source == "line statistics"
                                            ? ", building height " + format_number("%.1f", frame_.line_height_m) + " m read from the lines (+-" +
-                                                 format_number("%.0f", 100 * height_model_->cv_median_error) + " % median)"
+                                                 format_number("%.0f", 100 * height_model_->cv_median_error) + " % median)" +
+                                                 (frame_.storeys_overruled.empty() ? std::string() : "; " + frame_.storeys_overruled)
                                            : ""));
   }
 

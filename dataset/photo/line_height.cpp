@@ -21,30 +21,36 @@ constexpr double kLowestLog2 = -7.0, kBinLog2 = 0.5;
 
 double relative_error(double predicted_log, double true_log) { return std::abs(std::exp(predicted_log - true_log) - 1.0); }
 
-struct Standardised {
-  Eigen::MatrixXd X;  // rows = clouds
-  Eigen::VectorXd mean, stddev;
-};
-
-Standardised standardise(const Eigen::MatrixXd& raw) {
-  Standardised s;
-  s.mean = raw.colwise().mean();
-  s.stddev = ((raw.rowwise() - s.mean.transpose()).array().square().colwise().mean()).sqrt().matrix().transpose();
-  for (Eigen::Index k = 0; k < s.stddev.size(); ++k) s.stddev[k] += 1e-9;  // a constant feature gets weight 0, not NaN
-  s.X = (raw.rowwise() - s.mean.transpose()).array().rowwise() / s.stddev.transpose().array();
-  return s;
+// Mean and (population) standard deviation of each statistic over `rows`; a constant one gets 1, not 0.
+void standardisation(const std::vector<const std::vector<double>*>& rows, std::vector<double>* mean, std::vector<double>* stddev) {
+  mean->assign(kLineStatisticsSize, 0.0), stddev->assign(kLineStatisticsSize, 0.0);
+  for (const auto* r : rows)
+    for (int d = 0; d < kLineStatisticsSize; ++d) (*mean)[d] += (*r)[d] / static_cast<double>(rows.size());
+  for (const auto* r : rows)
+    for (int d = 0; d < kLineStatisticsSize; ++d) (*stddev)[d] += std::pow((*r)[d] - (*mean)[d], 2) / static_cast<double>(rows.size());
+  for (double& v : *stddev) v = v > 1e-18 ? std::sqrt(v) : 1.0;
 }
 
-// Ridge on standardised features; the bias is not penalised (it is the mean target).
-void solve_ridge(const Eigen::MatrixXd& X, const Eigen::VectorXd& y, double lambda, Eigen::VectorXd* w, double* bias) {
-  const Eigen::Index n = X.rows(), d = X.cols();
-  Eigen::MatrixXd A(n, d + 1);
-  A << X, Eigen::VectorXd::Ones(n);
-  Eigen::MatrixXd G = A.transpose() * A;
-  for (Eigen::Index k = 0; k < d; ++k) G(k, k) += lambda;
-  const Eigen::VectorXd sol = G.ldlt().solve(A.transpose() * y);
-  *w = sol.head(d);
-  *bias = sol[d];
+// The median log height of the k clouds nearest `z` (standardised); ties go to the earlier cloud.
+double nearest_median(const std::vector<std::vector<double>>& clouds, const std::vector<double>& log_heights, const std::vector<double>& z, int k) {
+  std::vector<std::pair<double, size_t>> d(clouds.size());
+  for (size_t i = 0; i < clouds.size(); ++i) {
+    double sum = 0;
+    for (int c = 0; c < kLineStatisticsSize; ++c) sum += (clouds[i][c] - z[c]) * (clouds[i][c] - z[c]);
+    d[i] = {sum, i};
+  }
+  const size_t kk = std::min(clouds.size(), static_cast<size_t>(k));
+  std::partial_sort(d.begin(), d.begin() + static_cast<long>(kk), d.end());
+  std::vector<double> h;
+  for (size_t j = 0; j < kk; ++j) h.push_back(log_heights[d[j].second]);
+  std::sort(h.begin(), h.end());
+  return kk % 2 ? h[kk / 2] : 0.5 * (h[kk / 2 - 1] + h[kk / 2]);
+}
+
+std::vector<double> standardised(const std::vector<double>& f, const std::vector<double>& mean, const std::vector<double>& stddev) {
+  std::vector<double> z(f.size());
+  for (size_t c = 0; c < f.size(); ++c) z[c] = (f[c] - mean[c]) / stddev[c];
+  return z;
 }
 
 }  // namespace
@@ -82,72 +88,81 @@ LineStatistics line_statistics(const std::vector<Segment3>& segments, double gro
 }
 
 double HeightModel::predict_height_m(const LineStatistics& s) const {
-  if (s.features.size() != weights.size())
-    throw std::invalid_argument("height model: " + std::to_string(weights.size()) + " weights for " + std::to_string(s.features.size()) + " features");
-  double log_h = bias;
-  for (size_t k = 0; k < weights.size(); ++k) log_h += weights[k] * (s.features[k] - mean[k]) / stddev[k];
-  return std::exp(log_h);
+  if (s.features.size() != mean.size())
+    throw std::invalid_argument("height model: " + std::to_string(mean.size()) + " statistics expected, got " + std::to_string(s.features.size()));
+  return std::exp(nearest_median(clouds, log_heights, standardised(s.features, mean, stddev), k));
 }
 
 void HeightModel::Check() const {
-  if (weights.size() != static_cast<size_t>(kLineStatisticsSize))
-    throw std::invalid_argument("height model: weights has " + std::to_string(weights.size()) + " values, expected " + std::to_string(kLineStatisticsSize));
-  if (mean.size() != weights.size() || stddev.size() != weights.size())
-    throw std::invalid_argument("height model: mean, stddev and weights must have the same length");
-  for (size_t k = 0; k < weights.size(); ++k) {
-    if (!std::isfinite(mean[k]) || !std::isfinite(weights[k])) throw std::invalid_argument("height model: a non-finite mean or weight");
-    if (!(stddev[k] > 0) || !std::isfinite(stddev[k])) throw std::invalid_argument("height model: stddev must be positive and finite");
+  if (mean.size() != static_cast<size_t>(kLineStatisticsSize) || stddev.size() != mean.size())
+    throw std::invalid_argument("height model: mean and stddev need " + std::to_string(kLineStatisticsSize) + " values each");
+  for (size_t c = 0; c < mean.size(); ++c) {
+    if (!std::isfinite(mean[c])) throw std::invalid_argument("height model: a non-finite mean");
+    if (!(stddev[c] > 0) || !std::isfinite(stddev[c])) throw std::invalid_argument("height model: stddev must be positive and finite");
   }
-  // exp(bias) is the height at the mean features: outside 0.1-1000 m the file is not a building model.
-  if (!(bias > std::log(0.1) && bias < std::log(1000.0))) throw std::invalid_argument("height model: bias (log metres) out of range");
+  if (clouds.empty() || clouds.size() != log_heights.size()) throw std::invalid_argument("height model: one height per training cloud, and at least one");
+  if (k < 1 || static_cast<size_t>(k) > clouds.size()) throw std::invalid_argument("height model: k must be in [1, training clouds]");
+  for (size_t i = 0; i < clouds.size(); ++i) {
+    if (clouds[i].size() != mean.size()) throw std::invalid_argument("height model: training cloud " + std::to_string(i) + " has the wrong number of statistics");
+    for (double v : clouds[i])
+      if (!std::isfinite(v)) throw std::invalid_argument("height model: training cloud " + std::to_string(i) + " has a non-finite statistic");
+    // 0.1 m to 10 km: anything else is not a building's height.
+    if (!(log_heights[i] > std::log(0.1) && log_heights[i] < std::log(1e4)))
+      throw std::invalid_argument("height model: training height " + std::to_string(i) + " out of range");
+  }
 }
 
 void HeightFitOptions::Check() const {
-  if (lambdas.empty()) throw std::invalid_argument("HeightFitOptions.lambdas must not be empty");
-  for (double l : lambdas)
-    if (!(l >= 0) || !std::isfinite(l)) throw std::invalid_argument("HeightFitOptions.lambdas must be finite and >= 0");
+  if (ks.empty()) throw std::invalid_argument("HeightFitOptions.ks must not be empty");
+  for (int k : ks)
+    if (k < 1 || k > 1000) throw std::invalid_argument("HeightFitOptions.ks must be in [1, 1000]");
   if (folds < 2 || folds > 100) throw std::invalid_argument("HeightFitOptions.folds must be in [2, 100]");
 }
 
 HeightModel fit_height_model(const std::vector<LineStatistics>& clouds, const std::vector<double>& heights_m, const HeightFitOptions& o) {
   o.Check();
   if (clouds.size() != heights_m.size()) throw std::invalid_argument("fit_height_model: one height per cloud");
-  if (clouds.size() < static_cast<size_t>(2 * o.folds)) throw std::invalid_argument("fit_height_model: at least 2 clouds per fold");
-  const Eigen::Index n = static_cast<Eigen::Index>(clouds.size()), d = kLineStatisticsSize;
-  Eigen::MatrixXd raw(n, d);
-  Eigen::VectorXd y(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (clouds[i].features.size() != static_cast<size_t>(d)) throw std::invalid_argument("fit_height_model: wrong feature count");
+  const size_t n = clouds.size();
+  const int max_k = *std::max_element(o.ks.begin(), o.ks.end());
+  if (n < static_cast<size_t>(o.folds) * static_cast<size_t>(max_k + 1))
+    throw std::invalid_argument("fit_height_model: " + std::to_string(n) + " clouds are too few for " + std::to_string(o.folds) +
+                                " folds of more than " + std::to_string(max_k) + " (the largest k)");
+  std::vector<double> log_h(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (clouds[i].features.size() != static_cast<size_t>(kLineStatisticsSize)) throw std::invalid_argument("fit_height_model: wrong number of statistics");
     if (!(heights_m[i] > 0) || !std::isfinite(heights_m[i])) throw std::invalid_argument("fit_height_model: heights must be positive");
-    for (Eigen::Index k = 0; k < d; ++k) raw(i, k) = clouds[i].features[k];
-    y[i] = std::log(heights_m[i]);
+    log_h[i] = std::log(heights_m[i]);
+  }
+  auto fold_of = [&](size_t i) { return static_cast<int>(i * static_cast<size_t>(o.folds) / n); };
+  // Per fold: the standardisation and the standardised training and held-out clouds, shared by every k.
+  std::vector<std::vector<std::vector<double>>> train(o.folds), held(o.folds);
+  std::vector<std::vector<double>> train_h(o.folds), held_h(o.folds);
+  for (int f = 0; f < o.folds; ++f) {
+    std::vector<const std::vector<double>*> rows;
+    for (size_t i = 0; i < n; ++i)
+      if (fold_of(i) != f) rows.push_back(&clouds[i].features);
+    std::vector<double> mean, stddev;
+    standardisation(rows, &mean, &stddev);
+    for (size_t i = 0; i < n; ++i) {
+      auto& into = fold_of(i) == f ? held[f] : train[f];
+      into.push_back(standardised(clouds[i].features, mean, stddev));
+      (fold_of(i) == f ? held_h[f] : train_h[f]).push_back(log_h[i]);
+    }
   }
   HeightModel m;
-  double best_median = INFINITY;
-  for (double lambda : o.lambdas) {
+  double best = INFINITY;
+  for (int k : o.ks) {
     std::vector<double> errors;
-    for (int f = 0; f < o.folds; ++f) {
-      std::vector<Eigen::Index> train, held;
-      for (Eigen::Index i = 0; i < n; ++i) (i % o.folds == f ? held : train).push_back(i);
-      const Standardised s = standardise(raw(train, Eigen::all));
-      Eigen::VectorXd w;
-      double b = 0;
-      solve_ridge(s.X, y(train), lambda, &w, &b);
-      for (Eigen::Index i : held) {
-        const Eigen::VectorXd z = (raw.row(i).transpose() - s.mean).cwiseQuotient(s.stddev);
-        errors.push_back(relative_error(z.dot(w) + b, y[i]));
-      }
-    }
+    for (int f = 0; f < o.folds; ++f)
+      for (size_t j = 0; j < held[f].size(); ++j) errors.push_back(relative_error(nearest_median(train[f], train_h[f], held[f][j], k), held_h[f][j]));
     const double median = quantile(errors, 0.5);
-    if (median < best_median) best_median = median, m.lambda = lambda, m.cv_median_error = median, m.cv_p90_error = quantile(errors, 0.9);
+    if (median < best) best = median, m.k = k, m.cv_median_error = median, m.cv_p90_error = quantile(errors, 0.9);
   }
-  const Standardised s = standardise(raw);
-  Eigen::VectorXd w;
-  solve_ridge(s.X, y, m.lambda, &w, &m.bias);
-  m.mean.assign(s.mean.data(), s.mean.data() + d);
-  m.stddev.assign(s.stddev.data(), s.stddev.data() + d);
-  m.weights.assign(w.data(), w.data() + d);
-  m.training_clouds = static_cast<int>(n);
+  std::vector<const std::vector<double>*> rows;
+  for (const LineStatistics& c : clouds) rows.push_back(&c.features);
+  standardisation(rows, &m.mean, &m.stddev);
+  for (const LineStatistics& c : clouds) m.clouds.push_back(standardised(c.features, m.mean, m.stddev));
+  m.log_heights = log_h;
   m.Check();
   return m;
 }
@@ -155,41 +170,29 @@ HeightModel fit_height_model(const std::vector<LineStatistics>& clouds, const st
 nlohmann::json height_model_json(const HeightModel& m) {
   return {{"format", "lc2wf-height-model"},
           {"version", 1},
-          {"features", "line-statistics-v1"},
+          {"statistics", "line-statistics-v1"},
+          {"k", m.k},
+          {"cv_median_error", m.cv_median_error},
+          {"cv_p90_error", m.cv_p90_error},
           {"mean", m.mean},
           {"stddev", m.stddev},
-          {"weights", m.weights},
-          {"bias", m.bias},
-          {"lambda", m.lambda},
-          {"training_clouds", m.training_clouds},
-          {"cv_median_error", m.cv_median_error},
-          {"cv_p90_error", m.cv_p90_error}};
-}
-
-nlohmann::json line_height_json(double height_m, const std::string& why_not, const HeightModel& m) {
-  nlohmann::json j = {{"used", why_not.empty() && height_m > 0},
-                      {"cv_median_error", m.cv_median_error},
-                      {"cv_p90_error", m.cv_p90_error},
-                      {"training_clouds", m.training_clouds}};
-  if (height_m > 0) j["height_m"] = height_m;
-  if (!why_not.empty()) j["why_not"] = why_not;
-  return j;
+          {"log_heights", m.log_heights},
+          {"clouds", m.clouds}};
 }
 
 HeightModel height_model_from_json(const nlohmann::json& j, const std::string& source) {
   try {
     if (!j.is_object() || j.value("format", "") != "lc2wf-height-model") throw std::invalid_argument("not an lc2wf-height-model file");
     if (j.value("version", 0) != 1) throw std::invalid_argument("unsupported version (1 expected)");
-    if (j.value("features", "") != "line-statistics-v1") throw std::invalid_argument("unknown features (line-statistics-v1 expected)");
+    if (j.value("statistics", "") != "line-statistics-v1") throw std::invalid_argument("unknown statistics (line-statistics-v1 expected)");
     HeightModel m;
-    m.mean = j.at("mean").get<std::vector<double>>();
-    m.stddev = j.at("stddev").get<std::vector<double>>();
-    m.weights = j.at("weights").get<std::vector<double>>();
-    m.bias = j.at("bias").get<double>();
-    m.lambda = j.value("lambda", 0.0);
-    m.training_clouds = j.value("training_clouds", 0);
+    m.k = j.at("k").get<int>();
     m.cv_median_error = j.value("cv_median_error", 0.0);
     m.cv_p90_error = j.value("cv_p90_error", 0.0);
+    m.mean = j.at("mean").get<std::vector<double>>();
+    m.stddev = j.at("stddev").get<std::vector<double>>();
+    m.log_heights = j.at("log_heights").get<std::vector<double>>();
+    m.clouds = j.at("clouds").get<std::vector<std::vector<double>>>();
     m.Check();
     return m;
   } catch (const nlohmann::json::exception& e) {
@@ -219,7 +222,7 @@ std::optional<HeightModel> choose_height_model(const std::string& choice, const 
 
 void write_height_model(const std::filesystem::path& path, const HeightModel& m) {
   m.Check();
-  write_text_atomically(path, json_text(height_model_json(m), 1) + "\n");
+  write_text_atomically(path, json_text(height_model_json(m)) + "\n");  // one line: a thousand clouds of statistics
 }
 
 }  // namespace lc2wf

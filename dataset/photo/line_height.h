@@ -1,9 +1,9 @@
 // A building's height from the statistics of its lines, for photo clouds and line maps that no GPS, known
 // distance, building height or storey rhythm scales. Windows, doors, storeys, roof tiles and eaves have sizes
 // of their own that do not grow with the building, so the lengths of a cloud's lines relative to its height
-// (by direction) and its footprint's proportions say how tall it is. A ridge regression from those statistics
-// to log(height), fitted on metric clouds of real and generated buildings of 3-60 m (lc2wf-fit-height), reads
-// it back; experiments/README.md, "Height from line statistics", says how well.
+// (by direction) and its footprint's proportions say how tall it is. The heights of the nearest clouds in
+// those statistics among metric clouds of real and generated buildings of 3-60 m (lc2wf-fit-height) read it
+// back; experiments/README.md, "Height from line statistics", says how well.
 #pragma once
 
 #include <filesystem>
@@ -31,20 +31,24 @@ struct LineStatistics {
 // `segments`: z up, any scale and origin. Throws std::invalid_argument for fewer than 10 lines or no height.
 LineStatistics line_statistics(const std::vector<Segment3>& segments, double ground_quantile = 0.01, double top_quantile = 0.99);
 
+// The training clouds' statistics and heights: a cloud is as tall as the median of its k nearest training
+// clouds (standardised statistics, Euclidean). Chosen over a ridge regression on validation clouds: photo
+// and clean clouds lie apart in these statistics, and one linear map served only one of the looks
+// (experiments/README.md, "Height from line statistics").
 struct HeightModel {
-  std::vector<double> mean, stddev;  // the features' standardisation
-  std::vector<double> weights;       // on standardised features
-  double bias = 0;                   // log(height in metres) at the mean features
-  double lambda = 0;                 // the ridge penalty the cross-validation chose
-  int training_clouds = 0;
+  std::vector<double> mean, stddev;       // the statistics' standardisation, kLineStatisticsSize each
+  std::vector<std::vector<double>> clouds;  // standardised statistics of the training clouds
+  std::vector<double> log_heights;        // their heights, log metres
+  int k = 5;                              // neighbours asked
   double cv_median_error = 0, cv_p90_error = 0;  // |predicted / true height - 1| over the folds
-  double predict_height_m(const LineStatistics& s) const;
+  double predict_height_m(const LineStatistics& s) const;  // always within the training heights
   void Check() const;  // throws std::invalid_argument naming what is wrong (sizes, non-finite values)
 };
 
 struct HeightFitOptions {
-  std::vector<double> lambdas = {1, 3, 10, 30, 100, 300};  // tried by cross-validation; the lowest median error wins
-  int folds = 5;                                           // clouds go to folds by their index, i % folds
+  std::vector<int> ks = {3, 5, 7, 9, 11, 15};  // tried by cross-validation; the lowest median error wins
+  int folds = 5;  // contiguous blocks of the clouds in their given order, so buildings of one tile or source
+                  // (adjacent by name) are held out together rather than vouching for each other
   void Check() const;
 };
 
@@ -52,9 +56,6 @@ struct HeightFitOptions {
 HeightModel fit_height_model(const std::vector<LineStatistics>& clouds, const std::vector<double>& heights_m, const HeightFitOptions& options = {});
 
 nlohmann::json height_model_json(const HeightModel& m);
-// What report.json says of a height read by `m` (or why none was): the height and the model's
-// cross-validated errors, its uncertainty.
-nlohmann::json line_height_json(double height_m, const std::string& why_not, const HeightModel& m);
 // Throws std::invalid_argument naming `source` and the problem.
 HeightModel height_model_from_json(const nlohmann::json& j, const std::string& source);
 HeightModel read_height_model(const std::filesystem::path& path);

@@ -44,6 +44,8 @@ void MetricFrameOptions::Check() const {
   if (gps_to_enu && !(gps_to_enu->scale > 0 && std::isfinite(gps_to_enu->scale) && gps_to_enu->R.allFinite()))
     throw std::invalid_argument("MetricFrameOptions.gps_to_enu is not a similarity");
   if (height_model) height_model->Check();
+  if (!(max_storey_disagreement >= 1) || !std::isfinite(max_storey_disagreement))
+    throw std::invalid_argument("MetricFrameOptions.max_storey_disagreement must be >= 1");
   if (!(ground_quantile >= 0 && ground_quantile < top_quantile && top_quantile <= 1))
     throw std::invalid_argument("MetricFrameOptions: need 0 <= ground_quantile < top_quantile <= 1");
   if (up == UpSource::kGiven && !(given_up.norm() > 0)) throw std::invalid_argument("MetricFrameOptions.given_up is zero");
@@ -155,24 +157,48 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
       scale = o.building_height_m / f.height_input, f.scale_source = "building height";
     } else {
       const std::vector<Segment3> upright = upright_lines(storey_lines ? *storey_lines : segments, R, ground);
-      if (f.storeys = estimate_storey_scale(upright, f.height_input, o.storeys); f.storeys.found) {
-        scale = f.storeys.metres_per_unit, f.scale_source = "storeys";
-      } else if (o.height_model) {
+      f.storeys = estimate_storey_scale(upright, f.height_input, o.storeys);
+      double model_scale = 0;
+      if (o.height_model) {
         try {
           const LineStatistics stats = line_statistics(upright, o.ground_quantile, o.top_quantile);
           f.line_height_m = o.height_model->predict_height_m(stats);
-          scale = f.line_height_m / stats.height, f.scale_source = "line statistics";
+          model_scale = f.line_height_m / stats.height;
         } catch (const std::invalid_argument& e) {
           f.line_height_why_not = e.what();
         }
       }
-      if (scale == 0) scale = 1.0 / f.height_input, f.scale_source = "scale search", f.needs_scale_search = true;
+      const double disagreement = model_scale > 0 && f.storeys.found
+                                      ? std::max(f.storeys.metres_per_unit / model_scale, model_scale / f.storeys.metres_per_unit)
+                                      : 1.0;
+      if (f.storeys.found && disagreement <= o.max_storey_disagreement) {
+        scale = f.storeys.metres_per_unit, f.scale_source = "storeys";
+      } else if (model_scale > 0) {
+        if (f.storeys.found)
+          f.storeys_overruled = "the storeys make the building " + std::to_string(disagreement) + "x " +
+                                (f.storeys.metres_per_unit > model_scale ? "taller" : "lower") + " than the height model reads";
+        scale = model_scale, f.scale_source = "line statistics";
+      } else {
+        scale = 1.0 / f.height_input, f.scale_source = "scale search", f.needs_scale_search = true;
+      }
     }
   }
   f.to_metric.scale = scale;
   f.to_metric.R = R;
   f.to_metric.t = -scale * Vec3(quantile(mid_x, 0.5), quantile(mid_y, 0.5), ground);
   return f;
+}
+
+nlohmann::json line_height_json(const MetricFrame& f, const HeightModel& m) {
+  nlohmann::json j = {{"used", f.scale_source == "line statistics"},
+                      {"cv_median_error", m.cv_median_error},
+                      {"cv_p90_error", m.cv_p90_error},
+                      {"training_clouds", m.clouds.size()},
+                      {"neighbours", m.k}};
+  if (f.line_height_m > 0) j["height_m"] = f.line_height_m;
+  if (!f.line_height_why_not.empty()) j["why_not"] = f.line_height_why_not;
+  if (!f.storeys_overruled.empty()) j["storeys_overruled"] = f.storeys_overruled;
+  return j;
 }
 
 }  // namespace lc2wf

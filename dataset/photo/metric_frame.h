@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "dataset/geometry/geometry.h"
 #include "dataset/photo/line_height.h"
 #include "dataset/photo/storey_scale.h"
@@ -49,6 +51,9 @@ struct MetricFrameOptions {
   double building_height_m = 0.0;            // > 0: the cloud's height above its ground is this many metres
   StoreyScaleOptions storeys;                // after the building height; storey_height_m = 0 skips it
   std::optional<HeightModel> height_model;   // after the storeys; none: the scale search
+  // Storeys whose building is more than this factor taller or lower than the height model reads are a wrong
+  // rhythm (clean clouds' texture-free walls, a half or double period), and the model's height is used.
+  double max_storey_disagreement = 2.0;
   double ground_quantile = 0.01;  // of the endpoint heights
   double top_quantile = 0.99;
   void Check() const;
@@ -63,12 +68,17 @@ struct MetricFrame {
   StoreyScale storeys;            // the storey estimate, when nothing before it gave the scale
   double line_height_m = 0;       // scale source "line statistics": the height the model read from the lines
   std::string line_height_why_not;  // when the model was given but could not be used
+  std::string storeys_overruled;    // when the storeys were found but disagreed with the height model
   double height_input = 0.0;      // cloud height above its ground, input units
   // Scale source "scale search": no evidence fixed the scale, so to_metric makes the cloud's height 1; the
   // caller multiplies by the height the search finds (scaled_by).
   bool needs_scale_search = false;
   MetricFrame scaled_by(double factor) const;  // the same frame with metric coordinates x factor
 };
+
+// What report.json says of the height model's reading (`frame.line_statistics`): the height read, whether it
+// was used, why not or which storeys it overruled, and the model's cross-validated errors (its uncertainty).
+nlohmann::json line_height_json(const MetricFrame& f, const HeightModel& m);
 
 // `cameras`: the registered cameras (input frame), `segments`: the 3D lines (input frame), `storey_lines`:
 // the lines the storey rhythm is read from (default `segments`; a photo cloud's frame lines are only its

@@ -1,6 +1,7 @@
 // A building's height from its line statistics (dataset/photo/line_height.h): the statistics do not change
 // with the cloud's scale or place, a model fitted on hand-made facades (windows of one size, buildings of
-// 1-15 storeys) reads the height of new ones back from their windows, and bad model files are refused.
+// 1-15 storeys) reads the height of new ones back from their windows, never beyond the heights it was fitted
+// on, and bad model files are refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <random>
 
 #include "dataset/photo/line_height.h"
+#include "tests/common/constant_height_model.h"
 
 namespace lc2wf {
 namespace {
@@ -80,10 +82,10 @@ TEST(LineHeight, AModelFittedOnFacadesReadsTheHeightFromTheWindows) {
   };
   std::vector<LineStatistics> train, test;
   std::vector<double> train_h, test_h;
-  for (unsigned i = 0; i < 60; ++i) sample(i, &train, &train_h);
+  for (unsigned i = 0; i < 100; ++i) sample(i, &train, &train_h);
   for (unsigned i = 100; i < 120; ++i) sample(i, &test, &test_h);
   const HeightModel m = fit_height_model(train, train_h);
-  EXPECT_EQ(m.training_clouds, 60);
+  EXPECT_EQ(m.clouds.size(), 100u);
   std::vector<double> errors;
   for (size_t i = 0; i < test.size(); ++i) errors.push_back(std::abs(m.predict_height_m(test[i]) / test_h[i] - 1));
   std::sort(errors.begin(), errors.end());
@@ -97,10 +99,17 @@ TEST(LineHeight, AModelFittedOnFacadesReadsTheHeightFromTheWindows) {
   std::printf("height from the windows: median error %.3f (a constant guess %.3f)\n", errors[errors.size() / 2], guess_errors[guess_errors.size() / 2]);
   EXPECT_LT(m.cv_median_error, 0.15);
   // Written and read back, the model predicts the same.
-  const auto path = std::filesystem::path(testing::TempDir()) / "height_model_test.json";
+  const auto path = std::filesystem::path(::testing::TempDir()) / "height_model_test.json";
   write_height_model(path, m);
   const HeightModel back = read_height_model(path);
-  EXPECT_NEAR(back.predict_height_m(test[0]), m.predict_height_m(test[0]), 1e-9 * test_h[0]);
+  for (size_t i = 0; i < test.size(); ++i) EXPECT_DOUBLE_EQ(back.predict_height_m(test[i]), m.predict_height_m(test[i]));
+  // However unlike the training clouds a cloud is, its height is one the model was fitted on.
+  const double lowest = *std::min_element(train_h.begin(), train_h.end()), highest = *std::max_element(train_h.begin(), train_h.end());
+  std::vector<Segment3> needle;
+  for (int i = 0; i < 30; ++i) needle.push_back({Vec3(0, 0, 0), Vec3(0.01 * i, 0, 500)});
+  const double h = m.predict_height_m(line_statistics(needle));
+  EXPECT_GE(h, lowest);
+  EXPECT_LE(h, highest);
   std::filesystem::remove(path);
 }
 
@@ -112,12 +121,12 @@ TEST(LineHeight, BadInputsAndModelFilesAreRefused) {
   HeightFitOptions bad;
   bad.folds = 1;
   EXPECT_THROW(bad.Check(), std::invalid_argument);
+  bad.folds = 5, bad.ks = {0};
+  EXPECT_THROW(bad.Check(), std::invalid_argument);
   EXPECT_THROW(fit_height_model({}, {}), std::invalid_argument);
 
-  HeightModel m;
-  m.mean.assign(kLineStatisticsSize, 0.0), m.stddev.assign(kLineStatisticsSize, 1.0), m.weights.assign(kLineStatisticsSize, 0.0);
-  m.bias = std::log(10.0);
-  nlohmann::json j = height_model_json(m);
+  const HeightModel m = testing::constant_height_model(10.0);
+  const nlohmann::json j = height_model_json(m);
   EXPECT_NO_THROW(height_model_from_json(j, "ok.json"));
   auto refused = [](nlohmann::json x, const std::string& what) {
     try {
@@ -130,15 +139,19 @@ TEST(LineHeight, BadInputsAndModelFilesAreRefused) {
   nlohmann::json x = j;
   x["format"] = "lc2wf-model-card";
   refused(x, "another format");
-  x = j, x["weights"].erase(0);
-  refused(x, "a short weight vector");
+  x = j, x["mean"].erase(0);
+  refused(x, "a short mean");
   x = j, x["stddev"][3] = 0.0;
   refused(x, "a zero stddev");
-  x = j, x["bias"] = 40.0;
-  refused(x, "a height of e^40 m");
+  x = j, x["log_heights"][0] = 40.0;
+  refused(x, "a training height of e^40 m");
+  x = j, x["k"] = 2;
+  refused(x, "more neighbours than training clouds");
+  x = j, x["clouds"][0].erase(5);
+  refused(x, "a training cloud with too few statistics");
   x = j, x.erase("mean");
   refused(x, "a missing key");
-  const auto path = std::filesystem::path(testing::TempDir()) / "height_model_garbage.json";
+  const auto path = std::filesystem::path(::testing::TempDir()) / "height_model_garbage.json";
   std::ofstream(path) << "{ not json";
   EXPECT_THROW(read_height_model(path), std::invalid_argument);
   std::filesystem::remove(path);

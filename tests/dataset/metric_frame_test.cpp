@@ -5,6 +5,7 @@
 #include "dataset/photo/metric_frame.h"
 #include "dataset/synthetic/synthetic_building.h"
 #include "dataset/synthetic/synthetic_line_cloud.h"
+#include "tests/common/constant_height_model.h"
 
 namespace lc2wf {
 namespace {
@@ -91,9 +92,7 @@ TEST(MetricFrame, AHeightModelScalesWhatNothingElseDoes) {
   const Similarity sfm = random_sfm_frame();
   const Scene s = scene_in(sfm);
   ASSERT_GE(s.segments.size(), 10u);
-  HeightModel model;  // reads every cloud as s.height metres tall: the frame must use exactly what it reads
-  model.mean.assign(kLineStatisticsSize, 0.0), model.stddev.assign(kLineStatisticsSize, 1.0), model.weights.assign(kLineStatisticsSize, 0.0);
-  model.bias = std::log(s.height);
+  HeightModel model = testing::constant_height_model(s.height);  // the frame must use exactly what it reads
   MetricFrameOptions o;
   o.min_vertical_lines = 4;
   o.height_model = model;
@@ -112,6 +111,33 @@ TEST(MetricFrame, AHeightModelScalesWhatNothingElseDoes) {
   model.stddev[0] = -1;  // a broken model is refused with the options
   o.height_model = model;
   EXPECT_THROW(estimate_metric_frame(s.cameras, s.segments, o), std::invalid_argument);
+}
+
+// Storeys and the height model agree within a factor of 2: the storeys (the finer ruler) give the scale; a
+// model reading 3x the height overrules them (a wrong rhythm) and says so.
+TEST(MetricFrame, StoreysThatDisagreeWithTheHeightModelAreOverruled) {
+  const double storey = 3.0, units = 0.25;  // 5 storeys, 0.25 units per metre
+  std::vector<Segment3> s;
+  for (double x : {0.0, 20.0}) s.push_back({Vec3(x, 0, 0) * units, Vec3(x, 0, 5 * storey) * units});
+  for (int k = 0; k < 5; ++k)
+    for (double x = 1.0; x < 19; x += 2.5)
+      for (double side : {x, x + 1.2}) s.push_back({Vec3(side, 0, k * storey + 0.9) * units, Vec3(side, 0, k * storey + 2.2) * units});
+  MetricFrameOptions o;
+  o.up = UpSource::kInputZ;
+  const MetricFrame plain = estimate_metric_frame({}, s, o);
+  ASSERT_EQ(plain.scale_source, "storeys") << plain.storeys.why_not;
+  const double height_m = plain.height_input * plain.to_metric.scale;  // what the storeys make of it
+  o.height_model = testing::constant_height_model(1.5 * height_m);
+  const MetricFrame agreed = estimate_metric_frame({}, s, o);
+  EXPECT_EQ(agreed.scale_source, "storeys");
+  EXPECT_DOUBLE_EQ(agreed.to_metric.scale, plain.to_metric.scale);
+  o.height_model = testing::constant_height_model(3 * height_m);
+  const MetricFrame overruled = estimate_metric_frame({}, s, o);
+  EXPECT_EQ(overruled.scale_source, "line statistics");
+  EXPECT_NE(overruled.storeys_overruled.find("lower than the height model reads"), std::string::npos) << overruled.storeys_overruled;
+  EXPECT_EQ(line_height_json(overruled, *o.height_model)["used"], true);
+  o.max_storey_disagreement = 0.5;
+  EXPECT_THROW(estimate_metric_frame({}, s, o), std::invalid_argument);
 }
 
 // Camera centres fitted to GPS give scale, up and north: x east, y north.

@@ -15,6 +15,7 @@
 #include "reconstruct/reconstruct_pipeline.h"
 #include "reconstruct/stage_error.h"
 #include "test_scene.h"
+#include "tests/common/constant_height_model.h"
 #include "tests/common/exif_gps_jpeg.h"
 
 using ::testing::HasSubstr;
@@ -207,9 +208,7 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
 
   // A height model (--height-model; here one that reads every cloud as the building's true height) scales the
   // cloud before the search would: the frame uses the height it reads, and the report says so.
-  HeightModel height_model;
-  height_model.mean.assign(kLineStatisticsSize, 0.0), height_model.stddev.assign(kLineStatisticsSize, 1.0), height_model.weights.assign(kLineStatisticsSize, 0.0);
-  height_model.bias = std::log(height);
+  HeightModel height_model = testing::constant_height_model(height);
   height_model.cv_median_error = 0.12;
   write_height_model(*dir_ / "height.json", height_model);
   ReconstructOptions m = options("height_model");

@@ -47,6 +47,7 @@ const std::map<std::string, Expectation> kExpectations = {
     {"lc2wf-list-buildings", {true, {}, {kMissing, "-o", kOut}}},
     {"lc2wf-cloud-styles", {false, {}, {"--data", kMissing, "--split", kMissing, "-o", kOut}}},
     {"lc2wf-synthetic-data", {false, {}, {"--count", "3", "--val", "1", "--test", "1", "-o", kOut}}},
+    {"lc2wf-fit-height", {true, {}, {kMissing, "-o", kOut}}},
     {"lc2wf-train", {true, {"LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM"}, {kMissing, "-o", kOut}}},
     {"lc2wf-infer", {true, {"OMP_NUM_THREADS", "LC2WF_STORAGE_CACHE_MB", "LC2WF_GEMM"}, {"--weights", kMissing, kMissing, "-o", kOut}}},
     {"lc2wf-eval",

@@ -89,24 +89,30 @@ TEST_F(CliContract, FitHeightWritesADeterministicModel) {
   r = run_cli(kFitHeight + " " + dir_.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("-o MODEL.json is required")) << r.err;
+  r = run_cli(kFitHeight + " -o m.json " + dir_.string());  // a folder without clouds: too few to fit
+  EXPECT_EQ(r.code, 3);
+  EXPECT_THAT(r.err, HasSubstr("needs at least 80 clouds")) << r.err;
+  r = run_cli(kFitHeight + " -o m.json");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("no cloud given")) << r.err;
   r = run_cli(kFitHeight + " -o m.json --folds 1 " + dir_.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("--folds")) << r.err;
-  r = run_cli(kFitHeight + " -o m.json --lambdas 1,x " + dir_.string());
+  r = run_cli(kFitHeight + " -o m.json --ks 1,x " + dir_.string());
   EXPECT_EQ(r.code, 2);
-  EXPECT_THAT(r.err, HasSubstr("--lambdas expects a number, got 'x'")) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--ks expects an integer, got 'x'")) << r.err;
   ASSERT_EQ(run_cli(kSynthetic + " -q --count 14 --out " + (dir_ / "data").string()).code, 0);
-  r = run_cli(kFitHeight + " -q -o " + (dir_ / "a.json").string() + " --folds 3 " + (dir_ / "data").string());
+  r = run_cli(kFitHeight + " -q -o " + (dir_ / "a.json").string() + " --folds 3 --ks 1,3 " + (dir_ / "data").string());
   ASSERT_EQ(r.code, 0) << r.err;
-  r = run_cli(kFitHeight + " -o " + (dir_ / "b.json").string() + " --folds 3 -j 1 " + (dir_ / "data").string());
+  r = run_cli(kFitHeight + " -o " + (dir_ / "b.json").string() + " --folds 3 --ks 1,3 -j 1 " + (dir_ / "data").string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("14 clouds (0 skipped)")) << r.err;
   EXPECT_EQ(file_bytes(dir_ / "a.json"), file_bytes(dir_ / "b.json"));  // whatever the thread count
   const nlohmann::json m = nlohmann::json::parse(file_bytes(dir_ / "a.json"));
   EXPECT_EQ(m["format"], "lc2wf-height-model");
-  EXPECT_EQ(m["training_clouds"], 14);
+  EXPECT_EQ(m["clouds"].size(), 14u);
   std::ofstream(dir_ / "data" / "clouds" / "broken.lcloud") << "not a cloud";
-  r = run_cli(kFitHeight + " -o " + (dir_ / "c.json").string() + " --folds 3 " + (dir_ / "data").string());
+  r = run_cli(kFitHeight + " -o " + (dir_ / "c.json").string() + " --folds 3 --ks 1,3 " + (dir_ / "data").string());
   EXPECT_EQ(r.code, 1);
   EXPECT_THAT(r.err, HasSubstr("skipped " + (dir_ / "data" / "clouds" / "broken.lcloud").string())) << r.err;
   EXPECT_TRUE(fs::exists(dir_ / "c.json"));
