@@ -203,7 +203,7 @@ HeightModel height_model_from_json(const nlohmann::json& j, const std::string& s
 }
 
 HeightModel read_height_model(const std::filesystem::path& path) {
-  const std::string text = read_input_file(path, 1 << 20);
+  const std::string text = read_input_file(path, std::uintmax_t{64} << 20);  // statistics of ~1,000 clouds are ~1 MB
   const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
   if (j.is_discarded()) throw std::invalid_argument(path.string() + ": not valid JSON");
   return height_model_from_json(j, path.string());

@@ -6,7 +6,7 @@
 
 #include "dataset/photo/line_height.h"
 
-namespace lc2wf::testing {
+namespace lc2wf::test {
 
 inline HeightModel constant_height_model(double height_m) {
   HeightModel m;
@@ -17,4 +17,4 @@ inline HeightModel constant_height_model(double height_m) {
   return m;
 }
 
-}  // namespace lc2wf::testing
+}  // namespace lc2wf::test

@@ -125,7 +125,7 @@ TEST(LineHeight, BadInputsAndModelFilesAreRefused) {
   EXPECT_THROW(bad.Check(), std::invalid_argument);
   EXPECT_THROW(fit_height_model({}, {}), std::invalid_argument);
 
-  const HeightModel m = testing::constant_height_model(10.0);
+  const HeightModel m = test::constant_height_model(10.0);
   const nlohmann::json j = height_model_json(m);
   EXPECT_NO_THROW(height_model_from_json(j, "ok.json"));
   auto refused = [](nlohmann::json x, const std::string& what) {

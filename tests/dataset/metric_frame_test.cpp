@@ -92,7 +92,7 @@ TEST(MetricFrame, AHeightModelScalesWhatNothingElseDoes) {
   const Similarity sfm = random_sfm_frame();
   const Scene s = scene_in(sfm);
   ASSERT_GE(s.segments.size(), 10u);
-  HeightModel model = testing::constant_height_model(s.height);  // the frame must use exactly what it reads
+  HeightModel model = test::constant_height_model(s.height);  // the frame must use exactly what it reads
   MetricFrameOptions o;
   o.min_vertical_lines = 4;
   o.height_model = model;
@@ -127,11 +127,11 @@ TEST(MetricFrame, StoreysThatDisagreeWithTheHeightModelAreOverruled) {
   const MetricFrame plain = estimate_metric_frame({}, s, o);
   ASSERT_EQ(plain.scale_source, "storeys") << plain.storeys.why_not;
   const double height_m = plain.height_input * plain.to_metric.scale;  // what the storeys make of it
-  o.height_model = testing::constant_height_model(1.5 * height_m);
+  o.height_model = test::constant_height_model(1.5 * height_m);
   const MetricFrame agreed = estimate_metric_frame({}, s, o);
   EXPECT_EQ(agreed.scale_source, "storeys");
   EXPECT_DOUBLE_EQ(agreed.to_metric.scale, plain.to_metric.scale);
-  o.height_model = testing::constant_height_model(3 * height_m);
+  o.height_model = test::constant_height_model(3 * height_m);
   const MetricFrame overruled = estimate_metric_frame({}, s, o);
   EXPECT_EQ(overruled.scale_source, "line statistics");
   EXPECT_NE(overruled.storeys_overruled.find("lower than the height model reads"), std::string::npos) << overruled.storeys_overruled;

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "tests/common/constant_height_model.h"
 #include "tests/common/tiny_weights.h"
 #include <algorithm>
 #include <limits>
@@ -19,6 +20,7 @@
 #include "core/rng.h"
 #include "core/util/cli.h"
 #include "infer/batch_inference.h"
+#include "infer/map_frame.h"
 #include "dataset/sampling/sampling.h"
 #include "model/inference.h"
 #include "infer/preview.h"
@@ -271,6 +273,35 @@ TEST_F(Inference, MaxSegmentLengthAutoCutsOnlyMergedLineMaps) {
   LineCloud ours = merged;  // the same lines from one of our files: ours are per-view fragments by making
   ours.external_line_map = false;
   not_cut(ours);
+}
+
+// A line map in a foreign frame (a fifth of a metre per unit, z up) with no scale given: the weights' height
+// model reads the building's height and the map comes back in metres; without a model the search runs;
+// a given building height wins over both. The report says which, with the model's uncertainty.
+TEST_F(Inference, MapFrameTakesTheHeightModelsReading) {
+  const WireframePredictor predictor(dir_);
+  LineCloud map = cloud_;
+  map.external_line_map = true;
+  for (Segment3& s : map.segments) s = {5.0 * s.a, 5.0 * s.b};
+  MapFrameOptions o;
+  o.enabled = true, o.up = "z";
+  o.height_model = test::constant_height_model(9.0);
+  const FramedInference f = infer_in_metric_frame(predictor, map, keep_every_junction(), o);
+  EXPECT_EQ(f.report["scale_source"], "line statistics") << f.report.dump();
+  EXPECT_NEAR(f.report["line_statistics"]["height_m"].get<double>(), 9.0, 1e-9);
+  EXPECT_EQ(f.report["line_statistics"]["used"], true);
+  EXPECT_FALSE(f.report.contains("scale_search"));
+  EXPECT_NEAR(f.report["height_m"].get<double>(), 9.0, 0.5);  // the frame's height quantiles, not the top
+  EXPECT_THAT(f.summary, HasSubstr("read from the lines"));
+  MapFrameOptions given = o;
+  given.building_height_m = 12.0;
+  EXPECT_EQ(infer_in_metric_frame(predictor, map, keep_every_junction(), given).report["scale_source"], "building height");
+  MapFrameOptions none = o;
+  none.height_model.reset();
+  none.search.coarse_steps = 2, none.search.refine_rounds = 0;  // two runs of the networks are enough here
+  const FramedInference s = infer_in_metric_frame(predictor, map, keep_every_junction(), none);
+  EXPECT_EQ(s.report["scale_source"], "scale search");
+  EXPECT_FALSE(s.report.contains("line_statistics"));
 }
 
 TEST_F(Inference, RunsBothNetworksOnASyntheticCloud) {

@@ -208,7 +208,7 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
 
   // A height model (--height-model; here one that reads every cloud as the building's true height) scales the
   // cloud before the search would: the frame uses the height it reads, and the report says so.
-  HeightModel height_model = testing::constant_height_model(height);
+  HeightModel height_model = test::constant_height_model(height);
   height_model.cv_median_error = 0.12;
   write_height_model(*dir_ / "height.json", height_model);
   ReconstructOptions m = options("height_model");
