@@ -97,16 +97,13 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
     f.cloud = transformed(map, f.frame.to_metric);
     f.inference = predictor.predict(f.cloud, post);
     scale_text = format_number("%.4g", f.frame.to_metric.scale) + " m per map unit (" + f.frame.scale_source + ")";
-    if (f.frame.scale_source == "line statistics")
-      scale_text += ", building height " + format_number("%.1f", f.frame.line_height_m) + " m read from the lines (+-" +
-                    format_number("%.0f", 100 * o.height_model->cv_median_error) + " % median)";
+    if (f.frame.scale_source == "line statistics") scale_text += ", " + line_height_text(f.frame, *o.height_model);
   }
-  if (o.height_model && (f.frame.needs_scale_search || f.frame.scale_source == "storeys" || f.frame.scale_source == "line statistics"))
-    rep["line_statistics"] = line_height_json(f.frame, *o.height_model);
+  if (o.height_model && storeys_consulted(f.frame)) rep["line_statistics"] = line_height_json(f.frame, *o.height_model);
   rep["up_source"] = o.up == "auto" ? f.frame.up_source : "given " + o.up;
   rep["up_input"] = vec_json(f.frame.up_input);
   rep["scale_source"] = f.frame.scale_source;
-  if (f.frame.needs_scale_search || f.frame.scale_source == "storeys" || f.frame.scale_source == "line statistics") rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
+  if (storeys_consulted(f.frame)) rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
   rep["to_metric"] = similarity_json(f.frame.to_metric);
   rep["height_m"] = f.frame.height_input * f.frame.to_metric.scale;
   rep["note"] = "the wireframe is written in this frame (metres, z up, ground 0); map point p -> scale * R * p + t";

@@ -288,10 +288,8 @@ class ReconstructRun {
                         {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
                         {"height_m", frame_.height_input * frame_.to_metric.scale}, {"gps", gps_report}};
     if (search_) report_["frame"]["scale_search"] = scale_search_json(*search_, o_.scale_search);
-    if (search_ || frame_.scale_source == "storeys" || frame_.scale_source == "line statistics")
-      report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
-    if (height_model_ && (search_ || frame_.scale_source == "storeys" || frame_.scale_source == "line statistics"))
-      report_["frame"]["line_statistics"] = line_height_json(frame_, *height_model_);
+    if (storeys_consulted(frame_)) report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
+    if (height_model_ && storeys_consulted(frame_)) report_["frame"]["line_statistics"] = line_height_json(frame_, *height_model_);
     log_.done(seconds_, search_ ? "building height " + format_number("%.1f", search_->height_m) + " m (" +
                                       format_number("%.2f", search_ratio(*search_)) + "x the runner-up's score at " +
                                       format_number("%.1f", search_->runner_up_height_m) + " m), " +
@@ -304,10 +302,7 @@ class ReconstructRun {
                                            ? ", " + format_number("%.1f", frame_.storeys.storeys) + " storeys of " +
                                                  format_number("%.1f", fo.storeys.storey_height_m) + " m, +-" +
                                                  format_number("%.0f", 100 * fo.storeys.storey_uncertainty) + " %"
-                                       : frame_.scale_source == "line statistics"
-                                           ? ", building height " + format_number("%.1f", frame_.line_height_m) + " m read from the lines (+-" +
-                                                 format_number("%.0f", 100 * height_model_->cv_median_error) + " % median)" +
-                                                 (frame_.storeys_overruled.empty() ? std::string() : "; " + frame_.storeys_overruled)
+                                       : frame_.scale_source == "line statistics" ? ", " + line_height_text(frame_, *height_model_)
                                            : ""));
   }
 

@@ -4,8 +4,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include <Eigen/Dense>
-
 #include "core/util/atomic_file.h"
 #include "core/util/input_file.h"
 #include "core/util/json_text.h"
@@ -75,11 +73,15 @@ LineStatistics line_statistics(const std::vector<Segment3>& segments, double gro
     const int bin = std::clamp(static_cast<int>(std::floor((rel - kLowestLog2) / kBinLog2)), 0, kLineLengthBins - 1);
     out.features[cls * kLineLengthBins + bin] += 1.0 / n;
   }
-  // The footprint's spreads: square roots of the eigenvalues of the endpoints' horizontal covariance.
-  Eigen::Map<const Eigen::VectorXd> xs(x.data(), static_cast<Eigen::Index>(x.size())), ys(y.data(), static_cast<Eigen::Index>(y.size()));
-  const double mx = xs.mean(), my = ys.mean(), m = static_cast<double>(x.size());
-  const double sxx = (xs.array() - mx).square().sum() / m, syy = (ys.array() - my).square().sum() / m;
-  const double sxy = ((xs.array() - mx) * (ys.array() - my)).sum() / m;
+  // The footprint's spreads: square roots of the eigenvalues of the endpoints' horizontal covariance. Plain
+  // loops: a vectorised sum's order follows the buffer's alignment, and the statistics must not.
+  double mx = 0, my = 0;
+  for (size_t i = 0; i < x.size(); ++i) mx += x[i], my += y[i];
+  const double m = static_cast<double>(x.size());
+  mx /= m, my /= m;
+  double sxx = 0, syy = 0, sxy = 0;
+  for (size_t i = 0; i < x.size(); ++i) sxx += (x[i] - mx) * (x[i] - mx), syy += (y[i] - my) * (y[i] - my), sxy += (x[i] - mx) * (y[i] - my);
+  sxx /= m, syy /= m, sxy /= m;
   const double tr = 0.5 * (sxx + syy), det = std::sqrt(std::max(0.0, 0.25 * (sxx - syy) * (sxx - syy) + sxy * sxy));
   const double floor = 1e-12 * out.height * out.height;  // a single wall seen edge-on has no width, not log(0)
   out.features[3 * kLineLengthBins] = 0.5 * std::log(std::max(tr - det, floor)) - std::log(out.height);

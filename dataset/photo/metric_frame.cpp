@@ -1,5 +1,6 @@
 #include "dataset/photo/metric_frame.h"
 
+#include "core/util/number_format.h"
 #include "core/util/quantile.h"
 #include "dataset/photo/line_up.h"
 
@@ -187,6 +188,15 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
   f.to_metric.R = R;
   f.to_metric.t = -scale * Vec3(quantile(mid_x, 0.5), quantile(mid_y, 0.5), ground);
   return f;
+}
+
+bool storeys_consulted(const MetricFrame& f) {
+  return f.needs_scale_search || f.scale_source == "storeys" || f.scale_source == "line statistics";
+}
+
+std::string line_height_text(const MetricFrame& f, const HeightModel& m) {
+  return "building height " + format_number("%.1f", f.line_height_m) + " m read from the lines (+-" +
+         format_number("%.0f", 100 * m.cv_median_error) + " % median)" + (f.storeys_overruled.empty() ? "" : "; " + f.storeys_overruled);
 }
 
 nlohmann::json line_height_json(const MetricFrame& f, const HeightModel& m) {

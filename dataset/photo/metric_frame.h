@@ -76,6 +76,12 @@ struct MetricFrame {
   MetricFrame scaled_by(double factor) const;  // the same frame with metric coordinates x factor
 };
 
+// Whether the storeys (and the height model) were asked, i.e. nothing before them gave the scale: the reports
+// then show what they said.
+bool storeys_consulted(const MetricFrame& f);
+// One line for the logs: the height read from the lines, its uncertainty, and the storeys it overruled.
+std::string line_height_text(const MetricFrame& f, const HeightModel& m);
+
 // What report.json says of the height model's reading (`frame.line_statistics`): the height read, whether it
 // was used, why not or which storeys it overruled, and the model's cross-validated errors (its uncertainty).
 nlohmann::json line_height_json(const MetricFrame& f, const HeightModel& m);
