@@ -52,8 +52,9 @@ struct MetricFrameOptions {
   StoreyScaleOptions storeys;                // after the building height; storey_height_m = 0 skips it
   std::optional<HeightModel> height_model;   // after the storeys; none: the scale search
   // Storeys whose building is more than this factor taller or lower than the height model reads are a wrong
-  // rhythm (clean clouds' texture-free walls, a half or double period), and the model's height is used.
-  double max_storey_disagreement = 2.0;
+  // rhythm (clean walls' chance repeats gave 10x), and the model's height is used. 3, not 2: on street
+  // captures the model was once 2.1x off where the storeys were right (experiments/README.md).
+  double max_storey_disagreement = 3.0;
   double ground_quantile = 0.01;  // of the endpoint heights
   double top_quantile = 0.99;
   void Check() const;

@@ -113,8 +113,8 @@ TEST(MetricFrame, AHeightModelScalesWhatNothingElseDoes) {
   EXPECT_THROW(estimate_metric_frame(s.cameras, s.segments, o), std::invalid_argument);
 }
 
-// Storeys and the height model agree within a factor of 2: the storeys (the finer ruler) give the scale; a
-// model reading 3x the height overrules them (a wrong rhythm) and says so.
+// Storeys and the height model agree within a factor of 3: the storeys (the finer ruler) give the scale; a
+// model reading 4x the height overrules them (a wrong rhythm) and says so.
 TEST(MetricFrame, StoreysThatDisagreeWithTheHeightModelAreOverruled) {
   const double storey = 3.0, units = 0.25;  // 5 storeys, 0.25 units per metre
   std::vector<Segment3> s;
@@ -127,11 +127,11 @@ TEST(MetricFrame, StoreysThatDisagreeWithTheHeightModelAreOverruled) {
   const MetricFrame plain = estimate_metric_frame({}, s, o);
   ASSERT_EQ(plain.scale_source, "storeys") << plain.storeys.why_not;
   const double height_m = plain.height_input * plain.to_metric.scale;  // what the storeys make of it
-  o.height_model = test::constant_height_model(1.5 * height_m);
+  o.height_model = test::constant_height_model(2.5 * height_m);
   const MetricFrame agreed = estimate_metric_frame({}, s, o);
   EXPECT_EQ(agreed.scale_source, "storeys");
   EXPECT_DOUBLE_EQ(agreed.to_metric.scale, plain.to_metric.scale);
-  o.height_model = test::constant_height_model(3 * height_m);
+  o.height_model = test::constant_height_model(4 * height_m);
   const MetricFrame overruled = estimate_metric_frame({}, s, o);
   EXPECT_EQ(overruled.scale_source, "line statistics");
   EXPECT_NE(overruled.storeys_overruled.find("lower than the height model reads"), std::string::npos) << overruled.storeys_overruled;
