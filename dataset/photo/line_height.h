@@ -2,8 +2,8 @@
 // distance, building height or storey rhythm scales. Windows, doors, storeys, roof tiles and eaves have sizes
 // of their own that do not grow with the building, so the lengths of a cloud's lines relative to its height
 // (by direction) and its footprint's proportions say how tall it is. The heights of the nearest clouds in
-// those statistics among metric clouds of real and generated buildings of 3-60 m (lc2wf-fit-height) read it
-// back; experiments/README.md, "Height from line statistics", says how well.
+// those statistics among metric clouds of real and generated buildings (lc2wf-fit-height) read it back;
+// experiments/README.md, "Height from line statistics", says how well.
 #pragma once
 
 #include <filesystem>
