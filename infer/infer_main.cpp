@@ -176,7 +176,10 @@ Args parse_args(int argc, char** argv) {
     } else if (f == "--up") a.options.map_frame.up = value();
     else if (f == "--scale") a.options.map_frame.scale = positive_flag(f, value());
     else if (f == "--building-height") a.options.map_frame.building_height_m = positive_flag(f, value());
-    else if (f == "--height-model") a.height_model = value();
+    else if (f == "--height-model") {
+      a.height_model = value();
+      if (a.height_model.empty()) throw UsageError("--height-model needs a file or 'none'");
+    }
     else if (f == "--storey-height") {
       a.options.map_frame.storeys.storey_height_m = number_flag(f, value());
       if (!(a.options.map_frame.storeys.storey_height_m >= 0 && a.options.map_frame.storeys.storey_height_m <= 20))

@@ -160,7 +160,10 @@ ReconstructOptions parse_args(int argc, char** argv) {
       o.frame.building_height_m = number_flag(f, value());
       if (!(o.frame.building_height_m > 0)) throw UsageError("--building-height must be > 0");
     }
-    else if (f == "--height-model") o.height_model = value();
+    else if (f == "--height-model") {
+      o.height_model = value();
+      if (o.height_model.empty()) throw UsageError("--height-model needs a file or 'none'");
+    }
     else if (f == "--storey-height") {
       o.frame.storeys.storey_height_m = number_flag(f, value());
       if (!(o.frame.storeys.storey_height_m >= 0 && o.frame.storeys.storey_height_m <= 20)) throw UsageError("--storey-height must be in [0, 20]");

@@ -122,6 +122,9 @@ TEST_F(CliContract, FitHeightWritesADeterministicModel) {
               (dir_ / "out").string() + " " + (dir_ / "data" / "clouds" / "synth_0000.lcloud").string());
   EXPECT_EQ(r.code, 3);
   EXPECT_THAT(r.err, HasSubstr("not_a_model.json: not an lc2wf-height-model file")) << r.err;
+  r = run_cli(kInfer + " --weights " + dir_.string() + " --height-model '' -o " + (dir_ / "out").string() + " x.obj");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("--height-model needs a file or 'none'")) << r.err;
 }
 
 TEST_F(CliContract, InferUsageAndDataErrors) {

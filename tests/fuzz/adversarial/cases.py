@@ -219,7 +219,7 @@ def flags(fx, rng, n):
     cloud = "{F}/synth/clouds/synth_0000.lcloud"
     commands = {
         "lc2wf-infer": ([exe("lc2wf-infer"), "--weights", "{F}/weights", cloud, "-o", "{C}/out", "--quiet"],
-                        ["--threads", "--units", "--format"]),  # --preview's value is an output path by design
+                        ["--threads", "--units", "--format", "--height-model"]),  # --preview's value is an output path by design
         "lc2wf-eval": ([exe("lc2wf-eval"), "--pred", "{F}/pred", "--data", "{F}/synth/clouds", "--split", "{F}/one.txt", "--out",
                         "{C}/out", "--quiet"], ["--ties", "--units", "--method", "--format"]),
         "lc2wf-dataset": ([exe("lc2wf-dataset"), "--meshes", "{F}/meshes", "--out", "{C}/out", "--quiet", "-j", "1"],
@@ -228,7 +228,7 @@ def flags(fx, rng, n):
         "lc2wf-reconstruct": ([exe("lc2wf-reconstruct"), "{F}/images", "--weights", "{F}/weights", "-o", "{C}/out", "--quiet",
                                "--cameras", "{F}/cameras.json"],
                               ["--intrinsics", "--focal-35mm", "--scale", "--up", "--known-distance", "--min-score", "--threads",
-                               "--max-features", "--matcher"]),
+                               "--max-features", "--matcher", "--height-model"]),
         "lc2wf-cloud-convert": ([exe("lc2wf-cloud-convert"), cloud, "-o", "{C}/out/c.txt"], ["--to"]),
         "lc2wf-train": ([exe("lc2wf-train"), "{F}/config.json", "--out", "{C}/out", "--quiet"], ["--stage"]),
         "lc2wf-synthetic-data": ([exe("lc2wf-synthetic-data"), "--out", "{C}/out", "--quiet"], ["--count", "--val", "--test", "--seed"]),
