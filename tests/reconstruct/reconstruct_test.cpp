@@ -160,6 +160,35 @@ TEST(ReconstructStoreys, FacadeStoreysGiveTheScaleWithoutOtherEvidence) {
   fs::remove_all(dir);
 }
 
+// The shipped height model (models/general/height.json) on a photo-like rendered block whose storeys are not
+// asked (--storey-height 0): the pipeline's own cloud, in an arbitrary SfM frame, comes back within a factor
+// of 2 of its scale, and the report names the source.
+TEST(ReconstructHeightModel, TheShippedModelScalesARenderedBlock) {
+  const fs::path shipped = fs::path(LC2WF_SOURCE_DIR) / "models" / "general" / kHeightModelFile;
+  if (!fs::exists(shipped)) GTEST_SKIP() << shipped << " is not in this tree";
+  const fs::path dir = test::scratch("height_model");
+  RectBuildingSpec spec;
+  spec.length = 18, spec.width = 11, spec.eave_height = 12.0, spec.slope_deg = 20;
+  const test::RenderedFolder scene = test::render_synthetic_folder(dir / "scene", 16, make_rect_building("block", spec), "photo");
+  test::write_tiny_weights(dir / "weights");
+  const Similarity sfm = arbitrary_sfm_frame();
+  write_colmap_model(dir / "colmap_model", scene.cameras, sfm, ".png");
+  ReconstructOptions o;
+  o.images = scene.images, o.weights = dir / "weights", o.out = dir / "out", o.quiet = true, o.threads = 2;
+  o.cameras = dir / "colmap_model";
+  o.frame.storeys.storey_height_m = 0;
+  o.height_model = shipped.string();
+  const ReconstructResult r = reconstruct(o);
+  const Json& f = r.report["frame"];
+  ASSERT_EQ(f["scale_source"], "line statistics") << f.dump();
+  const double scale_ratio = f["to_metric"]["scale"].get<double>() * sfm.scale;  // 1 = exact
+  std::printf("shipped height model on a rendered 12 m block: read %.1f m, scale ratio %.3f\n", f["line_statistics"]["height_m"].get<double>(),
+              scale_ratio);
+  EXPECT_GT(scale_ratio, 0.5);
+  EXPECT_LT(scale_ratio, 2.0);
+  fs::remove_all(dir);
+}
+
 TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   const Similarity sfm = arbitrary_sfm_frame();
   const fs::path model = *dir_ / "colmap_model";
