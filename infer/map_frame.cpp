@@ -99,11 +99,13 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
     scale_text = format_number("%.4g", f.frame.to_metric.scale) + " m per map unit (" + f.frame.scale_source + ")";
     if (f.frame.scale_source == "line statistics") scale_text += ", " + line_height_text(f.frame, *o.height_model);
   }
-  if (o.height_model && storeys_consulted(f.frame)) rep["line_statistics"] = line_height_json(f.frame, *o.height_model);
   rep["up_source"] = o.up == "auto" ? f.frame.up_source : "given " + o.up;
   rep["up_input"] = vec_json(f.frame.up_input);
   rep["scale_source"] = f.frame.scale_source;
-  if (storeys_consulted(f.frame)) rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
+  if (storeys_consulted(f.frame)) {
+    rep["storeys"] = storey_scale_json(f.frame.storeys, o.storeys);
+    if (o.height_model) rep["line_statistics"] = line_height_json(f.frame, *o.height_model);
+  }
   rep["to_metric"] = similarity_json(f.frame.to_metric);
   rep["height_m"] = f.frame.height_input * f.frame.to_metric.scale;
   rep["note"] = "the wireframe is written in this frame (metres, z up, ground 0); map point p -> scale * R * p + t";

@@ -288,8 +288,10 @@ class ReconstructRun {
                         {"lines_used", segments.size()}, {"lines_min_supports", std::max(min_supports, 0)},
                         {"height_m", frame_.height_input * frame_.to_metric.scale}, {"gps", gps_report}};
     if (search_) report_["frame"]["scale_search"] = scale_search_json(*search_, o_.scale_search);
-    if (storeys_consulted(frame_)) report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
-    if (height_model_ && storeys_consulted(frame_)) report_["frame"]["line_statistics"] = line_height_json(frame_, *height_model_);
+    if (storeys_consulted(frame_)) {
+      report_["frame"]["storeys"] = storey_scale_json(frame_.storeys, fo.storeys);
+      if (height_model_) report_["frame"]["line_statistics"] = line_height_json(frame_, *height_model_);
+    }
     log_.done(seconds_, search_ ? "building height " + format_number("%.1f", search_->height_m) + " m (" +
                                       format_number("%.2f", search_ratio(*search_)) + "x the runner-up's score at " +
                                       format_number("%.1f", search_->runner_up_height_m) + " m), " +

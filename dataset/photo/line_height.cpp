@@ -215,11 +215,7 @@ std::optional<HeightModel> choose_height_model(const std::string& choice, const 
   if (choice == "none") return std::nullopt;
   const std::filesystem::path path = choice.empty() ? weights_dir / kHeightModelFile : std::filesystem::path(choice);
   if (choice.empty() && !std::filesystem::exists(path)) return std::nullopt;
-  try {
-    return read_height_model(path);
-  } catch (const std::runtime_error& e) {  // unreadable: read_input_file names the path
-    throw std::invalid_argument(e.what());
-  }
+  return read_height_model(path);
 }
 
 void write_height_model(const std::filesystem::path& path, const HeightModel& m) {

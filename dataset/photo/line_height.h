@@ -64,7 +64,8 @@ void write_height_model(const std::filesystem::path& path, const HeightModel& m)
 // A weights folder's height model: the model lc2wf-fit-height fitted for the networks beside it.
 inline constexpr const char* kHeightModelFile = "height.json";
 // The model a command uses: `choice` "none" -> none; empty -> `weights_dir`/height.json when there is one;
-// else the file `choice` (which must exist). Throws std::invalid_argument naming the file and the problem.
+// else the file `choice` (which must exist). Throws naming the file and the problem (std::runtime_error when
+// it cannot be read, std::invalid_argument when it is not a height model).
 std::optional<HeightModel> choose_height_model(const std::string& choice, const std::filesystem::path& weights_dir);
 
 }  // namespace lc2wf

@@ -136,57 +136,63 @@ TEST(ReconstructDefaults, PhotoCloudsAreJudgedOnEveryCapture) {
   EXPECT_FALSE(PostProcessOptions{}.flat_parts.enabled());
 }
 
-// A four-storey block in the photo look, its cameras in an SfM frame of unknown scale: the window rows give the
-// scale (one storey = 3 m) before the scale search would run.
-TEST(ReconstructStoreys, FacadeStoreysGiveTheScaleWithoutOtherEvidence) {
-  const fs::path dir = test::scratch("storeys");
-  RectBuildingSpec spec;
-  spec.length = 18, spec.width = 11, spec.eave_height = 12.0, spec.slope_deg = 20;
-  const test::RenderedFolder scene = test::render_synthetic_folder(dir / "scene", 16, make_rect_building("block", spec), "photo");
-  test::write_tiny_weights(dir / "weights");
-  const Similarity sfm = arbitrary_sfm_frame();
-  write_colmap_model(dir / "colmap_model", scene.cameras, sfm, ".png");
-  ReconstructOptions o;
-  o.images = scene.images, o.weights = dir / "weights", o.out = dir / "out", o.quiet = true, o.threads = 2;
-  o.cameras = dir / "colmap_model";
-  const ReconstructResult r = reconstruct(o);
+// A four-storey block in the photo look (12 m to the eaves), its cameras in an SfM frame of unknown scale,
+// rendered once for the tests of what scales it.
+class ReconstructPhotoBlock : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new fs::path(test::scratch("photo_block"));
+    RectBuildingSpec spec;
+    spec.length = 18, spec.width = 11, spec.eave_height = 12.0, spec.slope_deg = 20;
+    const test::RenderedFolder scene = test::render_synthetic_folder(*dir_ / "scene", 16, make_rect_building("block", spec), "photo");
+    images_ = new fs::path(scene.images);
+    test::write_tiny_weights(*dir_ / "weights");
+    write_colmap_model(*dir_ / "colmap_model", scene.cameras, sfm_, ".png");
+  }
+  static void TearDownTestSuite() {
+    fs::remove_all(*dir_);
+    delete dir_, delete images_;
+    dir_ = images_ = nullptr;
+  }
+  static ReconstructOptions options(const std::string& out) {
+    ReconstructOptions o;
+    o.images = *images_, o.weights = *dir_ / "weights", o.out = *dir_ / out, o.quiet = true, o.threads = 2;
+    o.cameras = *dir_ / "colmap_model";
+    return o;
+  }
+  static inline fs::path* dir_ = nullptr;
+  static inline fs::path* images_ = nullptr;
+  static inline const Similarity sfm_ = arbitrary_sfm_frame();
+};
+
+// The window rows give the scale (one storey = 3 m) before the scale search would run.
+TEST_F(ReconstructPhotoBlock, FacadeStoreysGiveTheScaleWithoutOtherEvidence) {
+  const ReconstructResult r = reconstruct(options("storeys"));
   const Json& f = r.report["frame"];
   ASSERT_EQ(f["scale_source"], "storeys") << f["storeys"].dump();
   EXPECT_FALSE(f.contains("scale_search"));
   EXPECT_NEAR(f["storeys"]["storeys"].get<double>() * 3.0, f["height_m"].get<double>(), 1e-6 * f["height_m"].get<double>());
   EXPECT_EQ(f["storeys"]["relative_uncertainty"], 0.2);
   // The facade layout's storeys are 12 m / 4 = 3 m: the scale comes back to within the storeys' spread.
-  EXPECT_NEAR(f["to_metric"]["scale"].get<double>() * sfm.scale, 1.0, 0.1);
-  fs::remove_all(dir);
+  EXPECT_NEAR(f["to_metric"]["scale"].get<double>() * sfm_.scale, 1.0, 0.1);
 }
 
-// The shipped height model (models/general/height.json) on a photo-like rendered block whose storeys are not
-// asked (--storey-height 0): the pipeline's own cloud, in an arbitrary SfM frame, comes back within a factor
-// of 2 of its scale, and the report names the source.
-TEST(ReconstructHeightModel, TheShippedModelScalesARenderedBlock) {
+// The shipped height model (models/general/height.json) with the storeys not asked (--storey-height 0): the
+// pipeline's own cloud comes back within a factor of 2 of its scale, and the report names the source.
+TEST_F(ReconstructPhotoBlock, TheShippedHeightModelScalesIt) {
   const fs::path shipped = fs::path(LC2WF_SOURCE_DIR) / "models" / "general" / kHeightModelFile;
   if (!fs::exists(shipped)) GTEST_SKIP() << shipped << " is not in this tree";
-  const fs::path dir = test::scratch("height_model");
-  RectBuildingSpec spec;
-  spec.length = 18, spec.width = 11, spec.eave_height = 12.0, spec.slope_deg = 20;
-  const test::RenderedFolder scene = test::render_synthetic_folder(dir / "scene", 16, make_rect_building("block", spec), "photo");
-  test::write_tiny_weights(dir / "weights");
-  const Similarity sfm = arbitrary_sfm_frame();
-  write_colmap_model(dir / "colmap_model", scene.cameras, sfm, ".png");
-  ReconstructOptions o;
-  o.images = scene.images, o.weights = dir / "weights", o.out = dir / "out", o.quiet = true, o.threads = 2;
-  o.cameras = dir / "colmap_model";
+  ReconstructOptions o = options("height_model");
   o.frame.storeys.storey_height_m = 0;
   o.height_model = shipped.string();
   const ReconstructResult r = reconstruct(o);
   const Json& f = r.report["frame"];
   ASSERT_EQ(f["scale_source"], "line statistics") << f.dump();
-  const double scale_ratio = f["to_metric"]["scale"].get<double>() * sfm.scale;  // 1 = exact
+  const double scale_ratio = f["to_metric"]["scale"].get<double>() * sfm_.scale;  // 1 = exact
   std::printf("shipped height model on a rendered 12 m block: read %.1f m, scale ratio %.3f\n", f["line_statistics"]["height_m"].get<double>(),
               scale_ratio);
   EXPECT_GT(scale_ratio, 0.5);
   EXPECT_LT(scale_ratio, 2.0);
-  fs::remove_all(dir);
 }
 
 TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {

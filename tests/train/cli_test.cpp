@@ -89,16 +89,16 @@ TEST_F(CliContract, FitHeightWritesADeterministicModel) {
   r = run_cli(kFitHeight + " " + dir_.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("-o MODEL.json is required")) << r.err;
-  r = run_cli(kFitHeight + " -o m.json " + dir_.string());  // a folder without clouds: too few to fit
+  r = run_cli(kFitHeight + " -o " + (dir_ / "m.json").string() + " " + dir_.string());  // a folder without clouds: too few to fit
   EXPECT_EQ(r.code, 3);
   EXPECT_THAT(r.err, HasSubstr("needs at least 80 clouds")) << r.err;
-  r = run_cli(kFitHeight + " -o m.json");
+  r = run_cli(kFitHeight + " -o " + (dir_ / "m.json").string());
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("no cloud given")) << r.err;
-  r = run_cli(kFitHeight + " -o m.json --folds 1 " + dir_.string());
+  r = run_cli(kFitHeight + " -o " + (dir_ / "m.json").string() + " --folds 1 " + dir_.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("--folds")) << r.err;
-  r = run_cli(kFitHeight + " -o m.json --ks 1,x " + dir_.string());
+  r = run_cli(kFitHeight + " -o " + (dir_ / "m.json").string() + " --ks 1,x " + dir_.string());
   EXPECT_EQ(r.code, 2);
   EXPECT_THAT(r.err, HasSubstr("--ks expects an integer, got 'x'")) << r.err;
   ASSERT_EQ(run_cli(kSynthetic + " -q --count 14 --out " + (dir_ / "data").string()).code, 0);
