@@ -60,7 +60,7 @@ CameraSet cameras_from_file(const fs::path& path, const std::vector<std::string>
   }
 }
 
-CameraSet cameras_from_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
+CameraSet cameras_from_colmap(const std::vector<fs::path>& images, const std::vector<Eigen::Matrix3d>& K, const fs::path& workspace,
                               const ColmapOptions& options) {
   try {
     ColmapRun run = estimate_poses_with_colmap(images, K, workspace, options);

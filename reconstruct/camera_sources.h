@@ -27,9 +27,9 @@ struct CameraSet {
 CameraSet cameras_from_file(const std::filesystem::path& path, const std::vector<std::string>& all_names,
                             const std::vector<std::filesystem::path>& images);
 
-// Runs COLMAP with fixed pinhole intrinsics K in `workspace` (created; must be ours to delete).
+// Runs COLMAP with fixed pinhole intrinsics, K[i] for image i, in `workspace` (created; must be ours to delete).
 // Throws StageError("cameras", ...) with COLMAP's failing step and log.
-CameraSet cameras_from_colmap(const std::vector<std::filesystem::path>& images, const Eigen::Matrix3d& K,
+CameraSet cameras_from_colmap(const std::vector<std::filesystem::path>& images, const std::vector<Eigen::Matrix3d>& K,
                               const std::filesystem::path& workspace, const ColmapOptions& options);
 
 }  // namespace lc2wf

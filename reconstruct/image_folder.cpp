@@ -33,7 +33,6 @@ ImageFolder read_image_folder(const fs::path& dir, int min_images) {
   if (ec) throw StageError("images", "cannot list " + dir.string() + ": " + ec.message());
   std::sort(found.begin(), found.end());
   ImageFolder f;
-  std::vector<std::string> odd_size;
   for (const fs::path& p : found) {
     f.all_names.push_back(p.filename().string());  // a cameras JSON has one entry per name, readable or not
     std::error_code type_ec;
@@ -41,27 +40,38 @@ ImageFolder read_image_folder(const fs::path& dir, int min_images) {
       f.unreadable.push_back(p.filename().string() + " (not a regular file)");
       continue;
     }
-    cv::Mat image = cv::imread(p.string(), cv::IMREAD_GRAYSCALE);
+    cv::Mat image = cv::imread(p.string(), cv::IMREAD_GRAYSCALE | cv::IMREAD_IGNORE_ORIENTATION);
     if (image.empty()) {
       f.unreadable.push_back(p.filename().string() + " (not a decodable image)");
       continue;
     }
-    if (f.images.empty()) f.width = image.cols, f.height = image.rows;
-    if (image.cols != f.width || image.rows != f.height) {
-      odd_size.push_back(p.filename().string() + " (" + std::to_string(image.cols) + "x" + std::to_string(image.rows) + ")");
-      continue;
-    }
+    f.sizes.push_back(image.size());
     f.paths.push_back(p);
     f.images.push_back(std::move(image));
   }
-  if (!odd_size.empty())
-    throw StageError("images", "one camera expected, but " + joined(odd_size) + " differ from the first image's " +
-                                   std::to_string(f.width) + "x" + std::to_string(f.height) + " in " + dir.string());
   if (static_cast<int>(f.images.size()) < min_images)
     throw StageError("images", std::to_string(f.images.size()) + " readable image(s) in " + dir.string() + ", at least " +
                                    std::to_string(min_images) + " needed" +
                                    (f.unreadable.empty() ? std::string() : "; unreadable: " + joined(f.unreadable)));
   return f;
+}
+
+std::string describe_sizes(const std::vector<cv::Size>& sizes) {
+  std::vector<std::pair<cv::Size, int>> counts;
+  for (const cv::Size& s : sizes) {
+    auto it = std::find_if(counts.begin(), counts.end(), [&](const auto& c) { return c.first == s; });
+    if (it == counts.end()) counts.emplace_back(s, 1);
+    else ++it->second;
+  }
+  std::stable_sort(counts.begin(), counts.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  auto text = [](const cv::Size& s) { return std::to_string(s.width) + "x" + std::to_string(s.height); };
+  if (counts.size() == 1) return text(counts.front().first);
+  constexpr size_t kNamed = 3;  // a set of photos from many cameras is not listed size by size
+  std::string out;
+  for (size_t k = 0; k < std::min(kNamed, counts.size()); ++k)
+    out += (k ? ", " : "") + std::to_string(counts[k].second) + " of " + text(counts[k].first);
+  if (counts.size() > kNamed) out += " and " + std::to_string(counts.size() - kNamed) + " more sizes";
+  return out;
 }
 
 }  // namespace lc2wf

@@ -1,6 +1,7 @@
 // The photos of one reconstruction: every *.png / *.jpg / *.jpeg of a folder in name order, read as
-// 8-bit gray. Unreadable files are listed and skipped; all readable images must share one size (one
-// camera, as COLMAP is run with a single shared intrinsics).
+// 8-bit gray with their pixels as stored (an EXIF orientation is not applied: COLMAP 3.8 ignores it, and the
+// lines must be found in the pixels its cameras were estimated for). Unreadable files are listed and
+// skipped; sizes may differ (upright and sideways photos, crops: one camera per size).
 #pragma once
 
 #include <filesystem>
@@ -16,11 +17,14 @@ struct ImageFolder {
   std::vector<std::filesystem::path> paths;  // readable images, name order
   std::vector<cv::Mat> images;               // 8-bit gray, one per path
   std::vector<std::string> unreadable;       // file names that failed to decode, or "NAME (not a regular file)"
-  int width = 0, height = 0;
+  std::vector<cv::Size> sizes;               // one per path
 };
 
+// "3072x2048", or "19 of 3072x2048, 6 of 2048x3072" (most frequent first; three named, then "and N more sizes").
+std::string describe_sizes(const std::vector<cv::Size>& sizes);
+
 // Throws StageError("images", ...) when the folder cannot be listed, holds fewer than `min_images`
-// readable images (naming the unreadable ones), or images of different sizes (naming them).
+// readable images (naming the unreadable ones).
 ImageFolder read_image_folder(const std::filesystem::path& dir, int min_images);
 
 }  // namespace lc2wf

@@ -20,7 +20,7 @@ using namespace lc2wf;
 const char* kUsage = R"(Usage: lc2wf-reconstruct IMAGES_DIR --weights DIR -o OUT [options]
 
 Photos of one building -> 3D wireframe. Stages (progress on stderr): weights, images (*.png, *.jpg of
-IMAGES_DIR in name order, one camera), cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments),
+IMAGES_DIR in name order, one camera per image size), cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments),
 triangulation (our multi-view line triangulation), frame (scale, up, ground), confirmation (lines no
 other view confirms dropped), inference (junction and edge models), outputs. OUT receives, only when
 every stage succeeded:
@@ -61,8 +61,10 @@ Options:
   -o, --out OUT          output folder (created; other files in it are left alone)
   --cameras PATH         known cameras instead of COLMAP: a COLMAP model folder (cameras/images .txt
                          or .bin, matched by image name) or a cameras JSON (one entry or null per image)
-  --intrinsics fx,fy,cx,cy  COLMAP intrinsics (OpenCV convention: pixel (0,0) = centre of top-left pixel)
-  --focal-35mm F         else fx = fy = F / 36 x width (EXIF FocalLengthIn35mmFilm; default 35)
+  --intrinsics fx,fy,cx,cy  COLMAP intrinsics (OpenCV convention: pixel (0,0) = centre of top-left pixel;
+                         photos of one size)
+  --focal-35mm F         else fx = fy = F / 36 x the longer side of each photo (EXIF FocalLengthIn35mmFilm;
+                         default 35)
   --max-features N       SIFT features per image (default 2000)
   --first-octave N       SIFT's first octave: -1 the image doubled first, 0 at its own size (fewer, larger
                          features found in less time); default -1 for photos within --max-image-side, 0

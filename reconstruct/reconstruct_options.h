@@ -31,7 +31,8 @@ struct ReconstructOptions {
   int min_images = 3;                       // readable and registered images needed
 
   // COLMAP intrinsics (fixed during mapping): fx, fy, cx, cy (OpenCV pixel centres), or from the
-  // 35 mm-equivalent focal length (EXIF FocalLengthIn35mmFilm): fx = fy = focal_35mm / 36 * width.
+  // 35 mm-equivalent focal length (EXIF FocalLengthIn35mmFilm): fx = fy = focal_35mm / 36 * the longer side
+  // of each photo (--intrinsics: photos of one size only).
   std::optional<Eigen::Vector4d> intrinsics;
   double focal_35mm = 35.0;
   ColmapOptions colmap = [] {

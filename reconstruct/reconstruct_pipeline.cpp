@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <cstdio>
 #include <optional>
@@ -64,16 +65,25 @@ class StageLog {
   Clock::time_point t_;
 };
 
-Eigen::Matrix3d colmap_intrinsics(const ReconstructOptions& o, int width, int height) {
-  Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
-  if (o.intrinsics) {
-    const Eigen::Vector4d& p = *o.intrinsics;
-    K << p(0), 0, p(2), 0, p(1), p(3), 0, 0, 1;
-  } else {
-    const double f = o.focal_35mm / 36.0 * width;
-    K << f, 0, (width - 1) / 2.0, 0, f, (height - 1) / 2.0, 0, 0, 1;
+// One K per photo: --intrinsics (photos of one size only: a sideways photo's K is the upright one turned, which
+// way unknown), else the 35 mm-equivalent focal length over the longer side (film's 36 mm side) and the centre.
+std::vector<Eigen::Matrix3d> colmap_intrinsics(const ReconstructOptions& o, const std::vector<cv::Size>& sizes) {
+  std::vector<Eigen::Matrix3d> out;
+  for (const cv::Size& size : sizes) {
+    Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
+    if (o.intrinsics) {
+      if (size != sizes.front())
+        throw StageError("cameras", "--intrinsics gives one camera, but the photos have several sizes (" + describe_sizes(sizes) +
+                                        "): give photos of one size, or leave --intrinsics out (--focal-35mm then sets each size's focal length)");
+      const Eigen::Vector4d& p = *o.intrinsics;
+      K << p(0), 0, p(2), 0, p(1), p(3), 0, 0, 1;
+    } else {
+      const double f = o.focal_35mm / 36.0 * std::max(size.width, size.height);
+      K << f, 0, (size.width - 1) / 2.0, 0, f, (size.height - 1) / 2.0, 0, 0, 1;
+    }
+    out.push_back(K);
   }
-  return K;
+  return out;
 }
 
 Json vec_json(const Vec3& v) { return Json::array({v.x(), v.y(), v.z()}); }
@@ -176,9 +186,10 @@ class ReconstructRun {
     log_.start("images");
     folder_ = read_image_folder(o_.images, o_.min_images);
     for (const auto& n : folder_.unreadable) result_.warnings.push_back("unreadable image skipped: " + n);
-    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"width", folder_.width}, {"height", folder_.height}};
-    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s) of " + std::to_string(folder_.width) + "x" +
-                            std::to_string(folder_.height) +
+    Json sizes = Json::array();
+    for (const cv::Size& size : folder_.sizes) sizes.push_back(Json::array({size.width, size.height}));
+    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"sizes", sizes}};
+    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (std::adjacent_find(folder_.sizes.begin(), folder_.sizes.end(), std::not_equal_to<>()) == folder_.sizes.end() ? " of " : ": ") + describe_sizes(folder_.sizes) +
                             (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
 
@@ -187,7 +198,7 @@ class ReconstructRun {
     ColmapOptions colmap = o_.colmap;
     if (o_.threads > 0) colmap.threads = o_.threads;
     cams_ = o_.cameras.empty()
-                ? cameras_from_colmap(folder_.paths, colmap_intrinsics(o_, folder_.width, folder_.height), ws_.root() / "colmap", colmap)
+                ? cameras_from_colmap(folder_.paths, colmap_intrinsics(o_, folder_.sizes), ws_.root() / "colmap", colmap)
                 : cameras_from_file(o_.cameras, folder_.all_names, folder_.paths);
     Json unregistered = Json::array();
     for (size_t i = 0; i < cams_.cameras.size(); ++i) {

@@ -1,5 +1,6 @@
-// EXIF GPS blocks written by hand, as a drone or phone writes them, so the reader's tests and the pipeline's GPS
-// scale tests build their JPEGs one way: a TIFF block with IFD0 (the GPS IFD pointer) and a GPS IFD.
+// EXIF blocks written by hand, as a drone or phone writes them, so the reader's tests and the pipeline's GPS
+// scale tests build their JPEGs one way: a TIFF block with IFD0 (the GPS IFD pointer) and a GPS IFD; or IFD0
+// with the orientation tag alone.
 #pragma once
 
 #include <cmath>
@@ -59,6 +60,17 @@ inline std::string gps_tiff(bool little, Dms lat, char lat_ref, Dms lon, char lo
   w.u32(0);
   for (const Dms& v : {lat, lon}) w.u32(v.d), w.u32(1), w.u32(v.m), w.u32(1), w.u32(v.s_num), w.u32(v.s_den);
   w.u32(alt_num), w.u32(alt_den);
+  return w.bytes();
+}
+
+// The TIFF block of a camera's orientation tag alone (IFD0 entry 0x0112: 6 = shown turned 90° clockwise).
+inline std::string orientation_tiff(uint16_t orientation) {
+  TiffWriter w(true);
+  w.bytes() += std::string("II*\0", 4);
+  w.u32(8);
+  w.u16(1);
+  w.u16(0x0112), w.u16(3), w.u32(1), w.u16(orientation), w.u16(0);
+  w.u32(0);
   return w.bytes();
 }
 

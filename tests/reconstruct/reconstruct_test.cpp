@@ -6,9 +6,11 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "core/util/version.h"
+#include "dataset/formats/camera_json.h"
 #include "dataset/formats/read_file.h"
 #include "dataset/formats/line_cloud_io.h"
 #include "dataset/synthetic/synthetic_building.h"
@@ -345,6 +347,84 @@ TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_EQ(r.warnings[0], "unreadable image skipped: view_005b.png (not a decodable image)");
   EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png (not a decodable image)", "view_005c.png (not a regular file)"}));
+}
+
+// A photo turned 90 degrees clockwise and its camera: pixel (u, v) moves to (H - 1 - v, u), so K's centre moves
+// the same way and the camera turns about its optical axis.
+Camera turned_clockwise(const Camera& c) {
+  Eigen::Matrix3d turn;
+  turn << 0, -1, 0, 1, 0, 0, 0, 0, 1;
+  Camera t = c;
+  t.K << c.K(1, 1), 0, c.height - 1 - c.K(1, 2), 0, c.K(0, 0), c.K(0, 2), 0, 0, 1;
+  t.R = turn * c.R;
+  t.t = turn * c.t;
+  t.width = c.height;
+  t.height = c.width;
+  return t;
+}
+
+// Photos taken upright and sideways in one set (a phone turned for a tall facade): each keeps its own size
+// and camera, and the cloud lies on the building as from upright photos alone.
+TEST_F(Reconstruct, SidewaysPhotosKeepTheirOwnSizeAndCamera) {
+  const fs::path images = *dir_ / "sideways";
+  fs::create_directories(images);
+  Json cams = Json::array();
+  for (size_t i = 0; i < scene_->cameras.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03zu.png", i);
+    cv::Mat image = cv::imread((scene_->images / name).string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << name;
+    Camera camera = scene_->cameras[i];
+    if (i % 3 == 1) cv::rotate(image, image, cv::ROTATE_90_CLOCKWISE), camera = turned_clockwise(camera);
+    ASSERT_TRUE(cv::imwrite((images / name).string(), image));
+    cams.push_back(camera_to_json(camera));
+  }
+  write_file_atomic(*dir_ / "cams_sideways.json", cams.dump());
+  ReconstructOptions o = options("sideways_out");
+  o.images = images;
+  o.cameras = *dir_ / "cams_sideways.json";
+  const ReconstructResult r = reconstruct(o);
+  const Json& sizes = r.report["images"]["sizes"];
+  ASSERT_EQ(sizes.size(), scene_->cameras.size());
+  EXPECT_EQ(sizes[0], Json::array({640, 480}));
+  EXPECT_EQ(sizes[1], Json::array({480, 640}));
+  EXPECT_EQ(r.report["cameras"]["registered"], 12);
+  EXPECT_GT(r.report["lines_3d"].get<int>(), 50);
+  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
+  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
+  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
+
+  // One --intrinsics cannot describe both sizes: said before COLMAP runs, naming the flag and the sizes.
+  ReconstructOptions one_k = options("sideways_one_k");
+  one_k.images = images;
+  one_k.intrinsics = Eigen::Vector4d(622.2, 622.2, 319.5, 239.5);
+  expect_stage_error(one_k, "cameras", "--intrinsics gives one camera, but the photos have several sizes (8 of 640x480, 4 of 480x640)");
+}
+
+// A phone's JPEGs stored 640x480 with EXIF orientation 6 (shown turned clockwise) are read as stored, the pixels
+// the cameras were estimated for (COLMAP ignores the tag), not turned as an image viewer shows them.
+TEST_F(Reconstruct, ExifOrientationIsNotApplied) {
+  const fs::path images = *dir_ / "exif_turned";
+  fs::create_directories(images);
+  for (size_t i = 0; i < scene_->cameras.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03zu", i);
+    std::vector<uchar> encoded;
+    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene_->images / (std::string(name) + ".png")).string()), encoded,
+                             {cv::IMWRITE_JPEG_QUALITY, 95}));
+    write_file_atomic(images / (std::string(name) + ".jpg"),
+                      testing::with_exif(std::string(encoded.begin(), encoded.end()), testing::orientation_tiff(6)));
+  }
+  // The test can fail: OpenCV's default reading turns these files.
+  ASSERT_EQ(cv::imread((images / "view_000.jpg").string(), cv::IMREAD_GRAYSCALE).size(), cv::Size(480, 640));
+  ReconstructOptions o = options("exif_turned_out");
+  o.images = images;
+  o.cameras = scene_->cameras_json;
+  const ReconstructResult r = reconstruct(o);
+  for (const Json& size : r.report["images"]["sizes"]) EXPECT_EQ(size, Json::array({640, 480}));
+  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
+  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
+  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
 }
 
 TEST_F(Reconstruct, AScaleThatLeavesTheCoordinateLimitIsAFrameError) {

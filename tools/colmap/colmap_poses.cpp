@@ -144,7 +144,8 @@ void clear_colmap_outputs(const fs::path& workspace) {
   if (!fs::is_directory(workspace)) return;
   for (const char* name : {"images", "database.db", "matches.txt", "sparse", "colmap.log"}) fs::remove_all(workspace / name);
   for (const auto& e : fs::directory_iterator(workspace))
-    if (e.path().filename().string().rfind("model_txt_", 0) == 0) fs::remove_all(e.path());
+    if (const std::string n = e.path().filename().string(); n.rfind("model_txt_", 0) == 0 || n.rfind("image_list_", 0) == 0)
+      fs::remove_all(e.path());
 }
 
 }  // namespace
@@ -154,9 +155,12 @@ int sift_first_octave(const ColmapOptions& options, int longer_side) {
   return longer_side > options.max_image_size ? 0 : -1;
 }
 
-ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const Eigen::Matrix3d& K, const fs::path& workspace,
-                                     const ColmapOptions& o) {
+ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const std::vector<Eigen::Matrix3d>& K,
+                                     const fs::path& workspace, const ColmapOptions& o) {
   o.Check();
+  if (K.size() != images.size())
+    throw std::invalid_argument("estimate_poses_with_colmap: " + std::to_string(K.size()) + " intrinsics for " +
+                                std::to_string(images.size()) + " images");
   clear_colmap_outputs(workspace);
   fs::create_directories(workspace / "images");
   std::vector<std::string> names;
@@ -170,20 +174,34 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
   }
   const fs::path db = workspace / "database.db", log = workspace / "colmap.log", image_dir = workspace / "images";
   const std::string threads = std::to_string(o.threads > 0 ? o.threads : -1);
-  std::ostringstream params;
-  params.precision(17);
-  params << K(0, 0) << "," << K(1, 1) << "," << K(0, 2) + 0.5 << "," << K(1, 2) + 0.5;
-  // The photos' size from the principal point of the intrinsics (cx = (width - 1) / 2 for a centred one).
-  const int longer_side = static_cast<int>(std::lround(2.0 * std::max(K(0, 2), K(1, 2)) + 1.0));
   ColmapRun run;
-  run.step_seconds.emplace_back(
-      "feature_extractor",
-      run_step({o.executable, "feature_extractor", "--database_path", db.string(), "--image_path", image_dir.string(),
-                "--ImageReader.camera_model", "PINHOLE", "--ImageReader.single_camera", "1", "--ImageReader.camera_params",
-                params.str(), "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads,
-                "--SiftExtraction.max_num_features", std::to_string(o.max_features), "--SiftExtraction.first_octave",
-                std::to_string(sift_first_octave(o, longer_side)), "--SiftExtraction.max_image_size", std::to_string(o.max_image_size)},
-               log, "feature_extractor"));
+  // One feature_extractor run per distinct K, on the list of its images: each run makes one shared camera.
+  std::vector<char> listed(images.size(), 0);
+  double extract_seconds = 0;
+  for (size_t first = 0; first < images.size(); ++first) {
+    if (listed[first]) continue;
+    const fs::path list = workspace / ("image_list_" + std::to_string(first) + ".txt");
+    {
+      std::ofstream out(list);
+      for (size_t i = first; i < images.size(); ++i)
+        if (!listed[i] && K[i] == K[first]) out << names[i] << "\n", listed[i] = 1;
+      if (!out) throw std::runtime_error("cannot write " + list.string());
+    }
+    const Eigen::Matrix3d& k = K[first];
+    std::ostringstream params;
+    params.precision(17);
+    params << k(0, 0) << "," << k(1, 1) << "," << k(0, 2) + 0.5 << "," << k(1, 2) + 0.5;
+    // The photos' size from the principal point of the intrinsics (cx = (width - 1) / 2 for a centred one).
+    const int longer_side = static_cast<int>(std::lround(2.0 * std::max(k(0, 2), k(1, 2)) + 1.0));
+    extract_seconds += run_step(
+        {o.executable, "feature_extractor", "--database_path", db.string(), "--image_path", image_dir.string(), "--image_list_path",
+         list.string(), "--ImageReader.camera_model", "PINHOLE", "--ImageReader.single_camera", "1", "--ImageReader.camera_params",
+         params.str(), "--SiftExtraction.use_gpu", "0", "--SiftExtraction.num_threads", threads, "--SiftExtraction.max_num_features",
+         std::to_string(o.max_features), "--SiftExtraction.first_octave", std::to_string(sift_first_octave(o, longer_side)),
+         "--SiftExtraction.max_image_size", std::to_string(o.max_image_size)},
+        log, "feature_extractor");
+  }
+  run.step_seconds.emplace_back("feature_extractor", extract_seconds);
   // Our exact matcher, then COLMAP's geometric verification of the matches (its RANSAC, its defaults).
   const auto t0 = SteadyClock::now();
   SiftMatchOptions match;

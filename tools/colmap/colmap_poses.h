@@ -71,11 +71,20 @@ struct ColmapRun {
   std::vector<std::pair<std::string, double>> step_seconds;  // wall time of each COLMAP command
 };
 
-// Runs feature_extractor, our matcher (tools/colmap/sift_matching.h), matches_importer, mapper and model_converter in `workspace` on `images` (one
-// camera: intrinsics K, fixed during mapping). `workspace` belongs to the caller (core/util/workspace.h):
-// only what a previous call wrote there (images/, database.db, matches.txt, sparse/, model_txt_*, colmap.log) is replaced. The mapper may build several models; the one with the
-// most registered images is used. Throws std::runtime_error naming the failing step and its log.
-ColmapRun estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images, const Eigen::Matrix3d& K,
+// Runs feature_extractor, our matcher (tools/colmap/sift_matching.h), matches_importer, mapper and model_converter in `workspace` on `images`
+// with their intrinsics, fixed during mapping: `K[i]` is image i's. Images of equal intrinsics share one COLMAP
+// camera, so photos taken upright and sideways (or cropped) are registered together. `workspace` belongs to
+// the caller (core/util/workspace.h): only what a previous call wrote there (images/, database.db, matches.txt,
+// image_list_*.txt, sparse/, model_txt_*, colmap.log) is replaced. The mapper may build several models; the one
+// with the most registered images is used. Throws std::invalid_argument when K and images differ in number,
+// std::runtime_error naming the failing step and its log.
+ColmapRun estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images, const std::vector<Eigen::Matrix3d>& K,
                                      const std::filesystem::path& workspace, const ColmapOptions& options);
+
+// Every image with the same intrinsics K (one camera).
+inline ColmapRun estimate_poses_with_colmap(const std::vector<std::filesystem::path>& images, const Eigen::Matrix3d& K,
+                                            const std::filesystem::path& workspace, const ColmapOptions& options) {
+  return estimate_poses_with_colmap(images, std::vector<Eigen::Matrix3d>(images.size(), K), workspace, options);
+}
 
 }  // namespace lc2wf
