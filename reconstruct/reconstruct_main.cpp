@@ -63,8 +63,9 @@ Options:
                          or .bin, matched by image name) or a cameras JSON (one entry or null per image)
   --intrinsics fx,fy,cx,cy  COLMAP intrinsics (OpenCV convention: pixel (0,0) = centre of top-left pixel;
                          photos of one size)
-  --focal-35mm F         else fx = fy = F / 36 x the longer side of each photo (EXIF FocalLengthIn35mmFilm;
-                         default 35)
+  --focal-35mm F         else fx = fy = F / 36 x the longer side of each photo, F the 35 mm-equivalent focal
+                         length (default: each photo's EXIF, FocalLengthIn35mmFilm or FocalLength over the
+                         sensor size; without it 35)
   --max-features N       SIFT features per image (default 2000)
   --first-octave N       SIFT's first octave: -1 the image doubled first, 0 at its own size (fewer, larger
                          features found in less time); default -1 for photos within --max-image-side, 0

@@ -11,7 +11,8 @@ void ReconstructOptions::Check() const {
   if (out.empty()) throw std::invalid_argument("ReconstructOptions.out is empty");
   if (threads < 0) throw std::invalid_argument("ReconstructOptions.threads must be >= 0");
   if (min_images < 3) throw std::invalid_argument("ReconstructOptions.min_images must be >= 3 (a line needs 3 views)");
-  if (!(focal_35mm > 0) || !std::isfinite(focal_35mm)) throw std::invalid_argument("ReconstructOptions.focal_35mm must be > 0");
+  if (focal_35mm && (!(*focal_35mm > 0) || !std::isfinite(*focal_35mm)))
+    throw std::invalid_argument("ReconstructOptions.focal_35mm must be > 0");
   if (intrinsics && !(intrinsics->allFinite() && (*intrinsics)(0) > 0 && (*intrinsics)(1) > 0))
     throw std::invalid_argument("ReconstructOptions.intrinsics: fx and fy must be > 0");
   if (frame.known_distance_m > 0 && (known_image_a.empty() || known_image_b.empty() || known_image_a == known_image_b))

@@ -31,10 +31,11 @@ struct ReconstructOptions {
   int min_images = 3;                       // readable and registered images needed
 
   // COLMAP intrinsics (fixed during mapping): fx, fy, cx, cy (OpenCV pixel centres), or from the
-  // 35 mm-equivalent focal length (EXIF FocalLengthIn35mmFilm): fx = fy = focal_35mm / 36 * the longer side
-  // of each photo (--intrinsics: photos of one size only).
+  // 35 mm-equivalent focal length: fx = fy = focal_35mm / 36 * the longer side of each photo (--intrinsics:
+  // photos of one size only). Unset: each photo's EXIF (exif_focal.h), else kDefaultFocal35mm.
   std::optional<Eigen::Vector4d> intrinsics;
-  double focal_35mm = 35.0;
+  std::optional<double> focal_35mm;
+  static constexpr double kDefaultFocal35mm = 35.0;  // a normal lens; phones' main cameras are 24-28
   ColmapOptions colmap = [] {
     ColmapOptions o;
     o.max_features = 2000;  // 20 photos of 640x480: exhaustive matching stays within the time budget

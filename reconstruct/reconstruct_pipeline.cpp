@@ -18,6 +18,7 @@
 #include "dataset/formats/line_obj_io.h"
 #include "core/util/number_format.h"
 #include "dataset/photo/camera_coverage.h"
+#include "dataset/photo/exif_focal.h"
 #include "dataset/photo/exif_gps.h"
 #include "dataset/photo/local_enu.h"
 #include "model/inference.h"
@@ -65,11 +66,32 @@ class StageLog {
   Clock::time_point t_;
 };
 
+// Each photo's 35 mm-equivalent focal length: --focal-35mm, else its EXIF, else the default; and in words,
+// where they came from.
+std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder& folder, std::string& source) {
+  std::vector<double> out;
+  int from_exif = 0;
+  for (size_t i = 0; i < folder.paths.size(); ++i) {
+    std::optional<ExifFocal> exif;
+    if (!o.focal_35mm) exif = exif_focal_of_file(folder.paths[i], std::max(folder.sizes[i].width, folder.sizes[i].height));
+    from_exif += exif.has_value();
+    out.push_back(o.focal_35mm ? *o.focal_35mm : exif ? exif->focal_35mm : ReconstructOptions::kDefaultFocal35mm);
+  }
+  const std::string fallback = format_number("%g", ReconstructOptions::kDefaultFocal35mm) + " mm (default)";
+  source = o.focal_35mm ? "--focal-35mm"
+           : from_exif == static_cast<int>(out.size()) ? "EXIF"
+           : from_exif == 0 ? fallback
+                            : "EXIF (" + std::to_string(from_exif) + " of " + std::to_string(out.size()) + " photos), " + fallback + " for the others";
+  return out;
+}
+
 // One K per photo: --intrinsics (photos of one size only: a sideways photo's K is the upright one turned, which
 // way unknown), else the 35 mm-equivalent focal length over the longer side (film's 36 mm side) and the centre.
-std::vector<Eigen::Matrix3d> colmap_intrinsics(const ReconstructOptions& o, const std::vector<cv::Size>& sizes) {
+std::vector<Eigen::Matrix3d> colmap_intrinsics(const ReconstructOptions& o, const std::vector<cv::Size>& sizes,
+                                               const std::vector<double>& focal_35mm) {
   std::vector<Eigen::Matrix3d> out;
-  for (const cv::Size& size : sizes) {
+  for (size_t i = 0; i < sizes.size(); ++i) {
+    const cv::Size& size = sizes[i];
     Eigen::Matrix3d K = Eigen::Matrix3d::Identity();
     if (o.intrinsics) {
       if (size != sizes.front())
@@ -78,7 +100,7 @@ std::vector<Eigen::Matrix3d> colmap_intrinsics(const ReconstructOptions& o, cons
       const Eigen::Vector4d& p = *o.intrinsics;
       K << p(0), 0, p(2), 0, p(1), p(3), 0, 0, 1;
     } else {
-      const double f = o.focal_35mm / 36.0 * std::max(size.width, size.height);
+      const double f = focal_35mm[i] / 36.0 * std::max(size.width, size.height);
       K << f, 0, (size.width - 1) / 2.0, 0, f, (size.height - 1) / 2.0, 0, 0, 1;
     }
     out.push_back(K);
@@ -188,8 +210,19 @@ class ReconstructRun {
     for (const auto& n : folder_.unreadable) result_.warnings.push_back("unreadable image skipped: " + n);
     Json sizes = Json::array();
     for (const cv::Size& size : folder_.sizes) sizes.push_back(Json::array({size.width, size.height}));
-    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"sizes", sizes}};
-    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (std::adjacent_find(folder_.sizes.begin(), folder_.sizes.end(), std::not_equal_to<>()) == folder_.sizes.end() ? " of " : ": ") + describe_sizes(folder_.sizes) +
+    std::string focal_source;
+    try {
+      focal_35mm_ = photo_focals(o_, folder_, focal_source);
+    } catch (const std::exception& e) {  // a photo that went away since it was decoded
+      throw StageError("images", e.what());
+    }
+    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"sizes", sizes},
+                         {"focal_35mm", focal_35mm_}, {"focal_source", focal_source}};
+    const bool one_size = std::adjacent_find(folder_.sizes.begin(), folder_.sizes.end(), std::not_equal_to<>()) == folder_.sizes.end();
+    const auto [f_min, f_max] = std::minmax_element(focal_35mm_.begin(), focal_35mm_.end());
+    const std::string focal = f_min == focal_35mm_.end() ? "" : *f_min == *f_max ? format_number("%g", *f_min) : format_number("%g", *f_min) + "-" + format_number("%g", *f_max);
+    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (one_size ? " of " : ": ") + describe_sizes(folder_.sizes) +
+                            ", focal length " + focal + " mm (35 mm equivalent, " + focal_source + ")" +
                             (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
 
@@ -198,7 +231,7 @@ class ReconstructRun {
     ColmapOptions colmap = o_.colmap;
     if (o_.threads > 0) colmap.threads = o_.threads;
     cams_ = o_.cameras.empty()
-                ? cameras_from_colmap(folder_.paths, colmap_intrinsics(o_, folder_.sizes), ws_.root() / "colmap", colmap)
+                ? cameras_from_colmap(folder_.paths, colmap_intrinsics(o_, folder_.sizes, focal_35mm_), ws_.root() / "colmap", colmap)
                 : cameras_from_file(o_.cameras, folder_.all_names, folder_.paths);
     Json unregistered = Json::array();
     for (size_t i = 0; i < cams_.cameras.size(); ++i) {
@@ -450,6 +483,7 @@ class ReconstructRun {
   std::optional<WireframePredictor> predictor_;
   std::optional<HeightModel> height_model_;
   ImageFolder folder_;
+  std::vector<double> focal_35mm_;  // per readable photo (used when COLMAP estimates the cameras)
   CameraSet cams_;
   std::vector<int> image_of_view_;  // registered images only
   std::vector<TriangulationView> views_;

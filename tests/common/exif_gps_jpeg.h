@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace lc2wf::testing {
 
@@ -71,6 +72,54 @@ inline std::string orientation_tiff(uint16_t orientation) {
   w.u16(1);
   w.u16(0x0112), w.u16(3), w.u32(1), w.u16(orientation), w.u16(0);
   w.u32(0);
+  return w.bytes();
+}
+
+// One field of an Exif IFD: its value's bytes already in the block's byte order (TiffWriter).
+struct TiffField {
+  uint16_t tag, type;
+  uint32_t count;
+  std::string value;
+};
+
+// A TIFF block whose IFD0 points to an Exif IFD holding `fields` (values of more than 4 bytes after it).
+inline std::string exif_ifd_tiff(bool little, const std::vector<TiffField>& fields) {
+  TiffWriter w(little);
+  w.bytes() += little ? std::string("II*\0", 4) : std::string("MM\0*", 4);
+  w.u32(8);
+  w.u16(1);
+  w.u16(0x8769), w.u16(4), w.u32(1), w.u32(26);  // Exif IFD pointer -> 26
+  w.u32(0);
+  uint32_t data = 26 + 2 + 12 * static_cast<uint32_t>(fields.size()) + 4;
+  std::string tail;
+  w.u16(static_cast<uint16_t>(fields.size()));
+  for (const TiffField& f : fields) {
+    w.u16(f.tag), w.u16(f.type), w.u32(f.count);
+    if (f.value.size() <= 4) {
+      w.bytes() += f.value + std::string(4 - f.value.size(), '\0');
+    } else {
+      w.u32(data + static_cast<uint32_t>(tail.size()));
+      tail += f.value;
+    }
+  }
+  w.u32(0);
+  return w.bytes() + tail;
+}
+
+// Value bytes for TiffField in one byte order.
+inline std::string tiff_short(bool little, uint16_t v) {
+  TiffWriter w(little);
+  w.u16(v);
+  return w.bytes();
+}
+inline std::string tiff_long(bool little, uint32_t v) {
+  TiffWriter w(little);
+  w.u32(v);
+  return w.bytes();
+}
+inline std::string tiff_rational(bool little, uint32_t num, uint32_t den) {
+  TiffWriter w(little);
+  w.u32(num), w.u32(den);
   return w.bytes();
 }
 

@@ -427,6 +427,35 @@ TEST_F(Reconstruct, ExifOrientationIsNotApplied) {
   EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
 }
 
+// A phone's photos carry their 35 mm-equivalent focal length (here 28 mm); COLMAP gets it as fx = 28 / 36 x the
+// longer side, unless --focal-35mm says otherwise. A stand-in colmap records its arguments and fails.
+TEST_F(Reconstruct, ExifFocalLengthSetsTheCamerasIntrinsics) {
+  const fs::path images = *dir_ / "exif_focal";
+  fs::create_directories(images);
+  for (int i = 0; i < 4; ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03d", i);
+    std::vector<uchar> encoded;
+    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene_->images / (std::string(name) + ".png")).string()), encoded));
+    const std::string tiff = testing::exif_ifd_tiff(true, {{0xA405, 3, 1, testing::tiff_short(true, 28)}});
+    write_file_atomic(images / (std::string(name) + ".jpg"), testing::with_exif(std::string(encoded.begin(), encoded.end()), tiff));
+  }
+  const fs::path fake = *dir_ / "recording_colmap.sh", args = *dir_ / "colmap_args.txt";
+  std::ofstream(fake) << "#!/bin/sh\necho \"$@\" >> '" << args.string() << "'\nexit 1\n";
+  fs::permissions(fake, fs::perms::owner_all);
+  for (const bool given : {false, true}) {
+    fs::remove(args);
+    ReconstructOptions o = options(given ? "exif_focal_given" : "exif_focal_out");
+    o.images = images;
+    o.colmap.executable = fake.string();
+    if (given) o.focal_35mm = 35.0;
+    EXPECT_THROW(reconstruct(o), StageError);
+    const std::string recorded = read_file(args);
+    const std::string expected = given ? "622.22222222222217,622.22222222222217,320,240" : "497.77777777777777,497.77777777777777,320,240";
+    EXPECT_THAT(recorded, HasSubstr("--ImageReader.camera_params " + expected)) << recorded;
+  }
+}
+
 TEST_F(Reconstruct, AScaleThatLeavesTheCoordinateLimitIsAFrameError) {
   // --scale 1e20 failed only when the cloud was written, as an I/O error naming a workspace file.
   ReconstructOptions o = options("huge_scale");
