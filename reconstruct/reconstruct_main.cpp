@@ -74,6 +74,9 @@ Options:
                          (default 1600; their points stay in full-size pixels), so large photos cost
                          about what 2 MP ones do
   --matcher M            exhaustive (default) or sequential (photos taken in order)
+  --init-min-inliers N   COLMAP mapper: verified matches the initial pair needs (default 100; lower it
+                         when the mapper finds no initial pair)
+  --abs-pose-min-inliers N  COLMAP mapper: 2D-3D inliers a view needs to be registered (default 30)
   --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
                          the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two
                          confirming views)
@@ -179,6 +182,8 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--first-octave") o.colmap.first_octave = int_flag(f, value());
     else if (f == "--max-image-side") o.colmap.max_image_size = o.lsd.max_side = int_flag(f, value());
     else if (f == "--matcher") o.colmap.matcher = value();
+    else if (f == "--init-min-inliers") o.colmap.init_min_inliers = int_flag(f, value());
+    else if (f == "--abs-pose-min-inliers") o.colmap.abs_pose_min_inliers = int_flag(f, value());
     else if (f == "--min-score") o.triangulator.min_best_score = number_flag(f, value());
     else if (f == "--min-confirming-views") o.confirmation.min_other_views = int_flag(f, value());
     else if (f == "--scale") {
@@ -229,6 +234,8 @@ ReconstructOptions parse_args(int argc, char** argv) {
                                      {"ColmapOptions.first_octave", "--first-octave"},
                                      {"ColmapOptions.max_image_size", "--max-image-side"},
                                      {"ColmapOptions.matcher", "--matcher"},
+                                     {"ColmapOptions.init_min_inliers", "--init-min-inliers"},
+                                     {"ColmapOptions.abs_pose_min_inliers", "--abs-pose-min-inliers"},
                                      {"TriangulatorOptions.min_best_score", "--min-score"},
                                      {"LineConfirmationOptions.min_other_views", "--min-confirming-views"}});
   if (!fs::is_directory(o.images)) throw std::runtime_error("'" + o.images.string() + "' is not a folder");  // a data error

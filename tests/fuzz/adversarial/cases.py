@@ -228,7 +228,7 @@ def flags(fx, rng, n):
         "lc2wf-reconstruct": ([exe("lc2wf-reconstruct"), "{F}/images", "--weights", "{F}/weights", "-o", "{C}/out", "--quiet",
                                "--cameras", "{F}/cameras.json"],
                               ["--intrinsics", "--focal-35mm", "--scale", "--up", "--known-distance", "--min-score", "--threads",
-                               "--max-features", "--matcher", "--height-model"]),
+                               "--max-features", "--matcher", "--height-model", "--init-min-inliers", "--abs-pose-min-inliers"]),
         "lc2wf-cloud-convert": ([exe("lc2wf-cloud-convert"), cloud, "-o", "{C}/out/c.txt"], ["--to"]),
         "lc2wf-train": ([exe("lc2wf-train"), "{F}/config.json", "--out", "{C}/out", "--quiet"], ["--stage"]),
         "lc2wf-synthetic-data": ([exe("lc2wf-synthetic-data"), "--out", "{C}/out", "--quiet"], ["--count", "--val", "--test", "--seed"]),
