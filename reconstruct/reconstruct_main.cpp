@@ -65,7 +65,7 @@ Options:
                          photos of one size)
   --focal-35mm F         else fx = fy = F / 36 x the longer side of each photo, F the 35 mm-equivalent focal
                          length (default: each photo's EXIF, FocalLengthIn35mmFilm or FocalLength over the
-                         sensor size; without it 35)
+                         sensor size; without it 35, refined by COLMAP's bundle adjustment)
   --max-features N       SIFT features per image (default 2000)
   --first-octave N       SIFT's first octave: -1 the image doubled first, 0 at its own size (fewer, larger
                          features found in less time); default -1 for photos within --max-image-side, 0

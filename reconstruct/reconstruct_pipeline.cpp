@@ -66,9 +66,9 @@ class StageLog {
   Clock::time_point t_;
 };
 
-// Each photo's 35 mm-equivalent focal length: --focal-35mm, else its EXIF, else the default; and in words,
-// where they came from.
-std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder& folder, std::string& source) {
+// Each photo's 35 mm-equivalent focal length: --focal-35mm, else its EXIF, else the default; in words, where
+// they came from; and whether any is the default, a guess.
+std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder& folder, std::string& source, bool& guessed) {
   std::vector<double> out;
   int from_exif = 0;
   for (size_t i = 0; i < folder.paths.size(); ++i) {
@@ -77,6 +77,7 @@ std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder&
     from_exif += exif.has_value();
     out.push_back(o.focal_35mm ? *o.focal_35mm : exif ? exif->focal_35mm : ReconstructOptions::kDefaultFocal35mm);
   }
+  guessed = !o.focal_35mm && from_exif < static_cast<int>(out.size());
   const std::string fallback = format_number("%g", ReconstructOptions::kDefaultFocal35mm) + " mm (default)";
   source = o.focal_35mm ? "--focal-35mm"
            : from_exif == static_cast<int>(out.size()) ? "EXIF"
@@ -212,7 +213,8 @@ class ReconstructRun {
     for (const cv::Size& size : folder_.sizes) sizes.push_back(Json::array({size.width, size.height}));
     std::string focal_source;
     try {
-      focal_35mm_ = photo_focals(o_, folder_, focal_source);
+      focal_35mm_ = photo_focals(o_, folder_, focal_source, focal_guessed_);
+      focal_guessed_ = focal_guessed_ && !o_.intrinsics;
     } catch (const std::exception& e) {  // a photo that went away since it was decoded
       throw StageError("images", e.what());
     }
@@ -230,6 +232,7 @@ class ReconstructRun {
     log_.start("cameras");
     ColmapOptions colmap = o_.colmap;
     if (o_.threads > 0) colmap.threads = o_.threads;
+    colmap.refine_focal_length = focal_guessed_;
     cams_ = o_.cameras.empty()
                 ? cameras_from_colmap(folder_.paths, colmap_intrinsics(o_, folder_.sizes, focal_35mm_), ws_.root() / "colmap", colmap)
                 : cameras_from_file(o_.cameras, folder_.all_names, folder_.paths);
@@ -241,6 +244,12 @@ class ReconstructRun {
     Json steps = Json::object();
     for (const auto& [step, s] : cams_.step_seconds) steps[step] = s;
     report_["cameras"] = {{"source", cams_.source}, {"registered", image_of_view_.size()}, {"unregistered", unregistered}, {"colmap_seconds", steps}};
+    if (o_.cameras.empty()) {  // the focal lengths COLMAP ended with (refined where they were guessed), 35 mm equivalent
+      Json focal = Json::array();
+      for (const auto& c : cams_.cameras) focal.push_back(c ? Json(c->K(0, 0) * 36.0 / std::max(c->width, c->height)) : Json(nullptr));
+      report_["cameras"]["focal_refined"] = colmap.refine_focal_length;
+      report_["cameras"]["focal_35mm"] = focal;
+    }
     if (static_cast<int>(image_of_view_.size()) < o_.min_images)
       throw StageError("cameras", std::to_string(image_of_view_.size()) + " of " + std::to_string(folder_.paths.size()) +
                                       " images registered (" + cams_.source + (o_.cameras.empty() ? "" : " " + o_.cameras.string()) +
@@ -484,6 +493,7 @@ class ReconstructRun {
   std::optional<HeightModel> height_model_;
   ImageFolder folder_;
   std::vector<double> focal_35mm_;  // per readable photo (used when COLMAP estimates the cameras)
+  bool focal_guessed_ = false;      // some photo's focal length is the default: COLMAP refines it
   CameraSet cams_;
   std::vector<int> image_of_view_;  // registered images only
   std::vector<TriangulationView> views_;

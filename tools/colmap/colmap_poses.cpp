@@ -221,7 +221,7 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
       o.executable, "mapper", "--database_path", db.string(), "--image_path", image_dir.string(), "--output_path",
       (workspace / "sparse").string(), "--Mapper.num_threads", threads, "--Mapper.init_min_num_inliers",
       std::to_string(o.init_min_inliers), "--Mapper.abs_pose_min_num_inliers", std::to_string(o.abs_pose_min_inliers),
-      "--Mapper.ba_refine_focal_length", "0", "--Mapper.ba_refine_principal_point", "0", "--Mapper.ba_refine_extra_params", "0"};
+      "--Mapper.ba_refine_focal_length", o.refine_focal_length ? "1" : "0", "--Mapper.ba_refine_principal_point", "0", "--Mapper.ba_refine_extra_params", "0"};
   try {
     run.step_seconds.emplace_back("mapper", run_step(mapper_cmd, log, "mapper"));
   } catch (const std::runtime_error&) {

@@ -59,6 +59,9 @@ struct ColmapOptions {
   int sequential_overlap = 10;         // sequential: each view is matched with this many next ones
   int init_min_inliers = 100;          // mapper: verified matches of the initial pair (COLMAP's default)
   int abs_pose_min_inliers = 30;       // mapper: 2D-3D inliers to register a view (COLMAP's default)
+  // Bundle adjustment also refines each camera's focal length (the principal point stays): for photos whose
+  // focal length is a guess. Known intrinsics stay fixed, which registers more reliably.
+  bool refine_focal_length = false;
   int threads = 0;                     // every COLMAP stage; 0 = all cores
   void Check() const;
 };
