@@ -18,6 +18,8 @@ void ReconstructOptions::Check() const {
   if (frame.known_distance_m > 0 && (known_image_a.empty() || known_image_b.empty() || known_image_a == known_image_b))
     throw std::invalid_argument("ReconstructOptions: a known distance needs two different image names");
   if (min_gps_photos < 3) throw std::invalid_argument("ReconstructOptions.min_gps_photos must be >= 3");
+  if (!(max_gps_residual_share > 0 && max_gps_residual_share <= 10))
+    throw std::invalid_argument("ReconstructOptions.max_gps_residual_share must be in (0, 10]");
   gps_fit.Check();
   scale_search.Check();
   if (frame_max_supports < 3 || frame_min_lines < 1) throw std::invalid_argument("ReconstructOptions.frame_max_supports must be >= 3, frame_min_lines >= 1");

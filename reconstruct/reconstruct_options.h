@@ -68,6 +68,10 @@ struct ReconstructOptions {
   // after a known distance and before a building height (frame.building_height_m) and the scale search.
   bool use_gps = true;
   int min_gps_photos = 3;
+  // GPS is used only when the camera centres fit the fixes to an RMS residual of at most this share of the
+  // fixes' spread (RMS distance from their mean): a drone's orbit fits to ≈ 2 m of 20-40 m (bench/README.md),
+  // a phone's walk down a street (10 m fixes) to 33 m of 57 m, whose scale and up were garbage.
+  double max_gps_residual_share = 0.25;
   // GPS fixes are metres off: a camera is left out of the fit only beyond 3 x the median residual and 5 m.
   SimilarityFitOptions gps_fit{.outlier_factor = 3.0, .outlier_floor = 5.0, .rounds = 3, .min_spread_ratio = 0.05};
   // The height model read after the storeys (dataset/photo/line_height.h): "none", a file, or empty for

@@ -78,7 +78,7 @@ std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder&
     out.push_back(o.focal_35mm ? *o.focal_35mm : exif ? exif->focal_35mm : ReconstructOptions::kDefaultFocal35mm);
   }
   guessed = !o.focal_35mm && from_exif < static_cast<int>(out.size());
-  const std::string fallback = format_number("%g", ReconstructOptions::kDefaultFocal35mm) + " mm (default)";
+  const std::string fallback = "the default";
   source = o.focal_35mm ? "--focal-35mm"
            : from_exif == static_cast<int>(out.size()) ? "EXIF"
            : from_exif == 0 ? fallback
@@ -133,7 +133,8 @@ struct GpsAlignment {
 // The registered photos' EXIF GPS fixes and the similarity that puts their camera centres onto them; no
 // similarity (and the reason in the report) with fewer than `min_photos` fixes or fixes on one line.
 GpsAlignment align_to_gps(const std::vector<Camera>& registered, const std::vector<int>& image_of_view,
-                          const std::vector<fs::path>& paths, int min_photos, const SimilarityFitOptions& fit_options) {
+                          const std::vector<fs::path>& paths, int min_photos, const SimilarityFitOptions& fit_options,
+                          double max_residual_share) {
   GpsAlignment a;
   std::vector<GpsFix> fixes;
   std::vector<Vec3> centres;
@@ -160,12 +161,25 @@ GpsAlignment align_to_gps(const std::vector<Camera>& registered, const std::vect
     return a;
   }
   try {
-    const SimilarityFit fit = fit_similarity(centres, local_enu(fixes), fit_options);
-    a.to_enu = fit.transform;
-    a.report["used"] = true;
+    const std::vector<Vec3> enu = local_enu(fixes);
+    const SimilarityFit fit = fit_similarity(centres, enu, fit_options);
+    Vec3 mean = Vec3::Zero();
+    for (const Vec3& p : enu) mean += p / static_cast<double>(enu.size());
+    double spread = 0;
+    for (const Vec3& p : enu) spread += (p - mean).squaredNorm() / static_cast<double>(enu.size());
+    spread = std::sqrt(spread);
     a.report["inliers"] = fit.inliers.size();
     a.report["rms_residual_m"] = fit.rms_residual;
     a.report["median_residual_m"] = fit.median_residual;
+    a.report["spread_m"] = spread;
+    if (fit.rms_residual > max_residual_share * spread) {
+      a.report["why_not"] = "the camera centres fit the GPS fixes to " + format_number("%.1f", fit.rms_residual) + " m RMS, " +
+                            format_number("%.0f", 100 * fit.rms_residual / spread) + " % of their " + format_number("%.1f", spread) +
+                            " m spread (more than " + format_number("%.0f", 100 * max_residual_share) + " %): too noisy for scale and up";
+      return a;
+    }
+    a.to_enu = fit.transform;
+    a.report["used"] = true;
   } catch (const std::invalid_argument& e) {
     a.report["why_not"] = e.what();
   }
@@ -214,7 +228,7 @@ class ReconstructRun {
     std::string focal_source;
     try {
       focal_35mm_ = photo_focals(o_, folder_, focal_source, focal_guessed_);
-      focal_guessed_ = focal_guessed_ && !o_.intrinsics;
+      focal_guessed_ = focal_guessed_ && !o_.intrinsics && o_.cameras.empty();
     } catch (const std::exception& e) {  // a photo that went away since it was decoded
       throw StageError("images", e.what());
     }
@@ -224,7 +238,8 @@ class ReconstructRun {
     const auto [f_min, f_max] = std::minmax_element(focal_35mm_.begin(), focal_35mm_.end());
     const std::string focal = f_min == focal_35mm_.end() ? "" : *f_min == *f_max ? format_number("%g", *f_min) : format_number("%g", *f_min) + "-" + format_number("%g", *f_max);
     log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (one_size ? " of " : ": ") + describe_sizes(folder_.sizes) +
-                            ", focal length " + focal + " mm (35 mm equivalent, " + focal_source + ")" +
+                            ", focal length " + focal + " mm (35 mm equivalent) from " + focal_source +
+                            (focal_guessed_ ? ", refined by COLMAP" : "") +
                             (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
 
@@ -306,7 +321,7 @@ class ReconstructRun {
     }
     Json gps_report = {{"used", false}};
     if (o_.use_gps && !cams_.metric_z_up && fo.scale == 0 && fo.known_distance_m == 0) {
-      const GpsAlignment gps = align_to_gps(registered_, image_of_view_, folder_.paths, o_.min_gps_photos, o_.gps_fit);
+      const GpsAlignment gps = align_to_gps(registered_, image_of_view_, folder_.paths, o_.min_gps_photos, o_.gps_fit, o_.max_gps_residual_share);
       gps_report = gps.report;
       if (gps.to_enu) fo.gps_to_enu = gps.to_enu;
     }

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -272,25 +273,31 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
 
 // A drone's photos: every camera centre written into its JPEG as a GPS fix (building x east, y north, z up,
 // at 47 N 8 E), the poses in an arbitrary SfM frame, no other evidence: scale, up and north come from GPS.
-TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
-  const fs::path images = *dir_ / "gps_images";
+// The scene's photos as JPEGs in `images` whose EXIF GPS holds camera position_of(v)'s centre (lat/lon about
+// 47 N, 8 E, altitude 400 m + z).
+void write_gps_photos(const fs::path& images, const test::RenderedFolder& scene, const std::function<size_t(size_t)>& position_of) {
   fs::create_directories(images);
   const double lat0 = 47.0, lon0 = 8.0, alt0 = 400.0;
   const double e2 = 6.69437999014e-3, s2 = std::pow(std::sin(lat0 * M_PI / 180), 2);
   const double north_radius = 6378137.0 * (1 - e2) / std::pow(1 - e2 * s2, 1.5);  // metres per radian of latitude
   const double east_radius = 6378137.0 / std::sqrt(1 - e2 * s2) * std::cos(lat0 * M_PI / 180);
-  for (size_t v = 0; v < scene_->cameras.size(); ++v) {
+  for (size_t v = 0; v < scene.cameras.size(); ++v) {
     char png[32], jpg[32];
     std::snprintf(png, sizeof png, "view_%03zu.png", v);
     std::snprintf(jpg, sizeof jpg, "view_%03zu.jpg", v);
     std::vector<uchar> encoded;
-    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene_->images / png).string()), encoded, {cv::IMWRITE_JPEG_QUALITY, 95}));
-    const Vec3 c = scene_->cameras[v].center();
+    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene.images / png).string()), encoded, {cv::IMWRITE_JPEG_QUALITY, 95}));
+    const Vec3 c = scene.cameras[position_of(v)].center();
     const std::string tiff = testing::gps_tiff(true, testing::to_dms(lat0 + c.y() / north_radius * 180 / M_PI), 'N',
                                                testing::to_dms(lon0 + c.x() / east_radius * 180 / M_PI), 'E', 0,
                                                uint32_t(std::llround((alt0 + c.z()) * 1000)), 1000);
     std::ofstream(images / jpg, std::ios::binary) << testing::with_exif(std::string(encoded.begin(), encoded.end()), tiff);
   }
+}
+
+TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
+  const fs::path images = *dir_ / "gps_images";
+  write_gps_photos(images, *scene_, [](size_t v) { return v; });
   const Similarity sfm = arbitrary_sfm_frame();
   const fs::path model = *dir_ / "colmap_model_jpg";
   write_colmap_model(model, scene_->cameras, sfm, ".jpg");
@@ -307,6 +314,28 @@ TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
   // Building frame -> metric frame is a pure turn of < 1 degree: x east, y north, z up.
   const Eigen::Matrix3d turn = to_metric.R * sfm.R;
   EXPECT_LT(Eigen::AngleAxisd(turn).angle() * 180 / M_PI, 1.0);
+}
+
+// Fixes that do not fit the cameras (each photo tagged with another photo's position, as noisy as a phone's
+// fixes along a short walk) give neither scale nor up: the next evidence does, and the report says why.
+TEST_F(Reconstruct, GpsThatDoesNotFitTheCamerasIsNotUsed) {
+  const fs::path images = *dir_ / "gps_scrambled";
+  write_gps_photos(images, *scene_, [](size_t v) { return (5 * v + 3) % 12; });
+  const Similarity sfm = arbitrary_sfm_frame();
+  const fs::path model = *dir_ / "colmap_model_scrambled";
+  write_colmap_model(model, scene_->cameras, sfm, ".jpg");
+  double height = 0;
+  for (const Vec3& j : scene_->building.wireframe.junctions) height = std::max(height, j.z());
+  ReconstructOptions o = options("gps_scrambled_out");
+  o.images = images;
+  o.cameras = model;
+  o.frame.building_height_m = height;
+  const ReconstructResult r = reconstruct(o);
+  const Json& f = r.report["frame"];
+  EXPECT_EQ(f["scale_source"], "building height") << f.dump();
+  EXPECT_EQ(f["gps"]["used"], false);
+  EXPECT_THAT(f["gps"]["why_not"].get<std::string>(), HasSubstr("too noisy for scale and up"));
+  EXPECT_GT(f["gps"]["rms_residual_m"].get<double>(), 0.25 * f["gps"]["spread_m"].get<double>());
 }
 
 void expect_stage_error(const ReconstructOptions& o, const std::string& stage, const std::string& text) {
