@@ -68,6 +68,7 @@ CameraSet cameras_from_colmap(const std::vector<fs::path>& images, const std::ve
     set.source = "colmap";
     set.cameras = std::move(run.cameras);
     set.step_seconds = std::move(run.step_seconds);
+    set.focal_refined = run.focal_refined;
     return set;
   } catch (const std::exception& e) {
     throw StageError("cameras", e.what());

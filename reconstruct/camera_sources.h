@@ -19,6 +19,7 @@ struct CameraSet {
   std::string source;                          // "colmap", "colmap model", "cameras json"
   bool metric_z_up = false;                    // the project's cameras JSON: metres, z up already
   std::vector<std::pair<std::string, double>> step_seconds;  // COLMAP steps when it ran
+  bool focal_refined = false;                                 // COLMAP refined the focal lengths
 };
 
 // Reads `path` (a folder = COLMAP model, a file = cameras JSON). Throws StageError("cameras", ...) naming

@@ -239,7 +239,7 @@ class ReconstructRun {
     const std::string focal = f_min == focal_35mm_.end() ? "" : *f_min == *f_max ? format_number("%g", *f_min) : format_number("%g", *f_min) + "-" + format_number("%g", *f_max);
     log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (one_size ? " of " : ": ") + describe_sizes(folder_.sizes) +
                             ", focal length " + focal + " mm (35 mm equivalent) from " + focal_source +
-                            (focal_guessed_ ? ", refined by COLMAP" : "") +
+                            (focal_guessed_ ? " (a guess for COLMAP to refine)" : "") +
                             (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
 
@@ -257,12 +257,12 @@ class ReconstructRun {
       else unregistered.push_back(folder_.paths[i].filename().string());
     }
     Json steps = Json::object();
-    for (const auto& [step, s] : cams_.step_seconds) steps[step] = s;
+    for (const auto& [step, s] : cams_.step_seconds) steps[step] = steps.value(step, 0.0) + s;  // the mapper may run twice
     report_["cameras"] = {{"source", cams_.source}, {"registered", image_of_view_.size()}, {"unregistered", unregistered}, {"colmap_seconds", steps}};
     if (o_.cameras.empty()) {  // the focal lengths COLMAP ended with (refined where they were guessed), 35 mm equivalent
       Json focal = Json::array();
       for (const auto& c : cams_.cameras) focal.push_back(c ? Json(c->K(0, 0) * 36.0 / std::max(c->width, c->height)) : Json(nullptr));
-      report_["cameras"]["focal_refined"] = colmap.refine_focal_length;
+      report_["cameras"]["focal_refined"] = cams_.focal_refined;
       report_["cameras"]["focal_35mm"] = focal;
     }
     if (static_cast<int>(image_of_view_.size()) < o_.min_images)
@@ -271,7 +271,8 @@ class ReconstructRun {
                                       "), at least " + std::to_string(o_.min_images) + " needed; unregistered: " + json_text(unregistered) +
                                       (o_.cameras.empty() ? "; COLMAP log: " + (ws_.root() / "colmap" / "colmap.log").string() : ""));
     if (!unregistered.empty()) result_.warnings.push_back(std::to_string(unregistered.size()) + " image(s) not registered: " + json_text(unregistered));
-    log_.done(seconds_, std::to_string(image_of_view_.size()) + "/" + std::to_string(folder_.paths.size()) + " registered (" + cams_.source + ")");
+    const std::string focal = !focal_guessed_ ? "" : cams_.focal_refined ? ", focal lengths refined" : ", focal lengths kept (no model with them free)";
+    log_.done(seconds_, std::to_string(image_of_view_.size()) + "/" + std::to_string(folder_.paths.size()) + " registered (" + cams_.source + ")" + focal);
   }
 
   // Where the poses came from, for errors that bad poses cause downstream (a wrong model, not a wrong flag).

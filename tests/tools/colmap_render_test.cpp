@@ -94,6 +94,8 @@ TEST(ColmapOnRenders, SfmTexturesGiveAccuratePoses) {
   for (Eigen::Matrix3d& k : guessed) k(0, 0) *= 1.12, k(1, 1) *= 1.12;
   colmap.refine_focal_length = true;
   auto refined = estimate_poses_with_colmap(images, guessed, dir / "colmap_refined", colmap);
+  EXPECT_FALSE(run.focal_refined);
+  EXPECT_TRUE(refined.focal_refined);
   const PoseComparison pr = align_to_reference(reference, refined.cameras);
   EXPECT_GE(pr.registered, static_cast<int>(0.8 * ring.views + 0.5));
   EXPECT_LT(pr.median_rotation_deg, 1.0);

@@ -216,22 +216,39 @@ ColmapRun estimate_poses_with_colmap(const std::vector<fs::path>& images, const 
       run_step({o.executable, "matches_importer", "--database_path", db.string(), "--match_list_path", match_list.string(),
                 "--match_type", "raw", "--SiftMatching.use_gpu", "0", "--SiftMatching.num_threads", threads},
                log, "matches_importer"));
-  fs::create_directories(workspace / "sparse");
-  const std::vector<std::string> mapper_cmd = {
-      o.executable, "mapper", "--database_path", db.string(), "--image_path", image_dir.string(), "--output_path",
-      (workspace / "sparse").string(), "--Mapper.num_threads", threads, "--Mapper.init_min_num_inliers",
-      std::to_string(o.init_min_inliers), "--Mapper.abs_pose_min_num_inliers", std::to_string(o.abs_pose_min_inliers),
-      "--Mapper.ba_refine_focal_length", o.refine_focal_length ? "1" : "0", "--Mapper.ba_refine_principal_point", "0", "--Mapper.ba_refine_extra_params", "0"};
+  auto mapper = [&](bool refine_focal) {
+    fs::remove_all(workspace / "sparse");
+    fs::create_directories(workspace / "sparse");
+    const auto log_start = fs::exists(log) ? fs::file_size(log) : 0;
+    try {
+      run.step_seconds.emplace_back(
+          "mapper",
+          run_step({o.executable, "mapper", "--database_path", db.string(), "--image_path", image_dir.string(), "--output_path",
+                    (workspace / "sparse").string(), "--Mapper.num_threads", threads, "--Mapper.init_min_num_inliers",
+                    std::to_string(o.init_min_inliers), "--Mapper.abs_pose_min_num_inliers", std::to_string(o.abs_pose_min_inliers),
+                    "--Mapper.ba_refine_focal_length", refine_focal ? "1" : "0", "--Mapper.ba_refine_principal_point", "0",
+                    "--Mapper.ba_refine_extra_params", "0"},
+                   log, "mapper"));
+    } catch (const std::runtime_error&) {
+      // COLMAP 3.8 exits non-zero when it cannot start a model; say why, not only "failed".
+      std::ifstream in(log);
+      in.seekg(static_cast<std::streamoff>(log_start));
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (text.find("No good initial image pair found") == std::string::npos) throw;
+      throw std::runtime_error("COLMAP mapper found no initial image pair: too few verified matches between views (repetitive "
+                               "textures or little overlap; a lower init_min_inliers, --init-min-inliers, may help); see " +
+                               log.string());
+    }
+  };
+  run.focal_refined = o.refine_focal_length;
   try {
-    run.step_seconds.emplace_back("mapper", run_step(mapper_cmd, log, "mapper"));
+    mapper(o.refine_focal_length);
   } catch (const std::runtime_error&) {
-    // COLMAP 3.8 exits non-zero when it cannot start a model; say why, not only "failed".
-    std::ifstream in(log);
-    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (text.find("No good initial image pair found") == std::string::npos) throw;
-    throw std::runtime_error("COLMAP mapper found no initial image pair: too few verified matches between views (repetitive "
-                             "textures or little overlap; a lower init_min_inliers, --init-min-inliers, may help); see " +
-                             log.string());
+    // Free focal lengths make a pair of views' geometry looser: with few photos per camera (ten tourists' photos,
+    // ten cameras) no initial pair holds. Fixed ones are the fallback.
+    if (!o.refine_focal_length) throw;
+    run.focal_refined = false;
+    mapper(false);
   }
   // The mapper writes sparse/0, sparse/1, ... when it cannot join every view into one model.
   std::vector<ColmapImage> best;

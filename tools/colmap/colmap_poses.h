@@ -60,7 +60,8 @@ struct ColmapOptions {
   int init_min_inliers = 100;          // mapper: verified matches of the initial pair (COLMAP's default)
   int abs_pose_min_inliers = 30;       // mapper: 2D-3D inliers to register a view (COLMAP's default)
   // Bundle adjustment also refines each camera's focal length (the principal point stays): for photos whose
-  // focal length is a guess. Known intrinsics stay fixed, which registers more reliably.
+  // focal length is a guess. Known intrinsics stay fixed, which registers more reliably; when the mapper
+  // finds no model with free focal lengths it runs once more with them fixed (ColmapRun::focal_refined).
   bool refine_focal_length = false;
   int threads = 0;                     // every COLMAP stage; 0 = all cores
   void Check() const;
@@ -72,6 +73,7 @@ int sift_first_octave(const ColmapOptions& options, int longer_side);
 struct ColmapRun {
   std::vector<std::optional<Camera>> cameras;  // one per image (empty when not registered), COLMAP's frame
   std::vector<std::pair<std::string, double>> step_seconds;  // wall time of each COLMAP command
+  bool focal_refined = false;  // refine_focal_length asked and the mapper succeeded with it (else fixed focal lengths)
 };
 
 // Runs feature_extractor, our matcher (tools/colmap/sift_matching.h), matches_importer, mapper and model_converter in `workspace` on `images`
