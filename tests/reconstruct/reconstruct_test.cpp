@@ -20,6 +20,7 @@
 #include "test_scene.h"
 #include "tests/common/constant_height_model.h"
 #include "tests/common/exif_gps_jpeg.h"
+#include "tests/common/turned_camera.h"
 
 using ::testing::HasSubstr;
 
@@ -68,6 +69,12 @@ class Reconstruct : public ::testing::Test {
     o.quiet = true;
     o.threads = 2;
     return o;
+  }
+  // The scene's true height (its highest junction): the user's word for the building's height.
+  static double scene_height() {
+    double height = 0;
+    for (const Vec3& j : scene_->building.wireframe.junctions) height = std::max(height, j.z());
+    return height;
   }
   static fs::path* dir_;
   static test::RenderedFolder* scene_;
@@ -202,8 +209,7 @@ TEST_F(Reconstruct, ColmapFrameIsBroughtBackToMetresWithZUp) {
   const Similarity sfm = arbitrary_sfm_frame();
   const fs::path model = *dir_ / "colmap_model";
   write_colmap_model(model, scene_->cameras, sfm, ".png");
-  double height = 0;
-  for (const Vec3& j : scene_->building.wireframe.junctions) height = std::max(height, j.z());
+  const double height = scene_height();
 
   ReconstructOptions o = options("sfm_frame");
   o.cameras = model;
@@ -324,12 +330,10 @@ TEST_F(Reconstruct, GpsThatDoesNotFitTheCamerasIsNotUsed) {
   const Similarity sfm = arbitrary_sfm_frame();
   const fs::path model = *dir_ / "colmap_model_scrambled";
   write_colmap_model(model, scene_->cameras, sfm, ".jpg");
-  double height = 0;
-  for (const Vec3& j : scene_->building.wireframe.junctions) height = std::max(height, j.z());
   ReconstructOptions o = options("gps_scrambled_out");
   o.images = images;
   o.cameras = model;
-  o.frame.building_height_m = height;
+  o.frame.building_height_m = scene_height();
   const ReconstructResult r = reconstruct(o);
   const Json& f = r.report["frame"];
   EXPECT_EQ(f["scale_source"], "building height") << f.dump();
@@ -378,20 +382,6 @@ TEST_F(Reconstruct, UnreadableImagesAreNamedAndSkipped) {
   EXPECT_EQ(r.report["images"]["unreadable"], Json::array({"view_005b.png (not a decodable image)", "view_005c.png (not a regular file)"}));
 }
 
-// A photo turned 90 degrees clockwise and its camera: pixel (u, v) moves to (H - 1 - v, u), so K's centre moves
-// the same way and the camera turns about its optical axis.
-Camera turned_clockwise(const Camera& c) {
-  Eigen::Matrix3d turn;
-  turn << 0, -1, 0, 1, 0, 0, 0, 0, 1;
-  Camera t = c;
-  t.K << c.K(1, 1), 0, c.height - 1 - c.K(1, 2), 0, c.K(0, 0), c.K(0, 2), 0, 0, 1;
-  t.R = turn * c.R;
-  t.t = turn * c.t;
-  t.width = c.height;
-  t.height = c.width;
-  return t;
-}
-
 // Photos taken upright and sideways in one set (a phone turned for a tall facade): each keeps its own size
 // and camera, and the cloud lies on the building as from upright photos alone.
 TEST_F(Reconstruct, SidewaysPhotosKeepTheirOwnSizeAndCamera) {
@@ -404,7 +394,7 @@ TEST_F(Reconstruct, SidewaysPhotosKeepTheirOwnSizeAndCamera) {
     cv::Mat image = cv::imread((scene_->images / name).string(), cv::IMREAD_COLOR);
     ASSERT_FALSE(image.empty()) << name;
     Camera camera = scene_->cameras[i];
-    if (i % 3 == 1) cv::rotate(image, image, cv::ROTATE_90_CLOCKWISE), camera = turned_clockwise(camera);
+    if (i % 3 == 1) cv::rotate(image, image, cv::ROTATE_90_CLOCKWISE), camera = test::turned_clockwise(camera);
     ASSERT_TRUE(cv::imwrite((images / name).string(), image));
     cams.push_back(camera_to_json(camera));
   }

@@ -18,23 +18,11 @@
 #include "tools/colmap/colmap_poses.h"
 #include "tools/render/blender_renderer.h"
 #include "tools/render/camera_ring.h"
+#include "tests/common/turned_camera.h"
 
 namespace lc2wf {
 namespace {
 namespace fs = std::filesystem;
-
-// The camera of a photo turned 90 degrees clockwise: pixel (u, v) moves to (H - 1 - v, u).
-Camera turned_clockwise(const Camera& c) {
-  Eigen::Matrix3d turn;
-  turn << 0, -1, 0, 1, 0, 0, 0, 0, 1;
-  Camera t = c;
-  t.K << c.K(1, 1), 0, c.height - 1 - c.K(1, 2), 0, c.K(0, 0), c.K(0, 2), 0, 0, 1;
-  t.R = turn * c.R;
-  t.t = turn * c.t;
-  t.width = c.height;
-  t.height = c.width;
-  return t;
-}
 
 bool on_path(const std::string& exe) { return std::system(("command -v " + exe + " > /dev/null 2>&1").c_str()) == 0; }
 
@@ -68,7 +56,7 @@ TEST(ColmapOnRenders, SfmTexturesGiveAccuratePoses) {
       cv::rotate(image, image, cv::ROTATE_90_CLOCKWISE);
       images.back() = dir / "l" / ("sideways_" + std::string(name));
       ASSERT_TRUE(cv::imwrite(images.back().string(), image));
-      reference.back() = turned_clockwise(reference.back());
+      reference.back() = test::turned_clockwise(reference.back());
     }
     K.push_back(reference.back().K);
   }
