@@ -66,20 +66,25 @@ class StageLog {
   Clock::time_point t_;
 };
 
-// Each photo's 35 mm-equivalent focal length: --focal-35mm, else its EXIF, else the default; in words, where
-// they came from; and whether any is the default, a guess.
+// Each photo's 35 mm-equivalent focal length: --intrinsics' fx or --focal-35mm, else its EXIF, else the default;
+// in words, where they came from; and whether any is the default, a guess.
 std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder& folder, std::string& source, bool& guessed) {
   std::vector<double> out;
   int from_exif = 0;
   for (size_t i = 0; i < folder.paths.size(); ++i) {
+    const int longer_side = std::max(folder.sizes[i].width, folder.sizes[i].height);
     std::optional<ExifFocal> exif;
-    if (!o.focal_35mm) exif = exif_focal_of_file(folder.paths[i], std::max(folder.sizes[i].width, folder.sizes[i].height));
+    if (!o.focal_35mm && !o.intrinsics) exif = exif_focal_of_file(folder.paths[i], longer_side);
     from_exif += exif.has_value();
-    out.push_back(o.focal_35mm ? *o.focal_35mm : exif ? exif->focal_35mm : ReconstructOptions::kDefaultFocal35mm);
+    out.push_back(o.intrinsics   ? (*o.intrinsics)(0) * 36.0 / longer_side
+                  : o.focal_35mm ? *o.focal_35mm
+                  : exif         ? exif->focal_35mm
+                                 : ReconstructOptions::kDefaultFocal35mm);
   }
-  guessed = !o.focal_35mm && from_exif < static_cast<int>(out.size());
+  guessed = !o.intrinsics && !o.focal_35mm && from_exif < static_cast<int>(out.size());
   const std::string fallback = "the default";
-  source = o.focal_35mm ? "--focal-35mm"
+  source = o.intrinsics   ? "--intrinsics"
+           : o.focal_35mm ? "--focal-35mm"
            : from_exif == static_cast<int>(out.size()) ? "EXIF"
            : from_exif == 0 ? fallback
                             : "EXIF (" + std::to_string(from_exif) + " of " + std::to_string(out.size()) + " photos), " + fallback + " for the others";
@@ -228,7 +233,7 @@ class ReconstructRun {
     std::string focal_source;
     try {
       focal_35mm_ = photo_focals(o_, folder_, focal_source, focal_guessed_);
-      focal_guessed_ = focal_guessed_ && !o_.intrinsics && o_.cameras.empty();
+      focal_guessed_ = focal_guessed_ && o_.cameras.empty();
     } catch (const std::exception& e) {  // a photo that went away since it was decoded
       throw StageError("images", e.what());
     }
