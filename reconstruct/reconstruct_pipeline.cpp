@@ -230,22 +230,24 @@ class ReconstructRun {
     for (const auto& n : folder_.unreadable) result_.warnings.push_back("unreadable image skipped: " + n);
     Json sizes = Json::array();
     for (const cv::Size& size : folder_.sizes) sizes.push_back(Json::array({size.width, size.height}));
-    std::string focal_source;
-    try {
-      focal_35mm_ = photo_focals(o_, folder_, focal_source, focal_guessed_);
-      focal_guessed_ = focal_guessed_ && o_.cameras.empty();
-    } catch (const std::exception& e) {  // a photo that went away since it was decoded
-      throw StageError("images", e.what());
+    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"sizes", sizes}};
+    std::string focal_text;
+    if (o_.cameras.empty()) {  // the focal lengths COLMAP starts from (known cameras bring their own)
+      std::string focal_source;
+      try {
+        focal_35mm_ = photo_focals(o_, folder_, focal_source, focal_guessed_);
+      } catch (const std::exception& e) {  // a photo that went away since it was decoded
+        throw StageError("images", e.what());
+      }
+      report_["images"]["focal_35mm"] = focal_35mm_;
+      report_["images"]["focal_source"] = focal_source;
+      const auto [f_min, f_max] = std::minmax_element(focal_35mm_.begin(), focal_35mm_.end());
+      focal_text = ", focal length " + format_number("%g", *f_min) + (*f_min == *f_max ? "" : "-" + format_number("%g", *f_max)) +
+                   " mm (35 mm equivalent) from " + focal_source + (focal_guessed_ ? " (a guess for COLMAP to refine)" : "");
     }
-    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"sizes", sizes},
-                         {"focal_35mm", focal_35mm_}, {"focal_source", focal_source}};
     const bool one_size = std::adjacent_find(folder_.sizes.begin(), folder_.sizes.end(), std::not_equal_to<>()) == folder_.sizes.end();
-    const auto [f_min, f_max] = std::minmax_element(focal_35mm_.begin(), focal_35mm_.end());
-    const std::string focal = f_min == focal_35mm_.end() ? "" : *f_min == *f_max ? format_number("%g", *f_min) : format_number("%g", *f_min) + "-" + format_number("%g", *f_max);
     log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (one_size ? " of " : ": ") + describe_sizes(folder_.sizes) +
-                            ", focal length " + focal + " mm (35 mm equivalent) from " + focal_source +
-                            (focal_guessed_ ? " (a guess for COLMAP to refine)" : "") +
-                            (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
+                            focal_text + (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
 
   void register_cameras() {
