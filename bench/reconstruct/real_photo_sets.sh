@@ -34,7 +34,9 @@ for line in open(listing):
     r = json.load(open(path))
     sizes = {tuple(s) for s in r['images']['sizes']}
     cams = r['cameras']
-    focal = r['images'].get('focal_source', '?') + (' (refined)' if cams.get('focal_refined') else '')
+    source = r['images'].get('focal_source', '?')
+    guessed = source == 'the default' or source.startswith('EXIF (')
+    focal = source + (' (refined)' if cams.get('focal_refined') else ' (kept: no model with it free)' if guessed else '')
     print(f"| {name} | {flags or '–'} | {r['images']['read']} ({len(sizes)} size{'s' if len(sizes) > 1 else ''}) | {focal} | "
           f"{cams['registered']} | {r['lines_3d']} ({r['lines_3d'] - r.get('lines_unconfirmed', 0)}) | {r['frame']['scale_source']} | "
           f"{r['junctions']} / {r['edges']} | {r['seconds']['total']:.0f} |")
