@@ -246,7 +246,7 @@ int run(const Args& a) {
     std::fprintf(stderr, "lc2wf-infer: surfaces: %d of %d closed solid(s); %.2f ms per building\n", s.closed_solids, s.buildings,
                  1000 * s.surface_seconds / s.buildings);
   if (!a.options.quiet && s.framed > 0)
-    std::fprintf(stderr, "lc2wf-infer: %d map(s) put in the networks' frame (OUT/<name>.frame.json); %.2f s per map with the scale search\n",
+    std::fprintf(stderr, "lc2wf-infer: %d map(s) put in the networks' frame (OUT/<name>.frame.json); %.2f s per map, frame and inference\n",
                  s.framed, s.frame_seconds / s.framed);
   if (!a.options.quiet && s.buildings > 0)
     std::fprintf(stderr,
