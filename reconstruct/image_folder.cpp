@@ -11,10 +11,23 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool is_image(const fs::path& p) {
+std::string lower_extension(const fs::path& p) {
   std::string ext = p.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+  return ext;
+}
+
+// What both OpenCV and COLMAP 3.8 (FreeImage) decode.
+bool is_image(const fs::path& p) {
+  const std::string ext = lower_extension(p);
+  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".tif" || ext == ".tiff" || ext == ".bmp";
+}
+
+// Photos neither decodes: phones' HEIC/HEIF and cameras' raw files, which users do put in a photo folder.
+bool is_unsupported_photo(const fs::path& p) {
+  static const char* const kExtensions[] = {".heic", ".heif", ".dng", ".cr2", ".cr3", ".nef", ".arw", ".orf", ".rw2", ".raf"};
+  const std::string ext = lower_extension(p);
+  return std::find(std::begin(kExtensions), std::end(kExtensions), ext) != std::end(kExtensions);
 }
 
 std::string joined(const std::vector<std::string>& names) {
@@ -27,12 +40,16 @@ std::string joined(const std::vector<std::string>& names) {
 
 ImageFolder read_image_folder(const fs::path& dir, int min_images) {
   std::error_code ec;
-  std::vector<fs::path> found;
-  for (const auto& e : fs::directory_iterator(dir, ec))
+  std::vector<fs::path> found, unsupported;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
     if (is_image(e.path())) found.push_back(e.path());
+    else if (is_unsupported_photo(e.path())) unsupported.push_back(e.path());
+  }
   if (ec) throw StageError("images", "cannot list " + dir.string() + ": " + ec.message());
   std::sort(found.begin(), found.end());
+  std::sort(unsupported.begin(), unsupported.end());
   ImageFolder f;
+  for (const fs::path& p : unsupported) f.unsupported.push_back(p.filename().string());
   for (const fs::path& p : found) {
     f.all_names.push_back(p.filename().string());  // a cameras JSON has one entry per name, readable or not
     std::error_code type_ec;
@@ -52,8 +69,13 @@ ImageFolder read_image_folder(const fs::path& dir, int min_images) {
   if (static_cast<int>(f.images.size()) < min_images)
     throw StageError("images", std::to_string(f.images.size()) + " readable image(s) in " + dir.string() + ", at least " +
                                    std::to_string(min_images) + " needed" +
-                                   (f.unreadable.empty() ? std::string() : "; unreadable: " + joined(f.unreadable)));
+                                   (f.unreadable.empty() ? std::string() : "; unreadable: " + joined(f.unreadable)) +
+                                   (f.unsupported.empty() ? std::string() : "; " + unsupported_text(f.unsupported)));
   return f;
+}
+
+std::string unsupported_text(const std::vector<std::string>& names) {
+  return "not read (HEIC/HEIF or camera raw: convert them to JPEG first): " + joined(names);
 }
 
 std::string describe_sizes(const std::vector<cv::Size>& sizes) {

@@ -19,10 +19,11 @@ using namespace lc2wf;
 
 const char* kUsage = R"(Usage: lc2wf-reconstruct IMAGES_DIR --weights DIR -o OUT [options]
 
-Photos of one building -> 3D wireframe. Stages (progress on stderr): weights, images (*.png, *.jpg of
-IMAGES_DIR in name order, one camera per image size), cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments),
-triangulation (our multi-view line triangulation), frame (scale, up, ground), confirmation (lines no
-other view confirms dropped), inference (junction and edge models), outputs. OUT receives, only when
+Photos of one building -> 3D wireframe. Stages (progress on stderr): weights, images (*.jpg, *.png, *.tif,
+*.bmp of IMAGES_DIR in name order, one camera per image size; HEIC and raw files are named, not read),
+cameras (COLMAP 3.8 on the CPU, or --cameras), lsd (2D segments), triangulation (our multi-view line
+triangulation), frame (scale, up, ground), confirmation (lines no other view confirms dropped), inference
+(junction and edge models), outputs. OUT receives, only when
 every stage succeeded:
   wireframe.obj + wireframe.json   the wireframe (metres, z up) and its scores
   cloud.lcloud, cloud.obj          the confirmed line cloud inference ran on (our format; OBJ for MeshLab)

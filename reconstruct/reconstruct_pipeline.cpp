@@ -228,9 +228,10 @@ class ReconstructRun {
     log_.start("images");
     folder_ = read_image_folder(o_.images, o_.min_images);
     for (const auto& n : folder_.unreadable) result_.warnings.push_back("unreadable image skipped: " + n);
+    if (!folder_.unsupported.empty()) result_.warnings.push_back(unsupported_text(folder_.unsupported));
     Json sizes = Json::array();
     for (const cv::Size& size : folder_.sizes) sizes.push_back(Json::array({size.width, size.height}));
-    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"sizes", sizes}};
+    report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"not_read", folder_.unsupported}, {"sizes", sizes}};
     std::string focal_text;
     if (o_.cameras.empty()) {  // the focal lengths COLMAP starts from (known cameras bring their own)
       std::string focal_source;

@@ -475,6 +475,40 @@ TEST_F(Reconstruct, ExifFocalLengthSetsTheCamerasIntrinsics) {
   }
 }
 
+// TIFF photos are read (COLMAP reads them too); a phone's HEIC and a camera's raw files are named as not read,
+// with what to do, instead of vanishing from the count.
+TEST_F(Reconstruct, TiffIsReadAndHeicIsNamed) {
+  const fs::path images = *dir_ / "tiff_heic";
+  fs::create_directories(images);
+  for (size_t i = 0; i < scene_->cameras.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "view_%03zu", i);
+    ASSERT_TRUE(cv::imwrite((images / (std::string(name) + ".tif")).string(), cv::imread((scene_->images / (std::string(name) + ".png")).string())));
+  }
+  std::ofstream(images / "IMG_0001.HEIC") << "ftypheic";
+  std::ofstream(images / "DSC_0002.NEF") << "raw";
+  ReconstructOptions o = options("tiff_heic_out");
+  o.images = images;
+  o.cameras = scene_->cameras_json;  // one entry per photo it reads: the HEIC and raw files are not among them
+  const ReconstructResult r = reconstruct(o);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.report["images"]["read"], 12);
+  EXPECT_EQ(r.report["images"]["not_read"], Json::array({"DSC_0002.NEF", "IMG_0001.HEIC"}));
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_THAT(r.warnings[0], HasSubstr("convert them to JPEG first): DSC_0002.NEF, IMG_0001.HEIC"));
+  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
+  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
+  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
+
+  const fs::path heic_only = *dir_ / "heic_only";
+  fs::create_directories(heic_only);
+  for (const char* n : {"a.heic", "b.heic", "c.heic"}) std::ofstream(heic_only / n) << "ftypheic";
+  ReconstructOptions h = options("heic_only_out");
+  h.images = heic_only;
+  expect_stage_error(h, "images", "0 readable image(s) in " + heic_only.string() +
+                                      ", at least 3 needed; not read (HEIC/HEIF or camera raw: convert them to JPEG first): a.heic, b.heic, c.heic");
+}
+
 TEST_F(Reconstruct, AScaleThatLeavesTheCoordinateLimitIsAFrameError) {
   // --scale 1e20 failed only when the cloud was written, as an I/O error naming a workspace file.
   ReconstructOptions o = options("huge_scale");
