@@ -18,6 +18,8 @@
 # POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
 # output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.
 # RECONSTRUCT_FLAGS="--max-features 1000" adds options to every lc2wf-reconstruct run.
+# The COLMAP-pose run gets the renders' focal length (--focal-35mm), as real photos' EXIF gives it;
+# GUESS_FOCAL=1 leaves it out (the default 35 mm, refined by COLMAP: photos without EXIF).
 # GPS_NOISE_M=1.5 gives the photos a drone's GPS: JPEGs whose EXIF holds each render camera's centre with that
 # much horizontal receiver noise (GPS_VERTICAL_NOISE_M, default 0.5, vertically; geotag_views.py, seeded by the
 # building's name), so the COLMAP-pose run takes its scale and up from GPS. Unset: the PNGs, no GPS.
@@ -57,9 +59,12 @@ while read -r n; do
   else
     for f in "$views"/view_*.png; do ln -sf "$(realpath "$f")" "$out/photos/$n/"; done
   fi
+  # The renders' focal length, as a real photo's EXIF gives it (GUESS_FOCAL=1: left out, COLMAP refines a guess).
+  focal=$(/usr/bin/python3 -c 'import json,sys; c=json.load(open(sys.argv[1]))[0]; print(c["K"][0] * 36 / max(c["width"], c["height"]))' "$views/cameras.json")
   for mode in photos given-cameras; do
     extra=()
     [ "$mode" = given-cameras ] && extra=(--cameras "$views/cameras.json")
+    [ "$mode" = photos ] && [ "${GUESS_FOCAL:-0}" != 1 ] && extra=(--focal-35mm "$focal")
     [ "$mode" = photos ] && [ -n "${POSES_FROM:-}" ] && extra=(--cameras "$POSES_FROM/recon-photos/$n/cameras.json")
     rm -rf "$out/recon-$mode/$n" "$out/pred-$mode/$n.obj" "$out/pred-$mode/$n.json"  # nothing left from an earlier run
     code=0
