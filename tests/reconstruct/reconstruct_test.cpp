@@ -301,16 +301,23 @@ void write_gps_photos(const fs::path& images, const test::RenderedFolder& scene,
   }
 }
 
-TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
-  const fs::path images = *dir_ / "gps_images";
-  write_gps_photos(images, *scene_, [](size_t v) { return v; });
-  const Similarity sfm = arbitrary_sfm_frame();
-  const fs::path model = *dir_ / "colmap_model_jpg";
-  write_colmap_model(model, scene_->cameras, sfm, ".jpg");
+// Options for a run on the GPS-tagged photos of `name`, with the scene's cameras as a COLMAP model in `sfm`.
+ReconstructOptions gps_run(const fs::path& dir, const std::string& name, const test::RenderedFolder& scene,
+                           const std::function<size_t(size_t)>& position_of, const Similarity& sfm) {
+  write_gps_photos(dir / (name + "_images"), scene, position_of);
+  write_colmap_model(dir / (name + "_model"), scene.cameras, sfm, ".jpg");
+  ReconstructOptions o;
+  o.images = dir / (name + "_images");
+  o.cameras = dir / (name + "_model");
+  return o;
+}
 
+TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
+  const Similarity sfm = arbitrary_sfm_frame();
+  const ReconstructOptions g = gps_run(*dir_, "gps", *scene_, [](size_t v) { return v; }, sfm);
   ReconstructOptions o = options("gps");
-  o.images = images;
-  o.cameras = model;
+  o.images = g.images;
+  o.cameras = g.cameras;
   const ReconstructResult r = reconstruct(o);
   const Json& f = r.report["frame"];
   ASSERT_EQ(f["scale_source"], "gps") << f.dump();
@@ -325,14 +332,10 @@ TEST_F(Reconstruct, GpsInThePhotosGivesScaleUpAndNorth) {
 // Fixes that do not fit the cameras (each photo tagged with another photo's position, as noisy as a phone's
 // fixes along a short walk) give neither scale nor up: the next evidence does, and the report says why.
 TEST_F(Reconstruct, GpsThatDoesNotFitTheCamerasIsNotUsed) {
-  const fs::path images = *dir_ / "gps_scrambled";
-  write_gps_photos(images, *scene_, [](size_t v) { return (5 * v + 3) % 12; });
-  const Similarity sfm = arbitrary_sfm_frame();
-  const fs::path model = *dir_ / "colmap_model_scrambled";
-  write_colmap_model(model, scene_->cameras, sfm, ".jpg");
+  const ReconstructOptions g = gps_run(*dir_, "gps_scrambled", *scene_, [](size_t v) { return (5 * v + 3) % 12; }, arbitrary_sfm_frame());
   ReconstructOptions o = options("gps_scrambled_out");
-  o.images = images;
-  o.cameras = model;
+  o.images = g.images;
+  o.cameras = g.cameras;
   o.frame.building_height_m = scene_height();
   const ReconstructResult r = reconstruct(o);
   const Json& f = r.report["frame"];
