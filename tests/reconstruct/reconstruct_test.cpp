@@ -80,6 +80,32 @@ class Reconstruct : public ::testing::Test {
   static test::RenderedFolder* scene_;
 };
 fs::path* Reconstruct::dir_ = nullptr;
+
+// The scene's first `count` renders, each as its stem ("view_000") and pixels (BGR), for tests that write them
+// in another form.
+void for_each_render(const test::RenderedFolder& scene, size_t count, const std::function<void(size_t, const std::string&, cv::Mat)>& use) {
+  for (size_t i = 0; i < count; ++i) {
+    char stem[32];
+    std::snprintf(stem, sizeof stem, "view_%03zu", i);
+    cv::Mat image = cv::imread((scene.images / (std::string(stem) + ".png")).string(), cv::IMREAD_COLOR);
+    ASSERT_FALSE(image.empty()) << stem;
+    use(i, stem, std::move(image));
+  }
+}
+
+// `image` as a JPEG (quality 95) whose EXIF holds `tiff`.
+std::string jpeg_with_exif(const cv::Mat& image, const std::string& tiff) {
+  std::vector<uchar> encoded;
+  EXPECT_TRUE(cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, 95}));
+  return testing::with_exif(std::string(encoded.begin(), encoded.end()), tiff);
+}
+
+// The run's cloud, taken back to the building frame, lies on the building's edges.
+void expect_cloud_on_building(const ReconstructResult& r, const fs::path& out, const test::RenderedFolder& scene) {
+  const LineCloud cloud = read_line_cloud(out / "cloud.lcloud");
+  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
+  EXPECT_LT(median_edge_distance(cloud, scene.building.wireframe, to_gt), 0.1);
+}
 test::RenderedFolder* Reconstruct::scene_ = nullptr;
 
 TEST_F(Reconstruct, KnownCamerasGiveEveryOutputInTheirFrame) {
@@ -287,18 +313,13 @@ void write_gps_photos(const fs::path& images, const test::RenderedFolder& scene,
   const double e2 = 6.69437999014e-3, s2 = std::pow(std::sin(lat0 * M_PI / 180), 2);
   const double north_radius = 6378137.0 * (1 - e2) / std::pow(1 - e2 * s2, 1.5);  // metres per radian of latitude
   const double east_radius = 6378137.0 / std::sqrt(1 - e2 * s2) * std::cos(lat0 * M_PI / 180);
-  for (size_t v = 0; v < scene.cameras.size(); ++v) {
-    char png[32], jpg[32];
-    std::snprintf(png, sizeof png, "view_%03zu.png", v);
-    std::snprintf(jpg, sizeof jpg, "view_%03zu.jpg", v);
-    std::vector<uchar> encoded;
-    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene.images / png).string()), encoded, {cv::IMWRITE_JPEG_QUALITY, 95}));
+  for_each_render(scene, scene.cameras.size(), [&](size_t v, const std::string& stem, cv::Mat image) {
     const Vec3 c = scene.cameras[position_of(v)].center();
     const std::string tiff = testing::gps_tiff(true, testing::to_dms(lat0 + c.y() / north_radius * 180 / M_PI), 'N',
                                                testing::to_dms(lon0 + c.x() / east_radius * 180 / M_PI), 'E', 0,
                                                uint32_t(std::llround((alt0 + c.z()) * 1000)), 1000);
-    std::ofstream(images / jpg, std::ios::binary) << testing::with_exif(std::string(encoded.begin(), encoded.end()), tiff);
-  }
+    write_file_atomic(images / (stem + ".jpg"), jpeg_with_exif(image, tiff));
+  });
 }
 
 // Options for a run on the GPS-tagged photos of `name`, with the scene's cameras as a COLMAP model in `sfm`.
@@ -391,16 +412,12 @@ TEST_F(Reconstruct, SidewaysPhotosKeepTheirOwnSizeAndCamera) {
   const fs::path images = *dir_ / "sideways";
   fs::create_directories(images);
   Json cams = Json::array();
-  for (size_t i = 0; i < scene_->cameras.size(); ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "view_%03zu.png", i);
-    cv::Mat image = cv::imread((scene_->images / name).string(), cv::IMREAD_COLOR);
-    ASSERT_FALSE(image.empty()) << name;
+  for_each_render(*scene_, scene_->cameras.size(), [&](size_t i, const std::string& stem, cv::Mat image) {
     Camera camera = scene_->cameras[i];
     if (i % 3 == 1) cv::rotate(image, image, cv::ROTATE_90_CLOCKWISE), camera = test::turned_clockwise(camera);
-    ASSERT_TRUE(cv::imwrite((images / name).string(), image));
+    ASSERT_TRUE(cv::imwrite((images / (stem + ".png")).string(), image));
     cams.push_back(camera_to_json(camera));
-  }
+  });
   write_file_atomic(*dir_ / "cams_sideways.json", cams.dump());
   ReconstructOptions o = options("sideways_out");
   o.images = images;
@@ -412,9 +429,7 @@ TEST_F(Reconstruct, SidewaysPhotosKeepTheirOwnSizeAndCamera) {
   EXPECT_EQ(sizes[1], Json::array({480, 640}));
   EXPECT_EQ(r.report["cameras"]["registered"], 12);
   EXPECT_GT(r.report["lines_3d"].get<int>(), 50);
-  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
-  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
-  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
+  expect_cloud_on_building(r, o.out, *scene_);
 
   // One --intrinsics cannot describe both sizes: said before COLMAP runs, naming the flag and the sizes.
   ReconstructOptions one_k = options("sideways_one_k");
@@ -428,15 +443,9 @@ TEST_F(Reconstruct, SidewaysPhotosKeepTheirOwnSizeAndCamera) {
 TEST_F(Reconstruct, ExifOrientationIsNotApplied) {
   const fs::path images = *dir_ / "exif_turned";
   fs::create_directories(images);
-  for (size_t i = 0; i < scene_->cameras.size(); ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "view_%03zu", i);
-    std::vector<uchar> encoded;
-    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene_->images / (std::string(name) + ".png")).string()), encoded,
-                             {cv::IMWRITE_JPEG_QUALITY, 95}));
-    write_file_atomic(images / (std::string(name) + ".jpg"),
-                      testing::with_exif(std::string(encoded.begin(), encoded.end()), testing::orientation_tiff(6)));
-  }
+  for_each_render(*scene_, scene_->cameras.size(), [&](size_t, const std::string& stem, cv::Mat image) {
+    write_file_atomic(images / (stem + ".jpg"), jpeg_with_exif(image, testing::orientation_tiff(6)));
+  });
   // The test can fail: OpenCV's default reading turns these files.
   ASSERT_EQ(cv::imread((images / "view_000.jpg").string(), cv::IMREAD_GRAYSCALE).size(), cv::Size(480, 640));
   ReconstructOptions o = options("exif_turned_out");
@@ -444,9 +453,7 @@ TEST_F(Reconstruct, ExifOrientationIsNotApplied) {
   o.cameras = scene_->cameras_json;
   const ReconstructResult r = reconstruct(o);
   for (const Json& size : r.report["images"]["sizes"]) EXPECT_EQ(size, Json::array({640, 480}));
-  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
-  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
-  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
+  expect_cloud_on_building(r, o.out, *scene_);
 }
 
 // A phone's photos carry their 35 mm-equivalent focal length (here 28 mm); COLMAP gets it as fx = 28 / 36 x the
@@ -454,14 +461,10 @@ TEST_F(Reconstruct, ExifOrientationIsNotApplied) {
 TEST_F(Reconstruct, ExifFocalLengthSetsTheCamerasIntrinsics) {
   const fs::path images = *dir_ / "exif_focal";
   fs::create_directories(images);
-  for (int i = 0; i < 4; ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "view_%03d", i);
-    std::vector<uchar> encoded;
-    ASSERT_TRUE(cv::imencode(".jpg", cv::imread((scene_->images / (std::string(name) + ".png")).string()), encoded));
-    const std::string tiff = testing::exif_ifd_tiff(true, {{0xA405, 3, 1, testing::tiff_short(true, 28)}});
-    write_file_atomic(images / (std::string(name) + ".jpg"), testing::with_exif(std::string(encoded.begin(), encoded.end()), tiff));
-  }
+  const std::string tiff = testing::exif_ifd_tiff(true, {{0xA405, 3, 1, testing::tiff_short(true, 28)}});
+  for_each_render(*scene_, 4, [&](size_t, const std::string& stem, cv::Mat image) {
+    write_file_atomic(images / (stem + ".jpg"), jpeg_with_exif(image, tiff));
+  });
   const fs::path fake = *dir_ / "recording_colmap.sh", args = *dir_ / "colmap_args.txt";
   std::ofstream(fake) << "#!/bin/sh\necho \"$@\" >> '" << args.string() << "'\nexit 1\n";
   fs::permissions(fake, fs::perms::owner_all);
@@ -483,11 +486,9 @@ TEST_F(Reconstruct, ExifFocalLengthSetsTheCamerasIntrinsics) {
 TEST_F(Reconstruct, TiffIsReadAndHeicIsNamed) {
   const fs::path images = *dir_ / "tiff_heic";
   fs::create_directories(images);
-  for (size_t i = 0; i < scene_->cameras.size(); ++i) {
-    char name[32];
-    std::snprintf(name, sizeof name, "view_%03zu", i);
-    ASSERT_TRUE(cv::imwrite((images / (std::string(name) + ".tif")).string(), cv::imread((scene_->images / (std::string(name) + ".png")).string())));
-  }
+  for_each_render(*scene_, scene_->cameras.size(), [&](size_t, const std::string& stem, cv::Mat image) {
+    ASSERT_TRUE(cv::imwrite((images / (stem + ".tif")).string(), image));
+  });
   std::ofstream(images / "IMG_0001.HEIC") << "ftypheic";
   std::ofstream(images / "DSC_0002.NEF") << "raw";
   ReconstructOptions o = options("tiff_heic_out");
@@ -499,9 +500,7 @@ TEST_F(Reconstruct, TiffIsReadAndHeicIsNamed) {
   EXPECT_EQ(r.report["images"]["not_read"], Json::array({"DSC_0002.NEF", "IMG_0001.HEIC"}));
   ASSERT_FALSE(r.warnings.empty());
   EXPECT_THAT(r.warnings[0], HasSubstr("convert them to JPEG first): DSC_0002.NEF, IMG_0001.HEIC"));
-  const LineCloud cloud = read_line_cloud(o.out / "cloud.lcloud");
-  const Similarity to_gt = test::similarity_from_json(r.report["frame"]["to_metric"]).inverse();
-  EXPECT_LT(median_edge_distance(cloud, scene_->building.wireframe, to_gt), 0.1);
+  expect_cloud_on_building(r, o.out, *scene_);
 
   const fs::path heic_only = *dir_ / "heic_only";
   fs::create_directories(heic_only);
