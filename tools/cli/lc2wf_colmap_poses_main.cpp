@@ -27,8 +27,8 @@ constexpr const char* kUsage = R"(Usage: lc2wf-colmap-poses IMAGES_DIR [-o OUT] 
 
 Runs COLMAP's SIFT (CPU), our exact descriptor matching, COLMAP's geometric verification and mapper on the images of IMAGES_DIR
 (*.png, *.jpg, in name order) with fixed pinhole intrinsics and writes their cameras (K, R, t per image in
-the OpenCV convention, null for unregistered images). Intrinsics come from --intrinsics or
-IMAGES_DIR/cameras.json; with IMAGES_DIR/cameras.json the poses are aligned to those cameras (similarity)
+the OpenCV convention, null for unregistered images). Intrinsics come from --intrinsics (one camera) or
+IMAGES_DIR/cameras.json (each image its own); with IMAGES_DIR/cameras.json the poses are aligned to those cameras (similarity)
 and the errors go into the report (per view and median/max, centre errors also relative to the camera
 distance), together with the wall time of each COLMAP step. The report (JSON) goes to stdout.
 COLMAP works in a private temporary folder, removed at the end (kept, and named, when COLMAP fails).
@@ -156,10 +156,13 @@ int run(const Args& a) {
       throw std::runtime_error(a.views.string() + ": cameras.json has " + std::to_string(reference.size()) + " cameras for " +
                                std::to_string(images.size()) + " images");
   }
-  Eigen::Matrix3d K = reference.empty() ? Eigen::Matrix3d::Identity() : reference.front().K;
+  // Each image's own intrinsics from cameras.json (images of several sizes are several COLMAP cameras), or the
+  // one --intrinsics for all.
+  std::vector<Eigen::Matrix3d> K;
+  for (size_t i = 0; i < images.size(); ++i) K.push_back(reference.empty() ? Eigen::Matrix3d::Identity() : reference[i].K);
   if (a.intrinsics) {
     const Eigen::Vector4d& p = *a.intrinsics;
-    K << p(0), 0, p(2), 0, p(1), p(3), 0, 0, 1;
+    for (Eigen::Matrix3d& k : K) k << p(0), 0, p(2), 0, p(1), p(3), 0, 0, 1;
   }
   lc2wf::Workspace workspace(a.workspace, a.keep);
   lc2wf::ColmapRun result;
