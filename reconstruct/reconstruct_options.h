@@ -30,8 +30,8 @@ struct ReconstructOptions {
   int threads = 0;                          // 0 = all cores
   int min_images = 3;                       // readable and registered images needed
 
-  // COLMAP intrinsics (fixed during mapping): fx, fy, cx, cy (OpenCV pixel centres), or from the
-  // 35 mm-equivalent focal length: fx = fy = focal_35mm / 36 * the longer side of each photo (--intrinsics:
+  // COLMAP intrinsics (fixed during mapping unless the focal length is a guess): fx, fy, cx, cy (OpenCV pixel
+  // centres), or from the 35 mm-equivalent focal length: fx = fy = focal_35mm / 36 * the longer side of each photo (--intrinsics:
   // photos of one size only). Unset: each photo's EXIF (exif_focal.h), else kDefaultFocal35mm.
   std::optional<Eigen::Vector4d> intrinsics;
   std::optional<double> focal_35mm;

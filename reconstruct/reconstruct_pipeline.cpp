@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <map>
 #include <cstdio>
 #include <optional>
@@ -20,6 +19,7 @@
 #include "dataset/photo/camera_coverage.h"
 #include "dataset/photo/exif_focal.h"
 #include "dataset/photo/exif_gps.h"
+#include "dataset/photo/exif_tiff.h"
 #include "dataset/photo/local_enu.h"
 #include "model/inference.h"
 #include "model/scale_search.h"
@@ -66,15 +66,37 @@ class StageLog {
   Clock::time_point t_;
 };
 
+// What a photo's EXIF says, read once for the focal length (images stage) and the GPS fix (frame stage).
+struct PhotoExif {
+  std::optional<ExifFocal> focal;
+  std::optional<GpsFix> gps;
+  std::string gps_why_not;
+};
+
+std::vector<PhotoExif> read_photo_exif(const ImageFolder& folder) {
+  std::vector<PhotoExif> out(folder.paths.size());
+  for (size_t i = 0; i < folder.paths.size(); ++i) {
+    std::string head;
+    try {
+      head = exif::read_head(folder.paths[i]);
+    } catch (const std::exception& e) {  // a photo that went away since it was decoded
+      throw StageError("images", e.what());
+    }
+    out[i].focal = exif_focal(head, std::max(folder.sizes[i].width, folder.sizes[i].height));
+    out[i].gps = exif_gps(head, &out[i].gps_why_not);
+  }
+  return out;
+}
+
 // Each photo's 35 mm-equivalent focal length: --intrinsics' fx or --focal-35mm, else its EXIF, else the default;
 // in words, where they came from; and whether any is the default, a guess.
-std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder& folder, std::string& source, bool& guessed) {
+std::vector<double> photo_focals(const ReconstructOptions& o, const ImageFolder& folder, const std::vector<PhotoExif>& photo_exif,
+                                 std::string& source, bool& guessed) {
   std::vector<double> out;
   int from_exif = 0;
   for (size_t i = 0; i < folder.paths.size(); ++i) {
     const int longer_side = std::max(folder.sizes[i].width, folder.sizes[i].height);
-    std::optional<ExifFocal> exif;
-    if (!o.focal_35mm && !o.intrinsics) exif = exif_focal_of_file(folder.paths[i], longer_side);
+    const std::optional<ExifFocal>& exif = photo_exif[i].focal;
     from_exif += exif.has_value();
     out.push_back(o.intrinsics   ? (*o.intrinsics)(0) * 36.0 / longer_side
                   : o.focal_35mm ? *o.focal_35mm
@@ -138,20 +160,15 @@ struct GpsAlignment {
 // The registered photos' EXIF GPS fixes and the similarity that puts their camera centres onto them; no
 // similarity (and the reason in the report) with fewer than `min_photos` fixes or fixes on one line.
 GpsAlignment align_to_gps(const std::vector<Camera>& registered, const std::vector<int>& image_of_view,
-                          const std::vector<fs::path>& paths, int min_photos, const SimilarityFitOptions& fit_options,
+                          const std::vector<PhotoExif>& photo_exif, int min_photos, const SimilarityFitOptions& fit_options,
                           double max_residual_share) {
   GpsAlignment a;
   std::vector<GpsFix> fixes;
   std::vector<Vec3> centres;
   std::map<std::string, int> why_not;
   for (size_t v = 0; v < registered.size(); ++v) {
-    std::string why;
-    std::optional<GpsFix> fix;
-    try {
-      fix = exif_gps_of_file(paths[image_of_view[v]], &why);
-    } catch (const std::exception& e) {
-      why = e.what();
-    }
+    std::optional<GpsFix> fix = photo_exif[image_of_view[v]].gps;
+    std::string why = photo_exif[image_of_view[v]].gps_why_not;
     if (fix && !fix->has_altitude) fix.reset(), why = "GPS without altitude";
     if (!fix) {
       ++why_not[why];
@@ -166,13 +183,8 @@ GpsAlignment align_to_gps(const std::vector<Camera>& registered, const std::vect
     return a;
   }
   try {
-    const std::vector<Vec3> enu = local_enu(fixes);
-    const SimilarityFit fit = fit_similarity(centres, enu, fit_options);
-    Vec3 mean = Vec3::Zero();
-    for (const Vec3& p : enu) mean += p / static_cast<double>(enu.size());
-    double spread = 0;
-    for (const Vec3& p : enu) spread += (p - mean).squaredNorm() / static_cast<double>(enu.size());
-    spread = std::sqrt(spread);
+    const SimilarityFit fit = fit_similarity(centres, local_enu(fixes), fit_options);
+    const double spread = fit.dst_spread;
     a.report["inliers"] = fit.inliers.size();
     a.report["rms_residual_m"] = fit.rms_residual;
     a.report["median_residual_m"] = fit.median_residual;
@@ -232,22 +244,18 @@ class ReconstructRun {
     Json sizes = Json::array();
     for (const cv::Size& size : folder_.sizes) sizes.push_back(Json::array({size.width, size.height}));
     report_["images"] = {{"read", folder_.images.size()}, {"unreadable", folder_.unreadable}, {"not_read", folder_.unsupported}, {"sizes", sizes}};
+    photo_exif_ = read_photo_exif(folder_);
     std::string focal_text;
     if (o_.cameras.empty()) {  // the focal lengths COLMAP starts from (known cameras bring their own)
       std::string focal_source;
-      try {
-        focal_35mm_ = photo_focals(o_, folder_, focal_source, focal_guessed_);
-      } catch (const std::exception& e) {  // a photo that went away since it was decoded
-        throw StageError("images", e.what());
-      }
+      focal_35mm_ = photo_focals(o_, folder_, photo_exif_, focal_source, focal_guessed_);
       report_["images"]["focal_35mm"] = focal_35mm_;
       report_["images"]["focal_source"] = focal_source;
       const auto [f_min, f_max] = std::minmax_element(focal_35mm_.begin(), focal_35mm_.end());
       focal_text = ", focal length " + format_number("%g", *f_min) + (*f_min == *f_max ? "" : "-" + format_number("%g", *f_max)) +
                    " mm (35 mm equivalent) from " + focal_source + (focal_guessed_ ? " (a guess for COLMAP to refine)" : "");
     }
-    const bool one_size = std::adjacent_find(folder_.sizes.begin(), folder_.sizes.end(), std::not_equal_to<>()) == folder_.sizes.end();
-    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s)" + (one_size ? " of " : ": ") + describe_sizes(folder_.sizes) +
+    log_.done(seconds_, std::to_string(folder_.images.size()) + " image(s): " + describe_sizes(folder_.sizes) +
                             focal_text + (folder_.unreadable.empty() ? "" : ", " + std::to_string(folder_.unreadable.size()) + " unreadable"));
   }
 
@@ -330,7 +338,7 @@ class ReconstructRun {
     }
     Json gps_report = {{"used", false}};
     if (o_.use_gps && !cams_.metric_z_up && fo.scale == 0 && fo.known_distance_m == 0) {
-      const GpsAlignment gps = align_to_gps(registered_, image_of_view_, folder_.paths, o_.min_gps_photos, o_.gps_fit, o_.max_gps_residual_share);
+      const GpsAlignment gps = align_to_gps(registered_, image_of_view_, photo_exif_, o_.min_gps_photos, o_.gps_fit, o_.max_gps_residual_share);
       gps_report = gps.report;
       if (gps.to_enu) fo.gps_to_enu = gps.to_enu;
     }
@@ -516,7 +524,8 @@ class ReconstructRun {
   std::optional<WireframePredictor> predictor_;
   std::optional<HeightModel> height_model_;
   ImageFolder folder_;
-  std::vector<double> focal_35mm_;  // per readable photo (used when COLMAP estimates the cameras)
+  std::vector<PhotoExif> photo_exif_;  // per readable photo
+  std::vector<double> focal_35mm_;     // per readable photo (used when COLMAP estimates the cameras)
   bool focal_guessed_ = false;      // some photo's focal length is the default: COLMAP refines it
   CameraSet cams_;
   std::vector<int> image_of_view_;  // registered images only

@@ -61,8 +61,4 @@ std::optional<ExifFocal> exif_focal(std::string_view jpeg, int longer_side_px, s
   }
 }
 
-std::optional<ExifFocal> exif_focal_of_file(const std::filesystem::path& path, int longer_side_px, std::string* why_not) {
-  return exif_focal(read_head(path), longer_side_px, why_not);
-}
-
 }  // namespace lc2wf

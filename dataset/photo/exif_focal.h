@@ -4,7 +4,6 @@
 // the first, most cameras the second; without either the caller keeps its default.
 #pragma once
 
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -24,8 +23,5 @@ constexpr double kMinFocal35mm = 8.0, kMaxFocal35mm = 2000.0;
 // the focal-plane resolution when the EXIF gives no PixelXDimension / PixelYDimension. std::nullopt, with the
 // reason in *why_not, when there is none.
 std::optional<ExifFocal> exif_focal(std::string_view jpeg, int longer_side_px, std::string* why_not = nullptr);
-
-// The same for a file (its first 256 KB). Throws std::runtime_error naming the file when it cannot be read.
-std::optional<ExifFocal> exif_focal_of_file(const std::filesystem::path& path, int longer_side_px, std::string* why_not = nullptr);
 
 }  // namespace lc2wf

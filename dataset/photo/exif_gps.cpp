@@ -69,8 +69,4 @@ std::optional<GpsFix> exif_gps(std::string_view jpeg, std::string* why_not) {
   }
 }
 
-std::optional<GpsFix> exif_gps_of_file(const std::filesystem::path& path, std::string* why_not) {
-  return exif_gps(read_head(path), why_not);
-}
-
 }  // namespace lc2wf

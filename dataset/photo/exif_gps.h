@@ -3,7 +3,6 @@
 // is checked against the segment, so a broken or hostile file gives "no fix" and a reason, never a crash.
 #pragma once
 
-#include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,12 +16,8 @@ struct GpsFix {
   bool has_altitude = false;
 };
 
-// The fix in a whole JPEG file's bytes; std::nullopt when there is none, with the reason in *why_not
-// ("no EXIF", "no GPS", "EXIF: offset beyond the segment", ...).
+// The fix in a whole JPEG file's bytes, or its head (exif::read_head); std::nullopt when there is none, with
+// the reason in *why_not ("no EXIF", "no GPS", "EXIF: offset beyond the segment", ...).
 std::optional<GpsFix> exif_gps(std::string_view jpeg, std::string* why_not = nullptr);
-
-// The same for a file (only its first 256 KB are read: EXIF sits before the image data). Throws
-// std::runtime_error naming the file when it cannot be read.
-std::optional<GpsFix> exif_gps_of_file(const std::filesystem::path& path, std::string* why_not = nullptr);
 
 }  // namespace lc2wf

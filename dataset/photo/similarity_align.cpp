@@ -72,9 +72,14 @@ SimilarityFit fit_similarity(const std::vector<Vec3>& src, const std::vector<Vec
     check_spread(keep);
     fit.inliers = keep;
   }
+  const double n = static_cast<double>(fit.inliers.size());
+  Vec3 mean = Vec3::Zero();
   double sum = 0;
-  for (int k : fit.inliers) sum += residual[k] * residual[k];
-  fit.rms_residual = std::sqrt(sum / static_cast<double>(fit.inliers.size()));
+  for (int k : fit.inliers) sum += residual[k] * residual[k], mean += dst[k] / n;
+  fit.rms_residual = std::sqrt(sum / n);
+  double spread = 0;
+  for (int k : fit.inliers) spread += (dst[k] - mean).squaredNorm() / n;
+  fit.dst_spread = std::sqrt(spread);
   return fit;
 }
 

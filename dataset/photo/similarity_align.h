@@ -25,6 +25,7 @@ struct SimilarityFit {
   std::vector<int> inliers;        // indices used in the last fit
   double rms_residual = 0;         // over the inliers, dst units
   double median_residual = 0;      // over every point, dst units
+  double dst_spread = 0;           // RMS distance of the inliers' dst points from their mean: what the residual is small against
 };
 
 // Throws std::invalid_argument when the sizes differ, there are < 3 points, a point is not finite, or the

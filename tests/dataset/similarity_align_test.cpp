@@ -34,6 +34,12 @@ TEST(SimilarityAlign, ExactPointsGiveTheSimilarity) {
   EXPECT_LT((fit.transform.R - truth.R).norm(), 1e-9);
   EXPECT_LT(fit.rms_residual, 1e-9);
   EXPECT_EQ(fit.inliers.size(), src.size());
+  // The spread of the fixes the residual is judged against: the source's RMS distance from its mean, scaled.
+  Vec3 mean = Vec3::Zero();
+  for (const Vec3& p : src) mean += p / static_cast<double>(src.size());
+  double spread = 0;
+  for (const Vec3& p : src) spread += (p - mean).squaredNorm() / static_cast<double>(src.size());
+  EXPECT_NEAR(fit.dst_spread, truth.scale * std::sqrt(spread), 1e-9);
 }
 
 TEST(SimilarityAlign, NoisyFixesAndOneWildFix) {
