@@ -56,6 +56,7 @@ JunctionSampleOptions junction_sample_options(const JunctionNetConfig& config) {
   o.sampling.num_samples = static_cast<int>(config.lpt.patches);
   o.patch.lines_per_patch = static_cast<int>(config.lpt.lines_per_patch);
   o.patch.negative_noise_count = (o.patch.lines_per_patch + 1) / 2;  // the release's 16 of 32: half the slots
+  o.patch.distance = parse_patch_distance(config.patch_distance, "junction_net.patch_distance");
   o.augment_enabled = false;
   return o;
 }

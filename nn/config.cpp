@@ -67,6 +67,8 @@ HeadConfig HeadConfig::from_json(const nlohmann::json& j, const std::string& whe
 void JunctionNetConfig::Check() const {
   lpt.Check();
   head.Check();
+  require(patch_distance == "infinite_line" || patch_distance == "segment", "junction_net.patch_distance",
+          "must be \"infinite_line\" or \"segment\"");
 }
 
 nlohmann::json JunctionNetConfig::to_json() const { return fields_to_json(*this); }

@@ -67,12 +67,16 @@ struct HeadConfig {
 struct JunctionNetConfig {
   LptConfig lpt;  // F 7, N 32, G 256
   HeadConfig head;
+  // Which lines fill a patch: "infinite_line" (the release's: nearest by distance to the line's extension) or
+  // "segment" (nearest by distance to the segment). Part of what the weights learnt, so it travels with them.
+  std::string patch_distance = "infinite_line";
 
   // Every JSON key, listed once (to_json and from_json both walk it).
   template <class S, class V>
   static void fields(S& s, V& v) {
     v("lpt", s.lpt);
     v("head", s.head);
+    v("patch_distance", s.patch_distance);
   }
   void Check() const;
   nlohmann::json to_json() const;

@@ -150,8 +150,15 @@ void resume_from_last_checkpoint(const StageLoopOptions& o, Module& model, Rng& 
   if (!o.quiet) std::fprintf(stderr, "%s: no checkpoint in %s, starting from scratch\n", stage.c_str(), (o.out / "checkpoints").string().c_str());
 }
 
+// A net config without what a fine-tune may change: the patch distance picks the lines the weights see, not
+// the weights' shapes (a model stored before the key existed used the release's).
+nlohmann::json weight_shapes(nlohmann::json net) {
+  if (net.is_object()) net.erase("patch_distance");
+  return net;
+}
+
 void load_init_weights(const StageLoopOptions& o, Module& model) {
-  if (read_checkpoint_info(o.init_weights).config.value("net", nlohmann::json()) != o.model_config.at("net"))
+  if (weight_shapes(read_checkpoint_info(o.init_weights).config.value("net", nlohmann::json())) != weight_shapes(o.model_config.at("net")))
     throw std::runtime_error("init_weights: " + o.init_weights.string() + " has another network config than " + o.stage + ".net");
   load_checkpoint(o.init_weights, model, nullptr, nullptr);
   if (!o.quiet) std::fprintf(stderr, "%s: starting from the weights of %s\n", o.stage.c_str(), o.init_weights.string().c_str());

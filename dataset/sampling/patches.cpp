@@ -38,7 +38,7 @@ void PatchOptions::Check() const {
 
 SegmentSet::SegmentSet(const std::vector<Segment3>& segments) : segments_(segments) {
   const size_t n = segments.size();
-  for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_len_, &far_}) v->resize(n);
+  for (auto* v : {&ax_, &ay_, &az_, &dx_, &dy_, &dz_, &inv_len_, &inv_len2_, &far_}) v->resize(n);
   for (size_t i = 0; i < n; ++i) {
     const Vec3 d = segments[i].b - segments[i].a;
     ax_[i] = segments[i].a.x();
@@ -49,24 +49,15 @@ SegmentSet::SegmentSet(const std::vector<Segment3>& segments) : segments_(segmen
     dz_[i] = d.z();
     const double len = d.norm();
     inv_len_[i] = len > 0 ? 1.0 / (len + 1e-6) : 0.0;
+    inv_len2_[i] = len > 0 ? 1.0 / (len * len) : 0.0;
     far_[i] = len > 0 ? 0.0 : kFar * kFar;
   }
 }
 
-void SegmentSet::nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& dist) const {
-  const size_t n = segments_.size();
-  const double qx = q.x(), qy = q.y(), qz = q.z();
-  thread_local std::vector<double> scratch;  // per-thread, so concurrent queries on one set are safe
-  scratch.resize(n);
-  double* d2 = scratch.data();
-  // Squared |AB x (q - A)| / (|AB| + 1e-6): same order as the release's distance, no sqrt, vectorisable.
-  for (size_t i = 0; i < n; ++i) {
-    const double px = qx - ax_[i], py = qy - ay_[i], pz = qz - az_[i];
-    const double cx = dy_[i] * pz - dz_[i] * py;
-    const double cy = dz_[i] * px - dx_[i] * pz;
-    const double cz = dx_[i] * py - dy_[i] * px;
-    d2[i] = (cx * cx + cy * cy + cz * cz) * (inv_len_[i] * inv_len_[i]) + far_[i];
-  }
+namespace {
+
+// The k smallest of d2[0..n) (ties: lower index) in ascending order, as square roots.
+void smallest_k(const double* d2, size_t n, int k, std::vector<int>& idx, std::vector<double>& dist) {
   // Running top-k by insertion: after the first few hundred segments insertions become rare.
   const size_t m = std::min<size_t>(static_cast<size_t>(std::max(k, 0)), n);
   idx.clear();
@@ -89,6 +80,46 @@ void SegmentSet::nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, st
     dist[pos] = di;
   }
   for (auto& v : dist) v = std::sqrt(v);
+}
+
+}  // namespace
+
+PatchDistance parse_patch_distance(const std::string& name, const std::string& where) {
+  if (name == "infinite_line") return PatchDistance::InfiniteLine;
+  if (name == "segment") return PatchDistance::Segment;
+  throw std::invalid_argument(where + ": '" + name + "' is not a patch distance (infinite_line or segment)");
+}
+
+const char* patch_distance_name(PatchDistance d) { return d == PatchDistance::Segment ? "segment" : "infinite_line"; }
+
+void SegmentSet::nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& dist) const {
+  nearest(q, k, PatchDistance::InfiniteLine, idx, dist);
+}
+
+void SegmentSet::nearest(const Vec3& q, int k, PatchDistance distance, std::vector<int>& idx, std::vector<double>& dist) const {
+  const size_t n = segments_.size();
+  const double qx = q.x(), qy = q.y(), qz = q.z();
+  thread_local std::vector<double> scratch;  // per-thread, so concurrent queries on one set are safe
+  scratch.resize(n);
+  double* d2 = scratch.data();
+  if (distance == PatchDistance::InfiniteLine) {
+    // Squared |AB x (q - A)| / (|AB| + 1e-6): same order as the release's distance, no sqrt, vectorisable.
+    for (size_t i = 0; i < n; ++i) {
+      const double px = qx - ax_[i], py = qy - ay_[i], pz = qz - az_[i];
+      const double cx = dy_[i] * pz - dz_[i] * py;
+      const double cy = dz_[i] * px - dx_[i] * pz;
+      const double cz = dx_[i] * py - dy_[i] * px;
+      d2[i] = (cx * cx + cy * cy + cz * cz) * (inv_len_[i] * inv_len_[i]) + far_[i];
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) {
+      const double px = qx - ax_[i], py = qy - ay_[i], pz = qz - az_[i];
+      const double t = std::clamp((px * dx_[i] + py * dy_[i] + pz * dz_[i]) * inv_len2_[i], 0.0, 1.0);
+      const double ex = px - t * dx_[i], ey = py - t * dy_[i], ez = pz - t * dz_[i];
+      d2[i] = ex * ex + ey * ey + ez * ez + far_[i];
+    }
+  }
+  smallest_k(d2, n, k, idx, dist);
 }
 
 double SegmentSet::segment_distance(size_t i, const Vec3& q) const {
@@ -136,7 +167,7 @@ JunctionPatches build_junction_patches(const SegmentSet& segs, const std::vector
     const Vec3 x = (e % 2 == 0) ? segs.segment(e / 2).a : segs.segment(e / 2).b;
     const Vec3 xn = o.frame.to_network(x);
     for (int k = 0; k < 3; ++k) P.points[3 * g + k] = static_cast<float>(xn[k]);
-    segs.nearest_by_line(x, L, idx, dist);
+    segs.nearest(x, L, o.distance, idx, dist);
     int padded = 0;
     line_labels.clear();
     for (int s = 0; s < L; ++s) {

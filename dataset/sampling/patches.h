@@ -1,13 +1,15 @@
 // Junction patches (release section 2.2-2.3) and pair patches (3.5) as plain float arrays with shapes,
 // ready to be wrapped into tensors. Geometry comes in metres (already augmented); features leave in
-// network units (NetworkFrame). Segment selection is exactly the release's: the `lines_per_patch`
+// network units (NetworkFrame). Segment selection is by default the release's: the `lines_per_patch`
 // segments nearest to the query point by distance to the segment's *infinite line*, slots farther than
-// the radius become padding. Infinite-line distance cannot be bounded by a spatial index, so selection is
-// a linear scan over a structure-of-arrays copy of the segments (SegmentSet).
+// the radius become padding; a junction model may choose the distance to the segment instead
+// (JunctionNetConfig::patch_distance). Infinite-line distance cannot be bounded by a spatial index, so
+// selection is a linear scan over a structure-of-arrays copy of the segments (SegmentSet).
 #pragma once
 
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
@@ -20,6 +22,14 @@ namespace lc2wf {
 // the release's mean pooling and batch norm still see them). Zero: all-zero features.
 enum class PaddingMode { Release, Zero };
 
+// Which distance picks a patch's lines. InfiniteLine: the release's. Segment: the distance to the segment
+// itself, so that on a facade of windows a corner's patch holds the lines at the corner rather than the
+// window rows' sills and lintels whose extensions pass through it (experiments/README.md, "Segment patches").
+enum class PatchDistance { InfiniteLine, Segment };
+// "infinite_line" / "segment"; throws std::invalid_argument naming `where` for anything else.
+PatchDistance parse_patch_distance(const std::string& name, const std::string& where);
+const char* patch_distance_name(PatchDistance d);
+
 struct PatchOptions {
   int lines_per_patch = 32;
   double radius_m = 0.2 * kReleaseStdRaw / kRawUnitsPerMetre;  // 0.2 network units = 2.662 m
@@ -30,6 +40,7 @@ struct PatchOptions {
   // exceed 1 m: experiments/README.md). Infinity = the release's rule.
   double positive_radius_m = std::numeric_limits<double>::infinity();
   PaddingMode padding = PaddingMode::Release;
+  PatchDistance distance = PatchDistance::InfiniteLine;
   NetworkFrame frame;
   void Check() const;
 };
@@ -43,12 +54,15 @@ class SegmentSet {
   // Indices of the `k` segments with the smallest infinite-line distance to q (ties: lower index), in
   // ascending distance; `line_dist` receives those distances. Zero-length segments count as infinitely far.
   void nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& line_dist) const;
+  // The same by `distance` (InfiniteLine: nearest_by_line; Segment: Euclidean distance to the segment).
+  void nearest(const Vec3& q, int k, PatchDistance distance, std::vector<int>& idx, std::vector<double>& dist) const;
   // Euclidean distance from q to segment i (the release's point-to-segment feature).
   double segment_distance(size_t i, const Vec3& q) const;
 
  private:
   std::vector<Segment3> segments_;
   std::vector<double> ax_, ay_, az_, dx_, dy_, dz_, inv_len_;  // A and B - A; 1 / (|AB| + 1e-6), 0 if zero length
+  std::vector<double> inv_len2_;                                // 1 / |AB|^2, 0 if zero length
   std::vector<double> far_;                                     // squared 1e5 for zero-length segments, else 0
 };
 

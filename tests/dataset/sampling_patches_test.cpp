@@ -281,6 +281,38 @@ TEST(JunctionPatch, PositiveRadiusMakesFarJunctionsNegative) {
   EXPECT_THROW(o.Check(), std::invalid_argument);
 }
 
+// Segment distance: a long collinear line far along its extension fills the release's patch, not the
+// segment-distance one, which takes the short line beside the corner instead.
+TEST(JunctionPatch, SegmentDistancePicksTheLinesAtTheCorner) {
+  const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(0, 0, 1)},    // at the corner
+                                      {Vec3(5, 0, 0), Vec3(9, 0, 0)},    // 5 m away, its line through the corner
+                                      {Vec3(0.3, 0.3, 0), Vec3(0.3, 0.8, 0)}};  // 0.42 m away, its line 0.3 m
+  const SegmentSet set(segs);
+  std::vector<int> idx;
+  std::vector<double> dist;
+  set.nearest(Vec3::Zero(), 2, PatchDistance::InfiniteLine, idx, dist);
+  EXPECT_EQ(idx, (std::vector<int>{0, 1}));
+  set.nearest(Vec3::Zero(), 2, PatchDistance::Segment, idx, dist);
+  EXPECT_EQ(idx, (std::vector<int>{0, 2}));
+  EXPECT_NEAR(dist[1], std::sqrt(0.18), 1e-12);
+  for (int i = 0; i < 3; ++i) {  // the distance a patch selects by is the feature it stores
+    set.nearest(Vec3(0.2, -0.4, 0.7), 3, PatchDistance::Segment, idx, dist);
+    EXPECT_NEAR(dist[static_cast<size_t>(std::find(idx.begin(), idx.end(), i) - idx.begin())],
+                set.segment_distance(i, Vec3(0.2, -0.4, 0.7)), 1e-6);
+  }
+  PatchOptions o = unit_frame(2, 2);
+  o.radius_m = 1.0;
+  o.distance = PatchDistance::Segment;
+  const auto P = build_junction_patches(set, {}, {}, {0}, o);
+  EXPECT_EQ(P.padded, (std::vector<uint8_t>{0, 0}));
+  EXPECT_NEAR(P.features[7 + 6], std::sqrt(0.18), 1e-6);  // slot 1 is segment 2
+  o.distance = PatchDistance::InfiniteLine;
+  EXPECT_EQ(build_junction_patches(set, {}, {}, {0}, o).padded, (std::vector<uint8_t>{0, 0}));  // segment 1
+  EXPECT_EQ(parse_patch_distance("segment", "k"), PatchDistance::Segment);
+  EXPECT_STREQ(patch_distance_name(parse_patch_distance("infinite_line", "k")), "infinite_line");
+  EXPECT_THROW(parse_patch_distance("line", "junction_net.patch_distance"), std::invalid_argument);
+}
+
 TEST(JunctionPatch, BadInputs) {
   EXPECT_THROW(build_junction_patches(SegmentSet({}), {}, {}, {0}, unit_frame(3, 2)), std::invalid_argument);
   const std::vector<Segment3> segs = {{Vec3(0, 0, 0), Vec3(1, 0, 0)}};

@@ -116,5 +116,18 @@ TEST(Config, CheckNamesTheBadField) {
   EXPECT_THAT(error_of([&] { el.Check(); }), HasSubstr("edge_loss.class_weights"));
 }
 
+// The patch distance travels with the weights; a stored config from before the key reads as the release's.
+TEST(Config, PatchDistanceIsTheReleasesUnlessStored) {
+  EXPECT_EQ(JunctionNetConfig{}.patch_distance, "infinite_line");
+  const auto old = nlohmann::json::parse(R"({"lpt": {"hidden_dim": 32, "mlp_dims": [8, 32], "num_heads": 4}})");
+  EXPECT_EQ(JunctionNetConfig::from_json(old).patch_distance, "infinite_line");
+  auto stored = JunctionNetConfig{}.to_json();
+  stored["patch_distance"] = "segment";
+  EXPECT_EQ(JunctionNetConfig::from_json(stored).patch_distance, "segment");
+  JunctionNetConfig bad;
+  bad.patch_distance = "line";
+  EXPECT_THAT(error_of([&] { bad.Check(); }), HasSubstr("junction_net.patch_distance"));
+}
+
 }  // namespace
 }  // namespace lc2wf

@@ -26,6 +26,7 @@
 #include "dataset/synthetic/synthetic_building.h"
 #include "dataset/synthetic/synthetic_line_cloud.h"
 #include "model/post_process_options.h"
+#include "nn/model_checkpoint.h"
 #include "infer/prediction_io.h"
 #include "core/util/version.h"
 #include "tests/common/run_cli.h"
@@ -374,6 +375,12 @@ TEST_F(TrainIntegration, TrainsKillResumesInfersAndEvaluates) {
   std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
   EXPECT_EQ(run(finetune_cmd + quote(dir_ / "mismatch")), 3);  // a data error (README: exit codes)
   EXPECT_NE(command_output().find("init_weights"), std::string::npos) << command_output();
+  // Another patch distance is a fine-tune of the same weights onto other patches, not another network.
+  finetune["junction"]["net"]["head"] = config_["junction"]["net"]["head"];
+  finetune["junction"]["net"]["patch_distance"] = "segment";
+  std::ofstream(dir_ / "finetune.json") << finetune.dump(2);
+  ASSERT_EQ(run(finetune_cmd + quote(dir_ / "segment") + " --stage junction"), 0) << command_output();
+  EXPECT_EQ(stored_net_config(dir_ / "segment" / "junction.safetensors", "junction").value("patch_distance", ""), "segment");
 
   // An --out that cannot be created is an error naming it, not an abort.
   const testing::CliResult e = testing::run_cli(std::string(LC2WF_EVAL_BIN) + " --quiet --weights " + quote(straight) + " --data " +
