@@ -101,8 +101,11 @@ wireframe and a note, never a failure.
                       the content (folder = LIMAP, .obj = line OBJ)
   --frame F           auto (default) or as-read: how a line map made elsewhere (Line3D++, LIMAP, OBJ; not
                       our files, which are metric and z up) is put in the networks' frame (metres, z up,
-                      ground at 0). auto: up from the lines' dominant directions (the one most lines are
-                      perpendicular to, its sign putting the widest structure at the bottom), refined by
+                      ground at 0). auto: up from the lines' dominant directions and the normals of
+                      their pairs: the one under which the lines' statistics look most like the height
+                      model's training clouds of buildings the right way up, and the end its nearest
+                      clouds say is the ground at the bottom (without a height model: the direction most
+                      lines are perpendicular to, the widest structure at the bottom), refined by
                       the near-vertical lines; ground at the lowest structure; scale from --scale,
                       --known-distance or --building-height, the facades' storeys (the heights the
                       short vertical lines - window and door sides - cover repeat once per storey of

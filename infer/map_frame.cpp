@@ -68,10 +68,13 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   if (o.scale == 0 && o.known_distance_m > 0) f.frame.scale_source = "known distance";
   nlohmann::json& rep = f.report;
   rep = {{"format", "lc2wf-map-frame"}, {"version", 1}};
-  if (o.up == "auto") {
-    const LineUp lu = up_from_lines(map.segments);
-    rep["up_evidence"] = {{"perpendicular_share", lu.perpendicular_share}, {"runner_up_share", lu.runner_up_share},
-                          {"bottom_over_top_spread", lu.spread_ratio}};
+  if (const std::optional<LineUp>& lu = f.frame.line_up) {
+    rep["up_evidence"] = {{"rule", lu->by_statistics ? "nearest the height model's clouds" : "most line length perpendicular"},
+                          {"candidates", lu->candidates}, {"perpendicular_share", lu->perpendicular_share},
+                          {"ground", lu->sign_by_statistics ? "the end the nearest clouds' ends say" : "the end that spreads widest"},
+                          {"bottom_over_top_spread", lu->spread_ratio}};
+    if (lu->by_statistics)
+      rep["up_evidence"]["statistics_distance"] = lu->distance, rep["up_evidence"]["runner_up_distance"] = lu->runner_up_distance;
   }
   std::string scale_text;
   if (f.frame.needs_scale_search) {

@@ -17,6 +17,8 @@ namespace {
 constexpr double kVerticalCos = 0.985, kHorizontalCos = 0.17;
 constexpr double kLowestLog2 = -7.0, kBinLog2 = 0.5;
 
+constexpr double kEndSlab = 0.15;  // share of the height that is a cloud's bottom or top end
+
 double relative_error(double predicted_log, double true_log) { return std::abs(std::exp(predicted_log - true_log) - 1.0); }
 
 // Mean and (population) standard deviation of each statistic over `rows`; a constant one gets 1, not 0.
@@ -29,8 +31,8 @@ void standardisation(const std::vector<const std::vector<double>*>& rows, std::v
   for (double& v : *stddev) v = v > 1e-18 ? std::sqrt(v) : 1.0;
 }
 
-// The median log height of the k clouds nearest `z` (standardised); ties go to the earlier cloud.
-double nearest_median(const std::vector<std::vector<double>>& clouds, const std::vector<double>& log_heights, const std::vector<double>& z, int k) {
+// The k clouds nearest `z` (standardised) as (squared distance, index), nearest first; ties go to the earlier cloud.
+std::vector<std::pair<double, size_t>> nearest(const std::vector<std::vector<double>>& clouds, const std::vector<double>& z, int k) {
   std::vector<std::pair<double, size_t>> d(clouds.size());
   for (size_t i = 0; i < clouds.size(); ++i) {
     double sum = 0;
@@ -39,6 +41,14 @@ double nearest_median(const std::vector<std::vector<double>>& clouds, const std:
   }
   const size_t kk = std::min(clouds.size(), static_cast<size_t>(k));
   std::partial_sort(d.begin(), d.begin() + static_cast<long>(kk), d.end());
+  d.resize(kk);
+  return d;
+}
+
+// The median log height of the k clouds nearest `z` (standardised).
+double nearest_median(const std::vector<std::vector<double>>& clouds, const std::vector<double>& log_heights, const std::vector<double>& z, int k) {
+  const std::vector<std::pair<double, size_t>> d = nearest(clouds, z, k);
+  const size_t kk = d.size();
   std::vector<double> h;
   for (size_t j = 0; j < kk; ++j) h.push_back(log_heights[d[j].second]);
   std::sort(h.begin(), h.end());
@@ -51,7 +61,40 @@ std::vector<double> standardised(const std::vector<double>& f, const std::vector
   return z;
 }
 
+// LineStatistics::ends of lines between `ground_z` and `top_z`.
+std::vector<double> end_statistics(const std::vector<Segment3>& segments, double ground_z, double top_z) {
+  const double h = top_z - ground_z, low = ground_z + kEndSlab * h, high = top_z - kEndSlab * h;
+  double n_bottom = 0, n_top = 0, len_bottom = 0, len_top = 0, weighted = 0, total = 0;
+  for (const Segment3& s : segments) {
+    const double mid = 0.5 * (s.a.z() + s.b.z()), len = s.length();
+    if (mid <= low) n_bottom += 1, len_bottom += len;
+    if (mid >= high) n_top += 1, len_top += len;
+    weighted += len * mid, total += len;
+  }
+  const double tiny = 1e-12 * h * h;
+  const double bottom_spread = end_spread(segments, ground_z, top_z, false), top_spread = end_spread(segments, ground_z, top_z, true);
+  return {std::log(std::max(bottom_spread, tiny) / std::max(top_spread, tiny)), std::log((n_bottom + 1) / (n_top + 1)),
+          std::log((len_bottom + 1e-9 * h) / (len_top + 1e-9 * h)),
+          total > 0 ? (0.5 * (ground_z + top_z) - weighted / total) / h : 0.0};
+}
+
 }  // namespace
+
+double end_spread(const std::vector<Segment3>& segments, double ground_z, double top_z, bool top) {
+  const double cut = top ? top_z - kEndSlab * (top_z - ground_z) : ground_z + kEndSlab * (top_z - ground_z);
+  double n = 0, mx = 0, my = 0;
+  for (const Segment3& s : segments)
+    for (const Vec3& p : {s.a, s.b})
+      if (top ? p.z() >= cut : p.z() <= cut) n += 1, mx += p.x(), my += p.y();
+  if (n < 3) return 0.0;
+  mx /= n, my /= n;
+  double sxx = 0, syy = 0, sxy = 0;
+  for (const Segment3& s : segments)
+    for (const Vec3& p : {s.a, s.b})
+      if (top ? p.z() >= cut : p.z() <= cut) sxx += (p.x() - mx) * (p.x() - mx), syy += (p.y() - my) * (p.y() - my), sxy += (p.x() - mx) * (p.y() - my);
+  sxx /= n, syy /= n, sxy /= n;
+  return std::sqrt(std::max(0.0, sxx * syy - sxy * sxy));
+}
 
 LineStatistics line_statistics(const std::vector<Segment3>& segments, double ground_quantile, double top_quantile) {
   if (segments.size() < 10) throw std::invalid_argument("line statistics need at least 10 lines, got " + std::to_string(segments.size()));
@@ -59,8 +102,10 @@ LineStatistics line_statistics(const std::vector<Segment3>& segments, double gro
   for (const Segment3& s : segments)
     for (const Vec3& p : {s.a, s.b}) z.push_back(p.z()), x.push_back(p.x()), y.push_back(p.y());
   LineStatistics out;
-  out.height = quantile(z, top_quantile) - quantile(z, ground_quantile);
+  const double ground_z = quantile(z, ground_quantile), top_z = quantile(z, top_quantile);
+  out.height = top_z - ground_z;
   if (!(out.height > 0) || !std::isfinite(out.height)) throw std::invalid_argument("line statistics: the lines have no height");
+  out.ends = end_statistics(segments, ground_z, top_z);
   out.features.assign(kLineStatisticsSize, 0.0);
   const double n = static_cast<double>(segments.size());
   for (const Segment3& s : segments) {
@@ -95,6 +140,29 @@ double HeightModel::predict_height_m(const LineStatistics& s) const {
   return std::exp(nearest_median(clouds, log_heights, standardised(s.features, mean, stddev), k));
 }
 
+double HeightModel::neighbour_distance(const LineStatistics& s) const {
+  if (s.features.size() != mean.size())
+    throw std::invalid_argument("height model: " + std::to_string(mean.size()) + " statistics expected, got " + std::to_string(s.features.size()));
+  const std::vector<std::pair<double, size_t>> d = nearest(clouds, standardised(s.features, mean, stddev), k);
+  double sum = 0;
+  for (const auto& [d2, i] : d) sum += std::sqrt(d2);
+  return sum / static_cast<double>(d.size());
+}
+
+std::optional<bool> HeightModel::upside_down(const LineStatistics& s) const {
+  if (ends.empty()) return std::nullopt;
+  if (s.ends.size() != ends_stddev.size())
+    throw std::invalid_argument("height model: " + std::to_string(ends_stddev.size()) + " end statistics expected, got " + std::to_string(s.ends.size()));
+  const std::vector<std::pair<double, size_t>> d = nearest(clouds, standardised(s.features, mean, stddev), k);
+  double agreement = 0;  // (the cloud's ends) . (the neighbours' mean ends), both standardised
+  for (size_t c = 0; c < ends_stddev.size(); ++c) {
+    double neighbours = 0;
+    for (const auto& [d2, i] : d) neighbours += ends[i][c];
+    agreement += (s.ends[c] / ends_stddev[c]) * (neighbours / static_cast<double>(d.size()) / ends_stddev[c]);
+  }
+  return agreement < 0;
+}
+
 void HeightModel::Check() const {
   if (mean.size() != static_cast<size_t>(kLineStatisticsSize) || stddev.size() != mean.size())
     throw std::invalid_argument("height model: mean and stddev need " + std::to_string(kLineStatisticsSize) + " values each");
@@ -104,10 +172,19 @@ void HeightModel::Check() const {
   }
   if (clouds.empty() || clouds.size() != log_heights.size()) throw std::invalid_argument("height model: one height per training cloud, and at least one");
   if (k < 1 || static_cast<size_t>(k) > clouds.size()) throw std::invalid_argument("height model: k must be in [1, training clouds]");
+  if (!ends.empty() && ends.size() != clouds.size()) throw std::invalid_argument("height model: end statistics for every training cloud or none");
+  if (!ends.empty() && ends_stddev.size() != static_cast<size_t>(kEndStatisticsSize)) throw std::invalid_argument("height model: ends_stddev needs " + std::to_string(kEndStatisticsSize) + " values");
+  for (double v : ends_stddev)
+    if (!(v > 0) || !std::isfinite(v)) throw std::invalid_argument("height model: ends_stddev must be positive and finite");
   for (size_t i = 0; i < clouds.size(); ++i) {
     if (clouds[i].size() != mean.size()) throw std::invalid_argument("height model: training cloud " + std::to_string(i) + " has the wrong number of statistics");
     for (double v : clouds[i])
       if (!std::isfinite(v)) throw std::invalid_argument("height model: training cloud " + std::to_string(i) + " has a non-finite statistic");
+    if (!ends.empty()) {
+      if (ends[i].size() != static_cast<size_t>(kEndStatisticsSize)) throw std::invalid_argument("height model: training cloud " + std::to_string(i) + " has the wrong number of end statistics");
+      for (double v : ends[i])
+        if (!std::isfinite(v)) throw std::invalid_argument("height model: training cloud " + std::to_string(i) + " has a non-finite end statistic");
+    }
     // 0.1 m to 10 km: anything else is not a building's height.
     if (!(log_heights[i] > std::log(0.1) && log_heights[i] < std::log(1e4)))
       throw std::invalid_argument("height model: training height " + std::to_string(i) + " out of range");
@@ -165,12 +242,19 @@ HeightModel fit_height_model(const std::vector<LineStatistics>& clouds, const st
   standardisation(rows, &m.mean, &m.stddev);
   for (const LineStatistics& c : clouds) m.clouds.push_back(standardised(c.features, m.mean, m.stddev));
   m.log_heights = log_h;
+  m.ends_stddev.assign(kEndStatisticsSize, 0.0);
+  for (const LineStatistics& c : clouds) {
+    if (c.ends.size() != static_cast<size_t>(kEndStatisticsSize)) throw std::invalid_argument("fit_height_model: wrong number of end statistics");
+    m.ends.push_back(c.ends);
+    for (int e = 0; e < kEndStatisticsSize; ++e) m.ends_stddev[e] += c.ends[e] * c.ends[e] / static_cast<double>(n);
+  }
+  for (double& v : m.ends_stddev) v = v > 1e-18 ? std::sqrt(v) : 1.0;  // about 0: the sign is what counts
   m.Check();
   return m;
 }
 
 nlohmann::json height_model_json(const HeightModel& m) {
-  return {{"format", "lc2wf-height-model"},
+  nlohmann::json j = {{"format", "lc2wf-height-model"},
           {"version", 1},
           {"statistics", "line-statistics-v1"},
           {"k", m.k},
@@ -180,6 +264,8 @@ nlohmann::json height_model_json(const HeightModel& m) {
           {"stddev", m.stddev},
           {"log_heights", m.log_heights},
           {"clouds", m.clouds}};
+  if (!m.ends.empty()) j["ends"] = m.ends, j["ends_stddev"] = m.ends_stddev;
+  return j;
 }
 
 HeightModel height_model_from_json(const nlohmann::json& j, const std::string& source) {
@@ -195,6 +281,10 @@ HeightModel height_model_from_json(const nlohmann::json& j, const std::string& s
     m.stddev = j.at("stddev").get<std::vector<double>>();
     m.log_heights = j.at("log_heights").get<std::vector<double>>();
     m.clouds = j.at("clouds").get<std::vector<std::vector<double>>>();
+    if (j.contains("ends")) {
+      m.ends = j.at("ends").get<std::vector<std::vector<double>>>();
+      m.ends_stddev = j.at("ends_stddev").get<std::vector<double>>();
+    }
     m.Check();
     return m;
   } catch (const nlohmann::json::exception& e) {

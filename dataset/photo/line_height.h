@@ -23,10 +23,22 @@ namespace lc2wf {
 constexpr int kLineLengthBins = 14;
 constexpr int kLineStatisticsSize = 3 * kLineLengthBins + 2;
 
+// How the cloud's bottom end differs from its top: log(bottom / top) of the end slabs' spread (end_spread),
+// of their line count and of their line length, and how far the length-weighted mean height lies below
+// mid-height (over the height). Each changes sign when the cloud is turned upside down; which of them tells
+// the ground depends on the capture (whole buildings: the footprint spreads widest; street photos: the lower
+// storeys hold more lines), so the model's nearest clouds say how to read them (line_up.h).
+constexpr int kEndStatisticsSize = 4;
+
 struct LineStatistics {
   double height = 0;             // top minus ground quantile of the endpoint heights, the segments' units
-  std::vector<double> features;  // kLineStatisticsSize values
+  std::vector<double> features;  // kLineStatisticsSize values; the same when the cloud is turned upside down
+  std::vector<double> ends;      // kEndStatisticsSize values
 };
+
+// sqrt(det) of the horizontal covariance of the endpoints in the lowest (or, `top`, the highest) 15 % of the
+// height between `ground_z` and `top_z`; 0 for fewer than 3 endpoints there. z up.
+double end_spread(const std::vector<Segment3>& segments, double ground_z, double top_z, bool top);
 
 // `segments`: z up, any scale and origin. Throws std::invalid_argument for fewer than 10 lines or no height.
 LineStatistics line_statistics(const std::vector<Segment3>& segments, double ground_quantile = 0.01, double top_quantile = 0.99);
@@ -41,7 +53,17 @@ struct HeightModel {
   std::vector<double> log_heights;        // their heights, log metres
   int k = 5;                              // neighbours asked
   double cv_median_error = 0, cv_p90_error = 0;  // |predicted / true height - 1| over the folds
+  // The training clouds' end statistics (z up) and their standard deviations; empty in models fitted before
+  // they were kept.
+  std::vector<std::vector<double>> ends;
+  std::vector<double> ends_stddev;
   double predict_height_m(const LineStatistics& s) const;  // always within the training heights
+  // Mean standardised distance to the k nearest training clouds: how much a cloud looks like the metric, z-up
+  // clouds the model was fitted on (line_up.h turns a map in an arbitrary frame by it).
+  double neighbour_distance(const LineStatistics& s) const;
+  // Whether `s`'s cloud is upside down: its end statistics agree better, turned, with the mean of its k nearest
+  // training clouds' (the statistics that find them are the same either way up). Empty without `ends`.
+  std::optional<bool> upside_down(const LineStatistics& s) const;
   void Check() const;  // throws std::invalid_argument naming what is wrong (sizes, non-finite values)
 };
 

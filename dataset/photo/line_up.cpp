@@ -1,45 +1,84 @@
 #include "dataset/photo/line_up.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <tuple>
+
+#include "core/util/quantile.h"
 
 namespace lc2wf {
 namespace {
 
 constexpr double kTolDeg = 10.0;
 constexpr size_t kMaxCandidates = 400;  // the longest lines propose directions: bounded work on any map
+constexpr size_t kMaxDirections = 5;     // dominant directions looked for (bounded work: at most 15 candidates)
+constexpr double kMinDirectionShare = 0.04;
 
 struct Dir {
   Vec3 d;
   double w;  // length
 };
 
-// The direction (among the candidates' and restricted to those `allowed`) that the most line length
-// lies within kTolDeg of, refined by the principal direction of those lines.
-template <typename Allowed>
-Vec3 dominant(const std::vector<Dir>& dirs, Allowed allowed) {
+// The direction that the most line length of `dirs` lies within kTolDeg of (the longest lines propose),
+// refined by the principal direction of those lines; zero when `dirs` is empty.
+Vec3 dominant(const std::vector<Dir>& dirs, double* length) {
   const double cos_tol = std::cos(kTolDeg * M_PI / 180);
   std::vector<size_t> order(dirs.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::partial_sort(order.begin(), order.begin() + static_cast<long>(std::min(order.size(), kMaxCandidates)), order.end(),
+  const size_t proposals = std::min(order.size(), kMaxCandidates);
+  std::partial_sort(order.begin(), order.begin() + static_cast<long>(proposals), order.end(),
                     [&](size_t a, size_t b) { return dirs[a].w > dirs[b].w; });
   double best = -1;
   Vec3 best_d = Vec3::Zero();
-  for (size_t c = 0; c < std::min(order.size(), kMaxCandidates); ++c) {
+  for (size_t c = 0; c < proposals; ++c) {
     const Vec3& cand = dirs[order[c]].d;
-    if (!allowed(cand)) continue;
     double score = 0;
     for (const Dir& x : dirs) score += std::abs(x.d.dot(cand)) > cos_tol ? x.w : 0.0;
     if (score > best) best = score, best_d = cand;
   }
+  *length = std::max(best, 0.0);
   if (best < 0) return Vec3::Zero();
   Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
   for (const Dir& x : dirs)
     if (std::abs(x.d.dot(best_d)) > cos_tol) scatter += x.w * x.d * x.d.transpose();
   const Vec3 v = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(2);
   return v.dot(best_d) < 0 ? Vec3(-v) : v;
+}
+
+// Up to kMaxDirections dominant directions, each after the first holding at least kMinDirectionShare of the
+// length: the most common first, then the most common among the lines not yet within kTolDeg of one found.
+std::vector<Vec3> dominant_directions(std::vector<Dir> dirs) {
+  const double cos_tol = std::cos(kTolDeg * M_PI / 180);
+  double total = 0;
+  for (const Dir& x : dirs) total += x.w;
+  std::vector<Vec3> found;
+  while (found.size() < kMaxDirections && !dirs.empty()) {
+    double length = 0;
+    const Vec3 d = dominant(dirs, &length);
+    if (!found.empty() && length < kMinDirectionShare * total) break;
+    found.push_back(d);
+    std::erase_if(dirs, [&](const Dir& x) { return std::abs(x.d.dot(d)) > cos_tol; });
+  }
+  return found;
+}
+
+// The dominant directions and the normal of each pair more than 30 deg apart, without repeats (within 5 deg).
+std::vector<Vec3> up_candidates(const std::vector<Vec3>& dominant) {
+  std::vector<Vec3> all = dominant;
+  for (size_t i = 0; i < dominant.size(); ++i)
+    for (size_t j = i + 1; j < dominant.size(); ++j) {
+      const Vec3 n = dominant[i].cross(dominant[j]);
+      if (n.norm() > 0.5) all.push_back(n.normalized());
+    }
+  const double same = std::cos(5.0 * M_PI / 180);
+  std::vector<Vec3> out;
+  for (const Vec3& c : all)
+    if (std::none_of(out.begin(), out.end(), [&](const Vec3& o) { return std::abs(o.dot(c)) > same; })) out.push_back(c);
+  return out;
 }
 
 double perpendicular_share(const std::vector<Dir>& dirs, const Vec3& axis) {
@@ -52,61 +91,59 @@ double perpendicular_share(const std::vector<Dir>& dirs, const Vec3& axis) {
   return total > 0 ? perp / total : 0.0;
 }
 
-// sqrt(det) of the 2D covariance, in the plane perpendicular to `up`, of the endpoints in the end slab.
-double end_spread(const std::vector<Segment3>& segments, const Vec3& up, bool top) {
-  std::vector<double> h;
-  for (const Segment3& s : segments) h.push_back(s.a.dot(up)), h.push_back(s.b.dot(up));
-  std::vector<double> sorted = h;
-  std::sort(sorted.begin(), sorted.end());
-  const double lo = sorted[sorted.size() / 100], hi = sorted[sorted.size() - 1 - sorted.size() / 100];
-  const double cut = top ? hi - 0.15 * (hi - lo) : lo + 0.15 * (hi - lo);
-  const Vec3 e1 = up.unitOrthogonal(), e2 = up.cross(e1);
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-  std::vector<Eigen::Vector2d> pts;
-  for (const Segment3& s : segments)
-    for (const Vec3& p : {s.a, s.b}) {
-      const double z = p.dot(up);
-      if (top ? z >= cut : z <= cut) pts.emplace_back(p.dot(e1), p.dot(e2));
-    }
-  if (pts.size() < 3) return 0.0;
-  for (const auto& p : pts) mean += p;
-  mean /= static_cast<double>(pts.size());
-  for (const auto& p : pts) cov += (p - mean) * (p - mean).transpose();
-  cov /= static_cast<double>(pts.size());
-  return std::sqrt(std::max(0.0, cov.determinant()));
+// The segments turned so that `up` is z.
+std::vector<Segment3> turned_up(const std::vector<Segment3>& segments, const Vec3& up) {
+  const Eigen::Matrix3d R = Eigen::Quaterniond::FromTwoVectors(up, Vec3::UnitZ()).toRotationMatrix();
+  std::vector<Segment3> out(segments.size());
+  for (size_t i = 0; i < segments.size(); ++i) out[i] = {R * segments[i].a, R * segments[i].b};
+  return out;
 }
 
 }  // namespace
 
-LineUp up_from_lines(const std::vector<Segment3>& segments) {
+LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* model) {
   std::vector<Dir> dirs;
   for (const Segment3& s : segments) {
     const double len = s.length();
     if (len > 1e-12 && std::isfinite(len)) dirs.push_back({(s.b - s.a) / len, len});
   }
   if (dirs.empty()) throw std::invalid_argument("up_from_lines: no line with a length");
+  const std::vector<Vec3> candidates = up_candidates(dominant_directions(dirs));
   LineUp r;
-  const double sin_tol = std::sin(kTolDeg * M_PI / 180);
-  r.axes[0] = dominant(dirs, [](const Vec3&) { return true; });
-  Vec3 second = dominant(dirs, [&](const Vec3& d) { return std::abs(d.dot(r.axes[0])) < sin_tol; });
-  if (second.norm() < 0.5) second = r.axes[0].unitOrthogonal();  // every line parallel: any perpendicular
-  r.axes[1] = (second - second.dot(r.axes[0]) * r.axes[0]).normalized();
-  r.axes[2] = r.axes[0].cross(r.axes[1]);
-  int best = 0;
-  double share[3];
-  for (int a = 0; a < 3; ++a) {
-    share[a] = perpendicular_share(dirs, r.axes[a]);
-    if (share[a] > share[best]) best = a;
+  r.candidates = static_cast<int>(candidates.size());
+  Vec3 up = candidates.front();
+  std::optional<LineStatistics> chosen;  // the lines' statistics with `up` as z
+  if (model) {
+    std::vector<std::tuple<double, size_t, LineStatistics>> scored;
+    for (size_t c = 0; c < candidates.size(); ++c) {
+      try {
+        LineStatistics st = line_statistics(turned_up(segments, candidates[c]));
+        const double d = model->neighbour_distance(st);
+        scored.emplace_back(d, c, std::move(st));
+      } catch (const std::invalid_argument&) {  // no height this way up (a flat map seen edge-on): not the up
+      }
+    }
+    std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b)); });
+    if (!scored.empty()) {
+      up = candidates[std::get<1>(scored[0])], r.by_statistics = true, r.distance = std::get<0>(scored[0]);
+      chosen = std::move(std::get<2>(scored[0]));
+      if (scored.size() > 1) r.runner_up_distance = std::get<0>(scored[1]);
+    }
   }
-  r.perpendicular_share = share[best];
-  r.runner_up_share = 0;
-  for (int a = 0; a < 3; ++a)
-    if (a != best) r.runner_up_share = std::max(r.runner_up_share, share[a]);
-  Vec3 up = r.axes[best];
-  const double top = end_spread(segments, up, true), bottom = end_spread(segments, up, false);
-  if (top > bottom) up = -up;
+  if (!r.by_statistics)
+    for (const Vec3& c : candidates)
+      if (perpendicular_share(dirs, c) > perpendicular_share(dirs, up)) up = c;
+  r.perpendicular_share = perpendicular_share(dirs, up);
+  // The sign: as the nearest training clouds' ends say, else the wider end at the bottom.
+  const std::vector<Segment3> upright = turned_up(segments, up);
+  std::vector<double> z;
+  for (const Segment3& s : upright) z.push_back(s.a.z()), z.push_back(s.b.z());
+  const double ground_z = quantile(z, 0.01), top_z = quantile(z, 0.99);
+  const double top = end_spread(upright, ground_z, top_z, true), bottom = end_spread(upright, ground_z, top_z, false);
   r.spread_ratio = std::max(top, bottom) / std::max(std::min(top, bottom), 1e-12);
+  const std::optional<bool> flipped = chosen ? model->upside_down(*chosen) : std::nullopt;
+  r.sign_by_statistics = flipped.has_value();
+  if (flipped ? *flipped : top > bottom) up = -up;
   r.up = up;
   return r;
 }

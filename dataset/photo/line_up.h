@@ -1,25 +1,35 @@
 // Up from a building's lines alone, for line maps made elsewhere without cameras (Line3D++, LIMAP, OBJ) in an
-// arbitrary frame: the lines' three dominant orthogonal directions; the vertical is the one most of the line
-// length is perpendicular to (eaves, ridges, ground and window lines are horizontal); its sign puts the
-// ground - the end whose structure spreads widest (footprint, ground lines; roofs taper) - at the bottom.
-// Wrong for towers taller than wide with few horizontal lines: give the up then (--up).
+// arbitrary frame. The candidates are the lines' dominant directions and the normals of each pair of them. With
+// a height model (line_height.h) the up is the candidate under which the lines' statistics lie nearest the
+// model's metric, z-up training clouds: a map from street photos has more vertical lines than horizontal
+// ones and one facade plane, a drone map the reverse, and both look like buildings only the right way up
+// (experiments/README.md, "Up from the lines"). Without one, the up is the direction most of the line length is
+// perpendicular to (right for whole buildings with many horizontal lines, wrong for facades seen from the
+// street). Its sign: the ends of the nearest training clouds say how to tell the ground (LineStatistics::ends:
+// a whole building's footprint spreads widest, a street capture's lower storeys hold more lines); without a
+// model the end whose structure spreads widest is the ground. Give the up (--up) where the map's frame is known.
 #pragma once
 
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/photo/line_height.h"
 
 namespace lc2wf {
 
 struct LineUp {
   Vec3 up = Vec3::UnitZ();
-  Vec3 axes[3];                 // the dominant orthogonal directions, axes[0] the most common
+  int candidates = 0;              // directions tried
+  bool by_statistics = false;      // chosen by the height model's clouds, else by the perpendicular share
+  double distance = 0;             // by_statistics: mean standardised distance to the model's k nearest clouds
+  double runner_up_distance = 0;   // ... of the best other candidate (0 when there is none)
+  bool sign_by_statistics = false;  // which end is the ground: as the model's nearest clouds' ends say, else
+                                    // the end whose structure spreads widest
   double perpendicular_share = 0;  // share of the line length perpendicular (within 10 deg) to up
-  double runner_up_share = 0;      // the same for the best other axis
   double spread_ratio = 1;         // spread of the bottom end's structure over the top end's (>= 1)
 };
 
-// Throws std::invalid_argument when there is no line with a length.
-LineUp up_from_lines(const std::vector<Segment3>& segments);
+// Throws std::invalid_argument when there is no line with a length. `model` may be null.
+LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* model = nullptr);
 
 }  // namespace lc2wf

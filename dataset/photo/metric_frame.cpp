@@ -112,7 +112,8 @@ MetricFrame estimate_metric_frame(const std::vector<Camera>& cameras, const std:
       if (from_gps) {
         f.up_input = (o.gps_to_enu->R.transpose() * Vec3::UnitZ()).normalized(), f.up_source = "gps";
       } else if (from_lines) {
-        f.up_input = up_from_lines(segments).up, f.up_source = "line directions";
+        f.line_up = up_from_lines(segments, o.height_model ? &*o.height_model : nullptr);
+        f.up_input = f.line_up->up, f.up_source = "line directions";
       } else {
         if (cameras.empty()) throw std::invalid_argument("estimate_metric_frame: no camera to take the up direction from");
         f.up_input = mean_camera_up(cameras), f.up_source = "cameras";

@@ -19,6 +19,7 @@
 
 #include "dataset/geometry/geometry.h"
 #include "dataset/photo/line_height.h"
+#include "dataset/photo/line_up.h"
 #include "dataset/photo/storey_scale.h"
 
 namespace lc2wf {
@@ -65,6 +66,7 @@ struct MetricFrame {
   Vec3 up_input = Vec3::UnitZ();  // the up direction found, input frame
   std::string up_source;          // "gps", "cameras", "line directions" (each "+lines" when refined by near-vertical lines), "input z", "given"
   int vertical_lines = 0;         // lines used for the refinement
+  std::optional<LineUp> line_up;  // up source "line directions": what the lines said
   std::string scale_source;       // "given", "known distance", "gps", "building height", "storeys", "line statistics", "scale search"
   StoreyScale storeys;            // the storey estimate, when nothing before it gave the scale
   double line_height_m = 0;       // scale source "line statistics": the height the model read from the lines

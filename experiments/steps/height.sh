@@ -34,3 +34,39 @@ step_height_model() {
   "$build_dir/train/lc2wf-fit-height" -o runs/height/height.json --ks 7 runs/light2/{realphoto,genphoto,real,gen}/clouds \
     runs/height/{realphoto2,genphoto2,realstreet2,realstreet1}/clouds
 }
+
+# map-frame-val INFER WEIGHTS TAG [FLAGS...]: lc2wf-infer's frame for maps without cameras (up, ground and scale
+# from the lines alone) on validation clouds moved into random frames (bench/reconstruct/scale_search_bench.py,
+# seed 3) -> runs/map-frame-val/TAG/PART and one row per part in runs/map-frame-val/table.md (experiments/README.md,
+# "Up from the lines").
+step_map_frame_val() {
+  [[ $# -ge 3 ]] || die 2 "map-frame-val needs INFER, WEIGHTS and TAG"
+  local infer=$1 weights=$2 tag=$3 part a
+  shift 3
+  local extra=()
+  for a in "$@"; do extra+=("--infer-arg=$a"); done
+  declare -A clouds=([photo]="runs/light2/photoval/clouds/*.lcloud" [street]="runs/height/photoval-street2/clouds/*.lcloud")
+  mkdir -p "runs/map-frame-val/$tag"
+  for part in photo street clean gen; do
+    local list
+    case $part in
+      clean) list=$(grep -v '^#' runs/s11-ss-clouds.txt) ;;
+      gen) list=$(ls runs/light2/genval/clouds/*.lcloud | awk 'NR % 3 == 1') ;;
+      *) list=$(ls ${clouds[$part]}) ;;
+    esac
+    # shellcheck disable=SC2086  # one path per word
+    [[ -f runs/map-frame-val/$tag/$part/summary.md ]] || /usr/bin/python3 bench/reconstruct/scale_search_bench.py --infer "$infer" \
+      --convert "$build_dir/dataset/lc2wf-cloud-convert" --weights "$weights" --out "runs/map-frame-val/$tag/$part" --seed 3 \
+      "${extra[@]}" $list > "runs/map-frame-val/$tag/$part.log" 2>&1
+    /usr/bin/python3 - "$tag" "$part" "runs/map-frame-val/$tag/$part/results.csv" >> runs/map-frame-val/table.md <<'PY'
+import csv, sys
+tag, part, path = sys.argv[1:]
+rows = list(csv.DictReader(open(path)))
+up = [float(r["up_error_deg"]) for r in rows]
+scale = sorted(abs(float(r["scale_error"])) for r in rows)
+print(f"| {tag} | {part} | {len(rows)} | {sum(e < 10 for e in up)} | {sum(e > 170 for e in up)} | "
+      f"{100 * scale[len(scale) // 2]:.1f} % | {sum(e <= 0.15 for e in scale)} |")
+PY
+  done
+  tail -4 runs/map-frame-val/table.md
+}

@@ -13,35 +13,12 @@
 
 #include "dataset/photo/line_height.h"
 #include "tests/common/constant_height_model.h"
+#include "tests/common/windowed_box.h"
 
 namespace lc2wf {
 namespace {
 
-// A box building of `storeys` storeys on a w x d footprint: eaves, base, corners, and on every wall a row of
-// 1.2 x 1.3 m windows per storey (sill, lintel, two sides, ends jittered by triangulation noise).
-std::vector<Segment3> windowed_box(int storeys, double storey_m, double w, double d, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> noise(0.0, 0.03);
-  const double h = storeys * storey_m;
-  std::vector<Segment3> s;
-  const Vec3 corners[4] = {{0, 0, 0}, {w, 0, 0}, {w, d, 0}, {0, d, 0}};
-  for (int c = 0; c < 4; ++c) {
-    const Vec3 a = corners[c], b = corners[(c + 1) % 4], up(0, 0, h);
-    s.push_back({a, b});
-    s.push_back({a + up, b + up});
-    s.push_back({a, a + up});
-    const Vec3 along = (b - a).normalized();
-    const double len = (b - a).norm();
-    for (int k = 0; k < storeys; ++k)
-      for (double x = 1.0; x + 1.2 < len - 0.5; x += 2.8) {
-        const double sill = k * storey_m + 0.9, lintel = sill + 1.3;
-        const Vec3 p = a + x * along, q = a + (x + 1.2) * along;
-        for (double z : {sill, lintel}) s.push_back({p + Vec3(0, 0, z + noise(rng)), q + Vec3(0, 0, z + noise(rng))});
-        for (const Vec3& side : {p, q}) s.push_back({side + Vec3(0, 0, sill + noise(rng)), side + Vec3(0, 0, lintel + noise(rng))});
-      }
-  }
-  return s;
-}
+using test::windowed_box;
 
 std::vector<Segment3> moved(const std::vector<Segment3>& s, double scale, const Vec3& shift) {
   std::vector<Segment3> out;
@@ -113,6 +90,34 @@ TEST(LineHeight, AModelFittedOnFacadesReadsTheHeightFromTheWindows) {
   std::filesystem::remove(path);
 }
 
+// The end statistics change sign when a cloud is turned upside down; a fitted model keeps them (through its
+// file too) and tells a turned cloud by its nearest clouds' ends, whichever end those say is the ground.
+TEST(LineHeight, EndStatisticsTellWhichEndIsTheGround) {
+  const std::vector<Segment3> facade = test::street_facade(4, 3.0, 20, 5);
+  std::vector<Segment3> turned;
+  for (const Segment3& x : facade) turned.push_back({Vec3(x.a.x(), -x.a.y(), -x.a.z()), Vec3(x.b.x(), -x.b.y(), -x.b.z())});
+  const LineStatistics up = line_statistics(facade), down = line_statistics(turned);
+  ASSERT_EQ(up.ends.size(), static_cast<size_t>(kEndStatisticsSize));
+  for (int e = 0; e < kEndStatisticsSize; ++e) EXPECT_NEAR(up.ends[e], -down.ends[e], 1e-9) << "end statistic " << e;
+  for (int k = 0; k < kLineStatisticsSize; ++k) EXPECT_NEAR(up.features[k], down.features[k], 1e-9) << "statistic " << k;
+  EXPECT_GT(up.ends[1], 0.0);  // the lower storeys and the street hold more lines than the eaves
+
+  std::vector<LineStatistics> clouds;
+  std::vector<double> heights;
+  unsigned seed = 11;
+  for (int storeys : {1, 2, 3, 4, 5, 6, 8, 10})
+    for (double w : {9.0, 16.0, 24.0, 31.0}) {
+      clouds.push_back(line_statistics(test::street_facade(storeys, 3.0, w, seed++)));
+      heights.push_back(clouds.back().height);
+    }
+  HeightFitOptions o;
+  o.ks = {3};
+  const HeightModel m = height_model_from_json(height_model_json(fit_height_model(clouds, heights, o)), "model.json");
+  ASSERT_EQ(m.ends.size(), clouds.size());
+  EXPECT_EQ(m.upside_down(up), std::optional<bool>(false));
+  EXPECT_EQ(m.upside_down(down), std::optional<bool>(true));
+}
+
 TEST(LineHeight, BadInputsAndModelFilesAreRefused) {
   EXPECT_THROW(line_statistics({{Vec3(0, 0, 0), Vec3(1, 0, 1)}}), std::invalid_argument);  // too few lines
   std::vector<Segment3> flat;
@@ -151,6 +156,14 @@ TEST(LineHeight, BadInputsAndModelFilesAreRefused) {
   refused(x, "a training cloud with too few statistics");
   x = j, x.erase("mean");
   refused(x, "a missing key");
+  // End statistics: optional (models fitted before them have none), but whole and finite when there.
+  EXPECT_FALSE(height_model_from_json(j, "old.json").upside_down(line_statistics(windowed_box(3, 3.0, 12, 8, 1))).has_value());
+  x = j, x["ends"] = nlohmann::json::array({{0.1, 0.2, 0.3}}), x["ends_stddev"] = {1.0, 1.0, 1.0, 1.0};
+  refused(x, "a training cloud with too few end statistics");
+  x = j, x["ends"] = nlohmann::json::array({{0.1, 0.2, 0.3, 0.4}}), x["ends_stddev"] = {1.0, 0.0, 1.0, 1.0};
+  refused(x, "a zero end stddev");
+  x = j, x["ends"] = nlohmann::json::array({{0.1, 0.2, 0.3, 0.4}});
+  refused(x, "ends without their stddev");
   const auto path = std::filesystem::path(::testing::TempDir()) / "height_model_garbage.json";
   std::ofstream(path) << "{ not json";
   EXPECT_THROW(read_height_model(path), std::invalid_argument);
