@@ -17,9 +17,6 @@ constexpr double kTolDeg = 10.0;
 constexpr size_t kMaxCandidates = 400;  // the longest lines propose directions: bounded work on any map
 constexpr size_t kMaxDirections = 5;     // dominant directions looked for (bounded work: at most 15 candidates)
 constexpr double kMinDirectionShare = 0.04;
-// A candidate's statistics distance is multiplied by (its height over the lowest candidate's)^this: chosen on
-// validation clouds (experiments/README.md, "Up from the lines": 0.2-0.3 equal, 0 and 0.5 worse on clean ones).
-constexpr double kTallerPenalty = 0.25;
 
 struct Dir {
   Vec3 d;
@@ -117,29 +114,20 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
   Vec3 up = candidates.front();
   std::optional<LineStatistics> chosen;  // the lines' statistics with `up` as z
   if (model) {
-    struct Scored {
-      double score, distance;
-      size_t candidate;
-      LineStatistics statistics;
-    };
-    std::vector<Scored> scored;
-    double lowest = INFINITY;
+    std::vector<std::tuple<double, size_t, LineStatistics>> scored;
     for (size_t c = 0; c < candidates.size(); ++c) {
       try {
         LineStatistics st = line_statistics(turned_up(segments, candidates[c]));
         const double d = model->neighbour_distance(st);
-        lowest = std::min(lowest, st.height);
-        scored.push_back({d, d, c, std::move(st)});
+        scored.emplace_back(d, c, std::move(st));
       } catch (const std::invalid_argument&) {  // no height this way up (a flat map seen edge-on): not the up
       }
     }
-    // Near ties go to the lower way up: a long low block stood on its end looks like a tall slab.
-    for (Scored& x : scored) x.score = x.distance * std::pow(x.statistics.height / lowest, kTallerPenalty);
-    std::sort(scored.begin(), scored.end(), [](const Scored& a, const Scored& b) { return std::tie(a.score, a.candidate) < std::tie(b.score, b.candidate); });
+    std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b)); });
     if (!scored.empty()) {
-      up = candidates[scored[0].candidate], r.by_statistics = true, r.distance = scored[0].distance;
-      chosen = std::move(scored[0].statistics);
-      if (scored.size() > 1) r.runner_up_distance = scored[1].distance;
+      up = candidates[std::get<1>(scored[0])], r.by_statistics = true, r.distance = std::get<0>(scored[0]);
+      chosen = std::move(std::get<2>(scored[0]));
+      if (scored.size() > 1) r.runner_up_distance = std::get<0>(scored[1]);
     }
   }
   if (!r.by_statistics)

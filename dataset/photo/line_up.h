@@ -3,7 +3,7 @@
 // a height model (line_height.h) the up is the candidate under which the lines' statistics lie nearest the
 // model's metric, z-up training clouds: a map from street photos has more vertical lines than horizontal
 // ones and one facade plane, a drone map the reverse, and both look like buildings only the right way up
-// (experiments/README.md, "Up from the lines"); near ties go to the way up that makes the map lower. Without one, the up is the direction most of the line length is
+// (experiments/README.md, "Up from the lines"). Without one, the up is the direction most of the line length is
 // perpendicular to (right for whole buildings with many horizontal lines, wrong for facades seen from the
 // street). Its sign: the ends of the nearest training clouds say how to tell the ground (LineStatistics::ends:
 // a whole building's footprint spreads widest, a street capture's lower storeys hold more lines); without a
@@ -22,7 +22,7 @@ struct LineUp {
   int candidates = 0;              // directions tried
   bool by_statistics = false;      // chosen by the height model's clouds, else by the perpendicular share
   double distance = 0;             // by_statistics: mean standardised distance to the model's k nearest clouds
-  double runner_up_distance = 0;   // ... of the next candidate in the ranking (0 when there is none)
+  double runner_up_distance = 0;   // ... of the best other candidate (0 when there is none)
   bool sign_by_statistics = false;  // which end is the ground: as the model's nearest clouds' ends say, else
                                     // the end whose structure spreads widest
   double perpendicular_share = 0;  // share of the line length perpendicular (within 10 deg) to up
