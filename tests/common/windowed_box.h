@@ -38,8 +38,9 @@ inline std::vector<Segment3> windowed_box(int storeys, double storey_m, double w
 
 // One wall of windowed_box (along x at y = 0) as photos from the street triangulate it: its vertical lines
 // (corners, window sides), the eaves and base, a quarter of the window sills and lintels (horizontal lines in
-// the cameras' epipolar planes rarely triangulate), and ground lines in front of it (kerbs, cars, paving).
-inline std::vector<Segment3> street_facade(int storeys, double storey_m, double w, unsigned seed) {
+// the cameras' epipolar planes rarely triangulate), and ground lines in front of it (kerbs, cars, paving) unless
+// `ground_lines` is false (a map of the facade alone).
+inline std::vector<Segment3> street_facade(int storeys, double storey_m, double w, unsigned seed, bool ground_lines = true) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> noise(0.0, 0.03);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -54,7 +55,7 @@ inline std::vector<Segment3> street_facade(int storeys, double storey_m, double 
       for (double z : {sill, lintel})
         if (kept++ % 4 == 0) s.push_back({Vec3(x, 0, z + noise(rng)), Vec3(x + 1.2, 0, z + noise(rng))});
     }
-  for (int g = 0; g < 12; ++g) {  // ground lines up to 8 m in front, along and across the street
+  for (int g = 0; g < (ground_lines ? 12 : 0); ++g) {  // ground lines up to 8 m in front, along and across the street
     const Vec3 p(w * u(rng), -8.0 * u(rng), 0.02 * noise(rng));
     s.push_back({p, p + (g % 2 ? Vec3(1.5 + 3 * u(rng), 0, 0) : Vec3(0, -1 - 2 * u(rng), 0))});
   }

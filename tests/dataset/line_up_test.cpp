@@ -93,6 +93,17 @@ TEST(LineUp, FacadesFromTheStreetByTheHeightModelsClouds) {
   }
 }
 
+// A map of the facade alone (no street in front, as Line3D++ maps of one facade come) is thinnest along the
+// facade's normal: that way up is the lowest, and must still not win.
+TEST(LineUp, AFacadeWithoutTheStreetStandsUp) {
+  const HeightModel model = street_facade_model();
+  const std::vector<Segment3> facade = street_facade(3, 3.1, 26, 41, false);
+  for (const Eigen::Matrix3d& R : frames()) {
+    const LineUp u = up_from_lines(turned(facade, R, 0.7), &model);
+    EXPECT_LT(degrees_between(u.up, R * Vec3::UnitZ()), 3.0);
+  }
+}
+
 TEST(LineUp, NoLineIsAnError) {
   EXPECT_THROW(up_from_lines({}), std::invalid_argument);
   EXPECT_THROW(up_from_lines({{Vec3(1, 2, 3), Vec3(1, 2, 3)}}), std::invalid_argument);
