@@ -1,11 +1,12 @@
 // Hand-made line clouds of windowed buildings (z up, metres) for the tests of what reads a building's lines:
-// its height (line_height.h) and its up (line_up.h).
+// its height (line_height.h) and its up (line_up.h), and a height model fitted on some of them.
 #pragma once
 
 #include <random>
 #include <vector>
 
 #include "dataset/geometry/geometry.h"
+#include "dataset/photo/line_height.h"
 
 namespace lc2wf::test {
 
@@ -60,6 +61,22 @@ inline std::vector<Segment3> street_facade(int storeys, double storey_m, double 
     s.push_back({p, p + (g % 2 ? Vec3(1.5 + 3 * u(rng), 0, 0) : Vec3(0, -1 - 2 * u(rng), 0))});
   }
   return s;
+}
+
+// A height model fitted on metric, z-up street facades of 1-10 storeys and 9-31 m (seeds from `first_seed`), as
+// lc2wf-fit-height fits one: for the tests of what reads a map's up and ground with it.
+inline HeightModel street_facade_model(unsigned first_seed = 1) {
+  std::vector<LineStatistics> clouds;
+  std::vector<double> heights;
+  unsigned seed = first_seed;
+  for (int storeys : {1, 2, 3, 4, 5, 6, 8, 10})
+    for (double w : {9.0, 16.0, 24.0, 31.0}) {
+      clouds.push_back(line_statistics(street_facade(storeys, 3.0, w, seed++)));
+      heights.push_back(clouds.back().height);
+    }
+  HeightFitOptions o;
+  o.ks = {3};
+  return fit_height_model(clouds, heights, o);
 }
 
 }  // namespace lc2wf::test

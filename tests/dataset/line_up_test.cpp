@@ -17,6 +17,7 @@ namespace lc2wf {
 namespace {
 
 using test::street_facade;
+using test::street_facade_model;
 
 std::vector<Segment3> turned(const std::vector<Segment3>& s, const Eigen::Matrix3d& R, double scale) {
   std::vector<Segment3> out;
@@ -32,21 +33,6 @@ std::vector<Eigen::Matrix3d> frames() {
 }
 
 double degrees_between(const Vec3& a, const Vec3& b) { return std::acos(std::clamp(a.normalized().dot(b.normalized()), -1.0, 1.0)) * 180 / M_PI; }
-
-// Metric z-up clouds of facades from the street, as lc2wf-fit-height fits them.
-HeightModel street_facade_model() {
-  std::vector<LineStatistics> clouds;
-  std::vector<double> heights;
-  unsigned seed = 1;
-  for (int storeys : {1, 2, 3, 4, 5, 6, 8, 10})
-    for (double w : {9.0, 16.0, 24.0, 31.0}) {
-      clouds.push_back(line_statistics(street_facade(storeys, 3.0, w, seed++)));
-      heights.push_back(clouds.back().height);
-    }
-  HeightFitOptions o;
-  o.ks = {3};
-  return fit_height_model(clouds, heights, o);
-}
 
 // A box's outline (eaves, base, corners): most of its length is horizontal.
 std::vector<Segment3> box_outline(double w, double d, double h) {

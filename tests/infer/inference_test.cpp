@@ -22,7 +22,6 @@
 #include "core/util/cli.h"
 #include "infer/batch_inference.h"
 #include "infer/map_frame.h"
-#include "dataset/photo/line_height.h"
 #include <Eigen/Geometry>
 #include <cmath>
 #include "dataset/sampling/sampling.h"
@@ -313,23 +312,13 @@ TEST_F(Inference, MapFrameTakesTheHeightModelsReading) {
 // street captures say which way is up and which end is the ground; frame.json says so.
 TEST_F(Inference, MapFrameFindsUpOfAFacadeFromTheStreet) {
   const WireframePredictor predictor(dir_);
-  std::vector<LineStatistics> clouds;
-  std::vector<double> heights;
-  unsigned seed = 1;
-  for (int storeys : {1, 2, 3, 4, 5, 6, 8, 10})
-    for (double w : {9.0, 16.0, 24.0, 31.0}) {
-      clouds.push_back(line_statistics(test::street_facade(storeys, 3.0, w, seed++)));
-      heights.push_back(clouds.back().height);
-    }
-  HeightFitOptions fit;
-  fit.ks = {3};
   LineCloud map;
   map.external_line_map = true;
   const Eigen::Matrix3d to_map(Eigen::AngleAxisd(M_PI / 2, Vec3::UnitX()));  // z up -> y down
   for (const Segment3& s : test::street_facade(4, 3.2, 22, 77)) map.segments.push_back({0.4 * (to_map * s.a), 0.4 * (to_map * s.b)});
   MapFrameOptions o;
   o.enabled = true;
-  o.height_model = fit_height_model(clouds, heights, fit);
+  o.height_model = test::street_facade_model();
   const FramedInference f = infer_in_metric_frame(predictor, map, keep_every_junction(), o);
   const Vec3 up(f.report["up_input"][0].get<double>(), f.report["up_input"][1].get<double>(), f.report["up_input"][2].get<double>());
   EXPECT_GT(up.dot(-Vec3::UnitY()), std::cos(3 * M_PI / 180)) << f.report.dump();
