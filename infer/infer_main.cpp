@@ -104,8 +104,9 @@ wireframe and a note, never a failure.
                       ground at 0). auto: up from the lines' dominant directions and the normals of
                       their pairs: the one under which the lines' statistics look most like the height
                       model's training clouds of buildings the right way up, and the end its nearest
-                      clouds say is the ground at the bottom (without a height model: the direction most
-                      lines are perpendicular to, the widest structure at the bottom), refined by
+                      clouds say is the ground at the bottom, with a warning when another direction looks
+                      almost as upright (without a height model: the direction most lines are
+                      perpendicular to, the widest structure at the bottom), refined by
                       the near-vertical lines; ground at the lowest structure; scale from --scale,
                       --known-distance or --building-height, the facades' storeys (the heights the
                       short vertical lines - window and door sides - cover repeat once per storey of

@@ -73,8 +73,10 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
                           {"candidates", lu->candidates}, {"perpendicular_share", lu->perpendicular_share},
                           {"ground", lu->sign_by_statistics ? "the end the nearest clouds' ends say" : "the end that spreads widest"},
                           {"bottom_over_top_spread", lu->spread_ratio}};
-    if (lu->by_statistics)
+    if (lu->by_statistics) {
       rep["up_evidence"]["statistics_distance"] = lu->distance, rep["up_evidence"]["runner_up_distance"] = lu->runner_up_distance;
+      rep["up_evidence"]["uncertain"] = lu->uncertain;
+    }
   }
   std::string scale_text;
   if (f.frame.needs_scale_search) {
@@ -115,6 +117,13 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   const Vec3& u = f.frame.up_input;
   f.summary = "up (" + format_number("%.3f", u.x()) + ", " + format_number("%.3f", u.y()) + ", " + format_number("%.3f", u.z()) +
               ") from " + rep["up_source"].get<std::string>() + "; " + scale_text;
+  if (f.frame.line_up && f.frame.line_up->uncertain) {
+    const std::string why = "the up is uncertain: another direction's lines look almost as much like an upright building (" +
+                            format_number("%.3g", f.frame.line_up->runner_up_distance) + " against " +
+                            format_number("%.3g", f.frame.line_up->distance) + "); look at the wireframe or give --up";
+    f.warning = why;
+    f.inference.notes.push_back(why);
+  }
   return f;
 }
 

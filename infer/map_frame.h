@@ -38,6 +38,7 @@ struct FramedInference {
   MetricFrame frame;         // map -> that frame
   nlohmann::json report;     // what was chosen and why, with the search's curve
   std::string summary;       // one line for stderr
+  std::string warning;       // what the user should check (an uncertain up), also with --quiet; empty if nothing
 };
 
 // Throws std::invalid_argument when the map has no line or no height, or the options are bad.

@@ -127,7 +127,10 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
     if (!scored.empty()) {
       up = candidates[std::get<1>(scored[0])], r.by_statistics = true, r.distance = std::get<0>(scored[0]);
       chosen = std::move(std::get<2>(scored[0]));
-      if (scored.size() > 1) r.runner_up_distance = std::get<0>(scored[1]);
+      if (scored.size() > 1) {
+        r.runner_up_distance = std::get<0>(scored[1]);
+        r.uncertain = r.runner_up_distance - r.distance < kUncertainUpMargin * r.distance;
+      }
     }
   }
   if (!r.by_statistics)

@@ -90,6 +90,24 @@ TEST(LineUp, AFacadeWithoutTheStreetStandsUp) {
   }
 }
 
+// A square lattice of equal lines looks the same stood on either side: the up is flagged as uncertain; a
+// street facade's is not.
+TEST(LineUp, ALatticeIsUncertainAFacadeIsNot) {
+  const HeightModel model = street_facade_model();
+  std::vector<Segment3> lattice;
+  for (int k = 0; k <= 12; ++k) {
+    lattice.push_back({Vec3(k * 1.5, 0, 0), Vec3(k * 1.5, 0, 18)});
+    lattice.push_back({Vec3(0, 0, k * 1.5), Vec3(18, 0, k * 1.5)});
+  }
+  const LineUp square = up_from_lines(lattice, &model);
+  EXPECT_TRUE(square.by_statistics);
+  EXPECT_TRUE(square.uncertain);
+  EXPECT_LT(square.runner_up_distance - square.distance, kUncertainUpMargin * square.distance);
+  const LineUp facade = up_from_lines(street_facade(4, 3.0, 20, 8), &model);
+  EXPECT_FALSE(facade.uncertain);
+  EXPECT_FALSE(up_from_lines(lattice).uncertain);  // without a model nothing is compared
+}
+
 TEST(LineUp, NoLineIsAnError) {
   EXPECT_THROW(up_from_lines({}), std::invalid_argument);
   EXPECT_THROW(up_from_lines({{Vec3(1, 2, 3), Vec3(1, 2, 3)}}), std::invalid_argument);

@@ -325,6 +325,12 @@ TEST_F(Inference, MapFrameFindsUpOfAFacadeFromTheStreet) {
   EXPECT_EQ(f.report["up_evidence"]["rule"], "nearest the height model's clouds");
   EXPECT_EQ(f.report["up_evidence"]["ground"], "the end the nearest clouds' ends say");
   EXPECT_LT(f.report["up_evidence"]["statistics_distance"].get<double>(), f.report["up_evidence"]["runner_up_distance"].get<double>());
+  // Whether the runner-up came close is said, and only then warned of (also in the wireframe's notes).
+  const bool uncertain = f.report["up_evidence"]["uncertain"].get<bool>();
+  EXPECT_EQ(uncertain, f.report["up_evidence"]["runner_up_distance"].get<double>() <
+                           (1 + kUncertainUpMargin) * f.report["up_evidence"]["statistics_distance"].get<double>());
+  EXPECT_EQ(f.warning.empty(), !uncertain);
+  EXPECT_EQ(std::count(f.inference.notes.begin(), f.inference.notes.end(), f.warning), uncertain ? 1 : 0);
   MapFrameOptions plain = o;  // without a model the perpendicular share decides, and says so
   plain.height_model.reset();
   plain.scale = 1.0;
