@@ -117,7 +117,8 @@ wireframe and a note, never a failure.
                       OUT/<name>.frame.json holds the similarity from the map, the up and scale found,
                       where they came from and the search's scores. as-read: the map's coordinates are
                       taken as metres, z up
-  --up U              the map's up axis: x, y, z, -x, -y or -z (default auto)
+  --up U              the map's up: an axis x, y, z, -x, -y or -z, or a direction X,Y,Z in the map's
+                      frame, e.g. a gravity vector from the survey (default auto)
   --scale F           metres per map unit
   --known-distance X1,Y1,Z1,X2,Y2,Z2,D  two points of the map (map units) are D metres apart
   --building-height M the building's height above its ground, metres

@@ -11,14 +11,22 @@ namespace lc2wf {
 
 namespace {
 
-std::optional<Vec3> axis_of(const std::string& up) {
+// "x", "-y", ... or a direction "X,Y,Z" (finite, not zero), unit length; empty for anything else.
+std::optional<Vec3> given_up(const std::string& up) {
   const bool negative = !up.empty() && up[0] == '-';
   const std::string axis = negative ? up.substr(1) : up;
   Vec3 v;
   if (axis == "x") v = Vec3::UnitX();
   else if (axis == "y") v = Vec3::UnitY();
   else if (axis == "z") v = Vec3::UnitZ();
-  else return std::nullopt;
+  else {
+    double x, y, z;
+    char tail;
+    // sscanf reads "nan" and "inf": refused like every other number.
+    if (std::sscanf(up.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3 || !Vec3(x, y, z).allFinite() || !(Vec3(x, y, z).norm() > 0))
+      return std::nullopt;
+    return Vec3(x, y, z).normalized();
+  }
   return negative ? Vec3(-v) : v;
 }
 
@@ -41,7 +49,8 @@ LineCloud transformed(const LineCloud& map, const Similarity& s) {
 }  // namespace
 
 void MapFrameOptions::Check() const {
-  if (up != "auto" && !axis_of(up)) throw std::invalid_argument("MapFrameOptions.up must be auto, x, y, z, -x, -y or -z, got '" + up + "'");
+  if (up != "auto" && !given_up(up))
+    throw std::invalid_argument("MapFrameOptions.up must be auto, x, y, z, -x, -y, -z or a direction X,Y,Z (finite, not zero), got '" + up + "'");
   if (!(scale >= 0) || !std::isfinite(scale)) throw std::invalid_argument("MapFrameOptions.scale must be > 0");
   if (!(building_height_m >= 0) || !std::isfinite(building_height_m)) throw std::invalid_argument("MapFrameOptions.building_height_m must be > 0");
   if (!(known_distance_m >= 0) || !std::isfinite(known_distance_m)) throw std::invalid_argument("MapFrameOptions.known_distance_m must be > 0");
@@ -57,7 +66,7 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   if (map.segments.empty()) throw std::invalid_argument("the map has no line to find its frame from");
   MetricFrameOptions fo;
   if (o.up == "auto") fo.up = UpSource::kLines;
-  else fo.up = UpSource::kGiven, fo.given_up = *axis_of(o.up);
+  else fo.up = UpSource::kGiven, fo.given_up = *given_up(o.up);
   fo.scale = o.scale;
   if (fo.scale == 0 && o.known_distance_m > 0) fo.scale = o.known_distance_m / (o.known_b - o.known_a).norm();
   fo.building_height_m = o.building_height_m;

@@ -19,7 +19,7 @@ namespace lc2wf {
 
 struct MapFrameOptions {
   bool enabled = false;            // lc2wf-infer: on (foreign maps only); lc2wf-eval: off (frames as read)
-  std::string up = "auto";         // auto, x, y, z, -x, -y, -z
+  std::string up = "auto";         // auto, x, y, z, -x, -y, -z or a direction "X,Y,Z" in the map's frame
   double scale = 0;                // metres per map unit (0 = not given)
   double building_height_m = 0;    // the building's height above its ground (0 = not given)
   // Two points of the map D metres apart (known_distance_m > 0).

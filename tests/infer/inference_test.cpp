@@ -331,6 +331,16 @@ TEST_F(Inference, MapFrameFindsUpOfAFacadeFromTheStreet) {
                            (1 + kUncertainUpMargin) * f.report["up_evidence"]["statistics_distance"].get<double>());
   EXPECT_EQ(f.warning.empty(), !uncertain);
   EXPECT_EQ(std::count(f.inference.notes.begin(), f.inference.notes.end(), f.warning), uncertain ? 1 : 0);
+  MapFrameOptions given = o;  // a direction the user knows (a survey's gravity) wins, made unit length
+  given.up = "0.02,-2,0";
+  const FramedInference g = infer_in_metric_frame(predictor, map, keep_every_junction(), given);
+  EXPECT_NEAR(g.report["up_input"][1].get<double>(), Vec3(0.02, -2, 0).normalized().y(), 1e-12);
+  EXPECT_EQ(g.report["up_source"], "given 0.02,-2,0");
+  EXPECT_FALSE(g.report.contains("up_evidence"));
+  for (const std::string bad : {"0,0,0", "1,nan,0", "1,2", "1,2,3,4", "up"}) {
+    given.up = bad;
+    EXPECT_THROW(given.Check(), std::invalid_argument) << bad;
+  }
   MapFrameOptions plain = o;  // without a model the perpendicular share decides, and says so
   plain.height_model.reset();
   plain.scale = 1.0;
