@@ -20,12 +20,9 @@ std::optional<Vec3> given_up(const std::string& up) {
   else if (axis == "y") v = Vec3::UnitY();
   else if (axis == "z") v = Vec3::UnitZ();
   else {
-    double x, y, z;
-    char tail;
-    // sscanf reads "nan" and "inf": refused like every other number.
-    if (std::sscanf(up.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3 || !Vec3(x, y, z).allFinite() || !(Vec3(x, y, z).norm() > 0))
-      return std::nullopt;
-    return Vec3(x, y, z).normalized();
+    const std::optional<Vec3> d = parse_xyz(up);
+    if (!d || !(d->norm() > 0)) return std::nullopt;
+    return d->normalized();
   }
   return negative ? Vec3(-v) : v;
 }

@@ -141,12 +141,9 @@ or cameras, or an I/O error (the message names the stage and the files, and noth
 )";
 
 Vec3 parse_vector(const std::string& flag, const std::string& value) {
-  double x, y, z;
-  char tail;
-  // sscanf reads "nan" and "inf": refused here like every other number flag.
-  if (std::sscanf(value.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3 || !Vec3(x, y, z).allFinite())
-    throw UsageError(flag + " expects finite X,Y,Z, got '" + value + "'");
-  return Vec3(x, y, z);
+  const std::optional<Vec3> v = parse_xyz(value);
+  if (!v) throw UsageError(flag + " expects finite X,Y,Z, got '" + value + "'");
+  return *v;
 }
 
 ReconstructOptions parse_args(int argc, char** argv) {

@@ -6,6 +6,8 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,15 @@ using Vec3 = Eigen::Vector3d;
 // geo-referenced frame, small enough that differences, squared distances and projections never overflow.
 constexpr double kMaxCoordinate = 1e9;
 inline bool within_coordinate_limit(const Vec3& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
+
+// "X,Y,Z" as three finite numbers (a vector given on a command line); empty for anything else. sscanf reads
+// "nan" and "inf": refused here like every other number.
+inline std::optional<Vec3> parse_xyz(const std::string& text) {
+  double x, y, z;
+  char tail;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &x, &y, &z, &tail) != 3 || !Vec3(x, y, z).allFinite()) return std::nullopt;
+  return Vec3(x, y, z);
+}
 
 // Pinhole camera in the OpenCV convention: x_cam = R * X_world + t, pixel = K * x_cam / z, with pixel
 // (0,0) at the *centre* of the top-left pixel, x right, y down, z forward.
