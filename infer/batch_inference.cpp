@@ -60,7 +60,7 @@ BatchInferenceSummary infer_clouds(const WireframePredictor& predictor, const st
         std::filesystem::create_directories(out_dir);
         write_file_atomic(out_dir / (name + ".frame.json"), f.report.dump(2));
         if (!o.quiet) std::fprintf(stderr, "%s%s: %s\n", bar ? "\n" : "", name.c_str(), f.summary.c_str());
-        if (!f.warning.empty()) std::fprintf(stderr, "%s%s: warning: %s\n", bar && o.quiet ? "\n" : "", name.c_str(), f.warning.c_str());
+        if (!f.warning.empty()) std::fprintf(stderr, "%s: warning: %s\n", name.c_str(), f.warning.c_str());  // also with --quiet
         cloud = std::move(f.cloud);
         r = std::move(f.inference);
       } else {

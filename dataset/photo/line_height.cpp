@@ -61,25 +61,8 @@ std::vector<double> standardised(const std::vector<double>& f, const std::vector
   return z;
 }
 
-// LineStatistics::ends of lines between `ground_z` and `top_z`.
-std::vector<double> end_statistics(const std::vector<Segment3>& segments, double ground_z, double top_z) {
-  const double h = top_z - ground_z, low = ground_z + kEndSlab * h, high = top_z - kEndSlab * h;
-  double n_bottom = 0, n_top = 0, len_bottom = 0, len_top = 0, weighted = 0, total = 0;
-  for (const Segment3& s : segments) {
-    const double mid = 0.5 * (s.a.z() + s.b.z()), len = s.length();
-    if (mid <= low) n_bottom += 1, len_bottom += len;
-    if (mid >= high) n_top += 1, len_top += len;
-    weighted += len * mid, total += len;
-  }
-  const double tiny = 1e-12 * h * h;
-  const double bottom_spread = end_spread(segments, ground_z, top_z, false), top_spread = end_spread(segments, ground_z, top_z, true);
-  return {std::log(std::max(bottom_spread, tiny) / std::max(top_spread, tiny)), std::log((n_bottom + 1) / (n_top + 1)),
-          std::log((len_bottom + 1e-9 * h) / (len_top + 1e-9 * h)),
-          total > 0 ? (0.5 * (ground_z + top_z) - weighted / total) / h : 0.0};
-}
-
-}  // namespace
-
+// sqrt(det) of the horizontal covariance of the endpoints in the lowest (or, `top`, the highest) kEndSlab of the
+// height between `ground_z` and `top_z`; 0 for fewer than 3 endpoints there.
 double end_spread(const std::vector<Segment3>& segments, double ground_z, double top_z, bool top) {
   const double cut = top ? top_z - kEndSlab * (top_z - ground_z) : ground_z + kEndSlab * (top_z - ground_z);
   double n = 0, mx = 0, my = 0;
@@ -94,6 +77,29 @@ double end_spread(const std::vector<Segment3>& segments, double ground_z, double
       if (top ? p.z() >= cut : p.z() <= cut) sxx += (p.x() - mx) * (p.x() - mx), syy += (p.y() - my) * (p.y() - my), sxy += (p.x() - mx) * (p.y() - my);
   sxx /= n, syy /= n, sxy /= n;
   return std::sqrt(std::max(0.0, sxx * syy - sxy * sxy));
+}
+
+// LineStatistics::ends of lines between `ground_z` and `top_z`.
+std::vector<double> end_statistics(const std::vector<Segment3>& segments, double ground_z, double top_z) {
+  const double h = top_z - ground_z, low = ground_z + kEndSlab * h, high = top_z - kEndSlab * h;
+  double n_bottom = 0, n_top = 0, len_bottom = 0, len_top = 0, weighted = 0, total = 0;
+  for (const Segment3& s : segments) {
+    const double mid = 0.5 * (s.a.z() + s.b.z()), len = s.length();
+    if (mid <= low) n_bottom += 1, len_bottom += len;
+    if (mid >= high) n_top += 1, len_top += len;
+    weighted += len * mid, total += len;
+  }
+  return {log_end_spread_ratio(segments, ground_z, top_z), std::log((n_bottom + 1) / (n_top + 1)),
+          std::log((len_bottom + 1e-9 * h) / (len_top + 1e-9 * h)),
+          total > 0 ? (0.5 * (ground_z + top_z) - weighted / total) / h : 0.0};
+}
+
+}  // namespace
+
+double log_end_spread_ratio(const std::vector<Segment3>& segments, double ground_z, double top_z) {
+  const double tiny = 1e-12 * (top_z - ground_z) * (top_z - ground_z);
+  if (!(tiny > 0)) return 0.0;  // no height: neither end is the ground
+  return std::log(std::max(end_spread(segments, ground_z, top_z, false), tiny) / std::max(end_spread(segments, ground_z, top_z, true), tiny));
 }
 
 LineStatistics line_statistics(const std::vector<Segment3>& segments, double ground_quantile, double top_quantile) {

@@ -23,7 +23,7 @@ namespace lc2wf {
 constexpr int kLineLengthBins = 14;
 constexpr int kLineStatisticsSize = 3 * kLineLengthBins + 2;
 
-// How the cloud's bottom end differs from its top: log(bottom / top) of the end slabs' spread (end_spread),
+// How the cloud's bottom end differs from its top: log(bottom / top) of the end slabs' spread (log_end_spread_ratio),
 // of their line count and of their line length, and how far the length-weighted mean height lies below
 // mid-height (over the height). Each changes sign when the cloud is turned upside down; which of them tells
 // the ground depends on the capture (whole buildings: the footprint spreads widest; street photos: the lower
@@ -36,9 +36,10 @@ struct LineStatistics {
   std::vector<double> ends;      // kEndStatisticsSize values
 };
 
-// sqrt(det) of the horizontal covariance of the endpoints in the lowest (or, `top`, the highest) 15 % of the
-// height between `ground_z` and `top_z`; 0 for fewer than 3 endpoints there. z up.
-double end_spread(const std::vector<Segment3>& segments, double ground_z, double top_z, bool top);
+// log(bottom / top) of the end slabs' spread: sqrt(det) of the horizontal covariance of the endpoints in the
+// lowest and the highest 15 % of the height between `ground_z` and `top_z` (each floored at 1e-12 height^2).
+// z up. LineStatistics::ends[0]; also the ground's side for maps without a height model (line_up.h).
+double log_end_spread_ratio(const std::vector<Segment3>& segments, double ground_z, double top_z);
 
 // `segments`: z up, any scale and origin. Throws std::invalid_argument for fewer than 10 lines or no height.
 LineStatistics line_statistics(const std::vector<Segment3>& segments, double ground_quantile = 0.01, double top_quantile = 0.99);

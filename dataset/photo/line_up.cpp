@@ -133,20 +133,29 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
       }
     }
   }
-  if (!r.by_statistics)
-    for (const Vec3& c : candidates)
-      if (perpendicular_share(dirs, c) > perpendicular_share(dirs, up)) up = c;
+  if (!r.by_statistics) {
+    double best = -1;
+    for (const Vec3& c : candidates) {
+      const double share = perpendicular_share(dirs, c);
+      if (share > best) best = share, up = c;
+    }
+  }
   r.perpendicular_share = perpendicular_share(dirs, up);
-  // The sign: as the nearest training clouds' ends say, else the wider end at the bottom.
-  const std::vector<Segment3> upright = turned_up(segments, up);
-  std::vector<double> z;
-  for (const Segment3& s : upright) z.push_back(s.a.z()), z.push_back(s.b.z());
-  const double ground_z = quantile(z, 0.01), top_z = quantile(z, 0.99);
-  const double top = end_spread(upright, ground_z, top_z, true), bottom = end_spread(upright, ground_z, top_z, false);
-  r.spread_ratio = std::max(top, bottom) / std::max(std::min(top, bottom), 1e-12);
+  // The sign: as the nearest training clouds' ends say, else the wider end at the bottom. The chosen
+  // statistics already hold log(bottom / top spread); without them the map is turned once more to measure it.
+  double log_spread_ratio = 0;
+  if (chosen) {
+    log_spread_ratio = chosen->ends[0];
+  } else {
+    const std::vector<Segment3> upright = turned_up(segments, up);
+    std::vector<double> z;
+    for (const Segment3& s : upright) z.push_back(s.a.z()), z.push_back(s.b.z());
+    log_spread_ratio = log_end_spread_ratio(upright, quantile(z, 0.01), quantile(z, 0.99));
+  }
+  r.spread_ratio = std::exp(std::abs(log_spread_ratio));
   const std::optional<bool> flipped = chosen ? model->upside_down(*chosen) : std::nullopt;
   r.sign_by_statistics = flipped.has_value();
-  if (flipped ? *flipped : top > bottom) up = -up;
+  if (flipped ? *flipped : log_spread_ratio < 0) up = -up;
   r.up = up;
   return r;
 }

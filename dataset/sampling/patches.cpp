@@ -92,10 +92,6 @@ PatchDistance parse_patch_distance(const std::string& name, const std::string& w
 
 const char* patch_distance_name(PatchDistance d) { return d == PatchDistance::Segment ? "segment" : "infinite_line"; }
 
-void SegmentSet::nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& dist) const {
-  nearest(q, k, PatchDistance::InfiniteLine, idx, dist);
-}
-
 void SegmentSet::nearest(const Vec3& q, int k, PatchDistance distance, std::vector<int>& idx, std::vector<double>& dist) const {
   const size_t n = segments_.size();
   const double qx = q.x(), qy = q.y(), qz = q.z();
@@ -227,7 +223,7 @@ PairPatches build_pair_patches(const SegmentSet& segs, const std::vector<Junctio
   std::map<std::array<double, 3>, std::pair<std::vector<int>, std::vector<double>>> cache;
   auto nearest = [&](const Vec3& q) -> const std::pair<std::vector<int>, std::vector<double>>& {
     auto [it, fresh] = cache.try_emplace({q.x(), q.y(), q.z()});
-    if (fresh) segs.nearest_by_line(q, L, it->second.first, it->second.second);
+    if (fresh) segs.nearest(q, L, PatchDistance::InfiniteLine, it->second.first, it->second.second);  // the release's, for pairs
     return it->second;
   };
   for (int p = 0; p < P; ++p) {

@@ -51,10 +51,8 @@ class SegmentSet {
   explicit SegmentSet(const std::vector<Segment3>& segments);
   size_t size() const { return segments_.size(); }
   const Segment3& segment(size_t i) const { return segments_[i]; }
-  // Indices of the `k` segments with the smallest infinite-line distance to q (ties: lower index), in
-  // ascending distance; `line_dist` receives those distances. Zero-length segments count as infinitely far.
-  void nearest_by_line(const Vec3& q, int k, std::vector<int>& idx, std::vector<double>& line_dist) const;
-  // The same by `distance` (InfiniteLine: nearest_by_line; Segment: Euclidean distance to the segment).
+  // Indices of the `k` segments nearest to q by `distance` (to the infinite line, or to the segment; ties: lower
+  // index), in ascending distance; `dist` receives those distances. Zero-length segments count as infinitely far.
   void nearest(const Vec3& q, int k, PatchDistance distance, std::vector<int>& idx, std::vector<double>& dist) const;
   // Euclidean distance from q to segment i (the release's point-to-segment feature).
   double segment_distance(size_t i, const Vec3& q) const;
