@@ -104,6 +104,10 @@
 #   map-frame-val INFER WEIGHTS TAG [FLAGS...]  validation clouds as line OBJ maps in random frames (rotation,
 #                 scale, shift), up and scale found by the INFER binary with WEIGHTS: photo-look orbits (42),
 #                 street captures (42), every 20th clean real (21), every 3rd generated (20) -> runs/map-frame-val/TAG
+# Photo benchmark runs with other flags (steps/photo_rerun.sh):
+#   photo-rerun RUN MESHES TAG [FLAGS...]  a run_buildings.sh run's reconstructions again with lc2wf-reconstruct
+#                 FLAGS on its renders and cameras (POSES=DIR: an earlier run's COLMAP poses), scored against
+#                 MESHES -> runs/photo-rerun/<RUN's name>-TAG
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
 #                 best weights, log) to models/RUN-training/
@@ -123,7 +127,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val height-model map-frame-val snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val height-model map-frame-val photo-rerun snapshot restore)
 
 step=${1:-}
 case $step in

@@ -81,6 +81,8 @@ Options:
   --min-score S          triangulation: a 2D segment's best hypothesis needs a score above S (sum of
                          the agreeing views' similarities; default 0.75 as lc2wf-dataset, 1.0 = two
                          confirming views)
+  --endpoint-angle DEG   triangulation: a segment this close to its epipolar line (a facade's horizontals
+                         photographed walking along it) is matched by its endpoints (default 2; 0: never)
   --min-confirming-views K  keep a 3D line only when lines triangulated from >= K other views overlap
                          it (default 1; 0 keeps every line): most lone lines of a textured scene are
                          chance matches floating above the roof (reconstruct/README.md)
@@ -183,6 +185,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
     else if (f == "--init-min-inliers") o.colmap.init_min_inliers = int_flag(f, value());
     else if (f == "--abs-pose-min-inliers") o.colmap.abs_pose_min_inliers = int_flag(f, value());
     else if (f == "--min-score") o.triangulator.min_best_score = number_flag(f, value());
+    else if (f == "--endpoint-angle") o.triangulator.endpoint_angle_deg = number_flag(f, value());
     else if (f == "--min-confirming-views") o.confirmation.min_other_views = int_flag(f, value());
     else if (f == "--scale") {
       o.frame.scale = number_flag(f, value());
@@ -235,6 +238,7 @@ ReconstructOptions parse_args(int argc, char** argv) {
                                      {"ColmapOptions.init_min_inliers", "--init-min-inliers"},
                                      {"ColmapOptions.abs_pose_min_inliers", "--abs-pose-min-inliers"},
                                      {"TriangulatorOptions.min_best_score", "--min-score"},
+                                     {"TriangulatorOptions.endpoint_angle_deg", "--endpoint-angle"},
                                      {"LineConfirmationOptions.min_other_views", "--min-confirming-views"}});
   if (!fs::is_directory(o.images)) throw std::runtime_error("'" + o.images.string() + "' is not a folder");  // a data error
   return o;

@@ -13,7 +13,7 @@
 # MESHES: a folder of Roof-Image <name>.polyshape files (default ../shared/data/roof-image/res_building; the
 # named ones are linked into OUT/meshes) or of city models (CityJSON, CityJSONSeq, CityGML, read in place;
 # names <file stem>__<building id>, dataset/README.md).
-# TEXTURES=sfm|photo|paper (default sfm), CAPTURE=orbit|street-1|street-2 (default orbit),
+# TEXTURES=sfm|photo|paper (default sfm), CAPTURE=orbit|street-1|street-2|walk (default orbit),
 # RENDERER=blender|raster (default blender): lc2wf-dataset's --textures, --capture, --renderer.
 # POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
 # output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.

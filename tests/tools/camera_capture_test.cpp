@@ -165,6 +165,44 @@ TEST(CameraCapture, StreetTwoSpansTwoFacadesAroundACorner) {
   EXPECT_GE(corners_used.size(), 2u) << "the seed picks the corner";
 }
 
+// A walk down the street: every camera on one straight line parallel to a long side, at eye height, at one
+// distance from it, spread along it, each framing the whole building.
+TEST(CameraCapture, WalkStaysOnOneLineAlongALongFacade) {
+  const std::vector<Vec3> points = turned_house();
+  const std::vector<Side> sides = footprint_sides_of(points);
+  for (uint64_t seed = 0; seed < 4; ++seed) {
+    CameraRingOptions o = capture_ring(CameraRingOptions{}, "walk");
+    o.views = 10;
+    o.seed = seed;
+    const auto cams = make_camera_ring(points, o);
+    ASSERT_EQ(cams.size(), 10u);
+    int facade = -1;
+    for (int k = 0; k < 4; ++k) {
+      bool all = true;
+      for (const Camera& c : cams) all = all && (c.center().head<2>() - sides[k].a).dot(sides[k].normal) > 0;
+      if (all && (sides[k].b - sides[k].a).norm() > 11.9) facade = k;
+    }
+    ASSERT_GE(facade, 0) << "seed " << seed << ": not all in front of one long facade";
+    const Side& side = sides[facade];
+    const double distance = (cams[0].center().head<2>() - side.a).dot(side.normal);
+    double lo = 1e300, hi = -1e300;
+    for (const Camera& c : cams) {
+      const Vec2 p = c.center().head<2>();
+      EXPECT_NEAR((p - side.a).dot(side.normal), distance, 1e-9 * distance) << "seed " << seed << ": off the line";
+      const double along = (p - side.a).dot((side.b - side.a).normalized());
+      lo = std::min(lo, along), hi = std::max(hi, along);
+      const double h = c.center().z() - lowest(points);
+      EXPECT_GE(h, 1.5 - 1e-9);
+      EXPECT_LE(h, 1.8 + 1e-9);
+      expect_frames_every_point(c, points, o);
+    }
+    EXPECT_GT(hi - lo, distance) << "seed " << seed << ": the views spread along the street";
+  }
+  CameraRingOptions bad = capture_ring(CameraRingOptions{}, "walk");
+  bad.azimuth_span_deg = 170;
+  EXPECT_THROW(bad.Check(), std::invalid_argument);
+}
+
 TEST(CameraCapture, BadValuesNameTheField) {
   auto message = [](const CameraRingOptions& o) {
     try {
@@ -191,7 +229,7 @@ TEST(CameraCapture, BadValuesNameTheField) {
     capture_ring(o, "street-3");
     ADD_FAILURE() << "street-3 accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("capture must be orbit, street-1 or street-2, got 'street-3'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("capture must be orbit, street-1, street-2 or walk, got 'street-3'"), std::string::npos) << e.what();
   }
 }
 

@@ -55,7 +55,7 @@ TEST(DatasetCli, HelpAndArgumentErrors) {
   EXPECT_THAT(r.out, HasSubstr("--photo-without: unknown element 'cows'")) << r.out;
   r = run(kDataset + " --meshes m --out o --capture street-3");
   EXPECT_EQ(r.code, 2);
-  EXPECT_THAT(r.out, HasSubstr("--capture must be orbit, street-1 or street-2, got 'street-3'")) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("--capture must be orbit, street-1, street-2 or walk, got 'street-3'")) << r.out;
   EXPECT_THAT(r.out, Not(HasSubstr("DatasetRunOptions"))) << r.out;
   r = run(kDataset + " --meshes /nonexistent/meshes --out " + testing::TempDir() + "/cli_out_" + std::to_string(getpid()));
   EXPECT_EQ(r.code, 3);

@@ -109,6 +109,27 @@ TEST(ColmapPoses, AlignmentUndoesASimilarityAndMeasuresErrors) {
   EXPECT_THROW(align_to_reference(ref, too_few), std::invalid_argument);
 }
 
+// A walk down a street: the centres lie on one line and leave the turn about it free; the cameras' axes fix it.
+TEST(ColmapPoses, AlignmentOfCamerasOnOneLineKeepsTheirTurn) {
+  Eigen::Matrix3d K;
+  K << 500, 0, 320, 0, 500, 240, 0, 0, 1;
+  std::vector<Camera> ref;
+  for (int i = 0; i < 8; ++i) ref.push_back(look_at(Vec3(-14.0 + 4.0 * i, -20, 1.7), Vec3(0, 0, 5), K, 640, 480));
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Vec3(0.2, 1, -0.4).normalized()).toRotationMatrix();
+  std::vector<std::optional<Camera>> est(ref.size());
+  for (size_t i = 0; i < ref.size(); ++i) {
+    Camera c = ref[i];
+    const Vec3 C = 0.3 * Q * ref[i].center() + Vec3(1, 2, 3);
+    c.R = ref[i].R * Q.transpose();
+    c.t = -c.R * C;
+    est[i] = c;
+  }
+  const PoseComparison pc = align_to_reference(ref, est);
+  EXPECT_NEAR(pc.scale, 1.0 / 0.3, 1e-9);
+  EXPECT_LT(pc.max_centre_error, 1e-9);
+  EXPECT_LT(pc.max_rotation_deg, 1e-6);
+}
+
 TEST(ColmapPoses, AimPointAndPerViewErrors) {
   const auto ref = ring(6);
   EXPECT_LT((common_aim_point(ref) - Vec3(0, 0, 2)).norm(), 1e-9);

@@ -205,9 +205,62 @@ TEST(LineTriangulator, OutputIsIndependentOfThreadCountAndScalesWithTheScene) {
   }
 }
 
+// A pedestrian's photos: the camera walks along the long facade at eye height, looking straight at it, so
+// every line along the walk lies in an epipolar plane and only its endpoints tell its depth.
+TEST(LineTriangulator, LinesAlongAStreetWalkAreTriangulatedFromTheirEndpoints) {
+  RectBuildingSpec spec;
+  spec.length = 16.0;
+  spec.width = 9.0;
+  const Building building = make_rect_building("walk", spec);
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vec3& p : building.mesh.vertices) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const Vec3 size = hi - lo;
+  Eigen::Matrix3d K;
+  K << 800, 0, 639.5, 0, 800, 479.5, 0, 0, 1;
+  std::vector<Camera> cameras;
+  for (int i = 0; i < 12; ++i) {
+    const double x = lo.x() + size.x() * (0.25 + 0.5 * i / 11.0);
+    const Vec3 centre(x, lo.y() - 1.6 * size.x(), lo.z() + 0.12 * size.z());
+    cameras.push_back(look_at(centre, Vec3(x, lo.y(), lo.z() + 0.5 * size.z()), K, 1280, 960));
+  }
+  std::vector<std::vector<int>> edge_of;
+  const auto views = test::project_gt_segments(building, cameras, {}, &edge_of);
+  const Wireframe& wf = building.wireframe;
+  const auto seen = edges_seen_thrice(edge_of, views, wf.edges.size(), 10.0);
+  std::vector<int> along_walk, across;
+  for (int e : seen) {
+    const Vec3 d = (wf.junctions[wf.edges[e][1]] - wf.junctions[wf.edges[e][0]]).normalized();
+    (std::abs(d.x()) > 0.999 ? along_walk : across).push_back(e);
+  }
+  ASSERT_GE(along_walk.size(), 3u);  // base, eave and ridge of the facade
+  ASSERT_GE(across.size(), 4u);
+  const double tau = 1e-3 * bbox_diagonal(building);
+  TriangulatorOptions planes_only;
+  planes_only.endpoint_angle_deg = 0;
+  const auto before = triangulate_lines(views, planes_only);
+  const auto after = triangulate_lines(views, TriangulatorOptions{});
+  const double lost = length_recall(wf, along_walk, before, tau), found = length_recall(wf, along_walk, after, tau);
+  EXPECT_LT(lost, 0.05);
+  EXPECT_GT(found, 0.9) << "ray-plane depths alone " << lost;
+  EXPECT_GT(length_recall(wf, across, after, tau), 0.9);
+  // Exact endpoints give exact lines: every line lies on its own GT edge.
+  for (const auto& l : after) {
+    const int e = edge_of[l.source.view][l.source.segment];
+    ASSERT_GE(e, 0);
+    const Vec3 a = wf.junctions[wf.edges[e][0]], b = wf.junctions[wf.edges[e][1]];
+    EXPECT_LT(std::max(test::point_segment_distance(l.line.a, a, b), test::point_segment_distance(l.line.b, a, b)), tau);
+  }
+}
+
 TEST(LineTriangulator, RejectsBadOptionsAndCameras) {
   TriangulatorOptions o;
   o.epipolar_overlap = 1.5;
+  EXPECT_THROW(o.Check(), std::invalid_argument);
+  o = TriangulatorOptions{};
+  o.endpoint_angle_deg = -1;
   EXPECT_THROW(o.Check(), std::invalid_argument);
   std::vector<TriangulationView> views(2);
   views[0].camera.K(0, 0) = 0;

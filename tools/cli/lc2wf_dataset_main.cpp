@@ -28,9 +28,11 @@ options:
   --views N                   views per building (default 20)
   --capture KIND              where the cameras stand: orbit (default: rings of oblique views all around,
                               20-45 degrees up, like a drone), street-1 (every view in a 90 degree sector
-                              in front of one long facade) or street-2 (a 180 degree sector around one
-                              corner: two facades); street views from 1.5-3 m above the ground, looking
-                              at the building's centre, as far back as it takes to frame the building.
+                              in front of one long facade), street-2 (a 180 degree sector around one
+                              corner: two facades) or walk (street-1's views on one straight line along
+                              the facade, 1.5-1.8 m up, as a pedestrian walking down the street); street
+                              views from 1.5-3 m above the ground, looking at the building's centre, as
+                              far back as it takes to frame the building.
                               The facade or corner comes from the seed; recorded in the summary and
                               status; a building done with another capture is rendered again
   --size WxH                  image size (default 640x480)
@@ -77,6 +79,8 @@ options:
   --neighbours N              visual neighbours matched per view (default 10)
   --label-min-views N         f=1 needs votes for the same GT edge from N distinct support views (default 3)
   --min-ray-plane-angle DEG   a source ray this close to the target segment's plane gives no hypothesis (default 1)
+  --endpoint-angle DEG        a segment this close to its epipolar line is matched by its endpoints (default 2;
+                              0: never, as Line3D++)
   --neighbour-max-angle DEG   widest triangulation angle of a neighbour at the scene centre (default 60)
   --sigma-p PX                positional regulariser of the scoring, pixels (default 2.5)
   -q, --quiet                 no progress bar
@@ -203,6 +207,8 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
       o.cloud.labels.min_views = lc2wf::int_flag(a, value());
     } else if (a == "--min-ray-plane-angle") {
       o.cloud.triangulator.min_ray_plane_angle_deg = lc2wf::number_flag(a, value());
+    } else if (a == "--endpoint-angle") {
+      o.cloud.triangulator.endpoint_angle_deg = lc2wf::number_flag(a, value());
     } else if (a == "--neighbour-max-angle") {
       o.cloud.triangulator.neighbours.max_angle_deg = lc2wf::number_flag(a, value());
     } else if (a == "--sigma-p") {
@@ -238,6 +244,7 @@ lc2wf::DatasetRunOptions parse_args(int argc, char** argv) {
                                             {"LsdOptions.scale", "--lsd-scale"},
                                             {"TriangulatorOptions.min_best_score", "--min-score"},
                                             {"TriangulatorOptions.min_ray_plane_angle_deg", "--min-ray-plane-angle"},
+                                            {"TriangulatorOptions.endpoint_angle_deg", "--endpoint-angle"},
                                             {"TriangulatorOptions.sigma_p_px", "--sigma-p"},
                                             {"NeighbourOptions.count", "--neighbours"},
                                             {"NeighbourOptions.min/max_angle_deg", "--neighbour-max-angle"},

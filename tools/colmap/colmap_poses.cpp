@@ -39,12 +39,26 @@ void AlignOptions::Check() const {
 
 namespace {
 
-// Reference camera centres ~ s R (estimated centres) + t over the listed views.
-Similarity similarity_of_centres(const std::vector<Camera>& reference, const std::vector<std::optional<Camera>>& estimated,
-                                 const std::vector<int>& ids) {
+// Reference poses ~ s R (estimated poses) + t over the listed views: the centres, and the points one camera
+// distance along each camera's optical and image-down axes, so that cameras on one line (a walk down a
+// street) still fix the turn about it. The centres alone give the scale those points need in our frame.
+Similarity similarity_of_poses(const std::vector<Camera>& reference, const std::vector<std::optional<Camera>>& estimated,
+                               const std::vector<int>& ids, double camera_distance) {
   std::vector<Vec3> src(estimated.size(), Vec3::Zero()), dst(reference.size(), Vec3::Zero());
   for (int k : ids) src[k] = estimated[k]->center(), dst[k] = reference[k].center();
-  return least_squares_similarity(src, dst, ids);
+  const Similarity by_centres = least_squares_similarity(src, dst, ids);
+  if (!(by_centres.scale > 0) || !(camera_distance > 0)) return by_centres;
+  std::vector<Vec3> src_poses, dst_poses;
+  for (int k : ids)
+    for (int axis = 0; axis < 3; ++axis) {
+      const Vec3 off_est = axis == 0 ? Vec3::Zero() : Vec3(estimated[k]->R.row(axis == 1 ? 2 : 1).transpose());
+      const Vec3 off_ref = axis == 0 ? Vec3::Zero() : Vec3(reference[k].R.row(axis == 1 ? 2 : 1).transpose());
+      src_poses.push_back(src[k] + camera_distance / by_centres.scale * off_est);
+      dst_poses.push_back(dst[k] + camera_distance * off_ref);
+    }
+  std::vector<int> all(src_poses.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
+  return least_squares_similarity(src_poses, dst_poses, all);
 }
 
 // Via the quaternion (atan2) rather than acos of the trace, which cannot resolve angles below ~0.001 deg.
@@ -67,7 +81,7 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
   for (const Camera& c : reference) distances.push_back((c.center() - aim).norm());
   const double camera_distance = median(distances);
   std::vector<int> inliers = ids;
-  Similarity sim = similarity_of_centres(reference, estimated, inliers);
+  Similarity sim = similarity_of_poses(reference, estimated, inliers, camera_distance);
   for (int round = 1; round < options.rounds && options.outlier_factor > 0; ++round) {
     auto error = [&](int i) { return (sim.scale * sim.R * estimated[i]->center() + sim.t - reference[i].center()).norm(); };
     std::vector<double> inlier_errors;
@@ -78,7 +92,7 @@ PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vec
       if (error(i) <= threshold) kept.push_back(i);
     if (kept == inliers || kept.size() < 3) break;
     inliers = kept;
-    sim = similarity_of_centres(reference, estimated, inliers);
+    sim = similarity_of_poses(reference, estimated, inliers, camera_distance);
   }
   PoseComparison pc;
   pc.reference = static_cast<int>(reference.size());

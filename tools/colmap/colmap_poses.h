@@ -34,8 +34,9 @@ struct AlignOptions {
   void Check() const;
 };
 
-// Aligns the estimated camera centres to the reference ones (Umeyama similarity over views present in
-// both), rewrites the estimated cameras into the reference frame and measures the errors. Needs at least
+// Aligns the estimated cameras to the reference ones (Umeyama similarity over views present in both, of
+// their centres and of points along their optical and image-down axes, so that cameras on one line still
+// fix the turn about it), rewrites the estimated cameras into the reference frame and measures the errors. Needs at least
 // 3 registered views; throws std::invalid_argument otherwise.
 PoseComparison align_to_reference(const std::vector<Camera>& reference, std::vector<std::optional<Camera>>& estimated,
                                   const AlignOptions& options = {});

@@ -33,7 +33,7 @@ struct DatasetRunOptions {
   // (tools/README.md, "Scene").
   double max_metres_per_pixel = 0.05;
   int max_image_side = 4096;
-  std::string capture = "orbit";  // orbit, street-1 or street-2: the ring as set, or a street capture of it (render/capture_kind.h)
+  std::string capture = "orbit";  // orbit, street-1, street-2 or walk: the ring as set, or a street capture of it (render/capture_kind.h)
   RasterOptions raster;
   BlenderOptions blender;
   PhotoOptions photo;            // the scene of `--textures photo` (both renderers)

@@ -49,7 +49,7 @@ std::optional<double> sector_centre_deg(const std::vector<Vec3>& points, bool on
 }
 
 // Smallest distance d at which place(d) frames every point: the framing test is monotone in the distance.
-Camera closest_framing(const std::function<Camera(double)>& place, const std::vector<Vec3>& points, double size, double margin_x,
+double closest_framing(const std::function<Camera(double)>& place, const std::vector<Vec3>& points, double size, double margin_x,
                        double margin_y) {
   double near_d = 1e-3 * size, far_d = 2.0 * size;
   while (!all_inside(place(far_d), points, margin_x, margin_y)) {
@@ -63,7 +63,7 @@ Camera closest_framing(const std::function<Camera(double)>& place, const std::ve
     else
       near_d = mid;
   }
-  return place(far_d);
+  return far_d;
 }
 
 }  // namespace
@@ -83,6 +83,8 @@ void CameraRingOptions::Check() const {
   const bool rings_only = min_camera_height_m == 0 && max_camera_height_m == 0;
   if (!rings_only && !(min_camera_height_m > 0 && min_camera_height_m <= max_camera_height_m && std::isfinite(max_camera_height_m)))
     throw std::invalid_argument("CameraRingOptions.min/max_camera_height_m must both be 0 (elevation rings) or satisfy 0 < min <= max");
+  if (straight_walk && (rings_only || !(azimuth_span_deg <= 150)))
+    throw std::invalid_argument("CameraRingOptions.straight_walk needs camera heights and an azimuth_span_deg of at most 150");
 }
 
 namespace {
@@ -153,7 +155,8 @@ std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const Came
   // The whole ring draws nothing more here, so its cameras stay those of a ring without these options.
   const double sector_centre = sector ? sector_centre_deg(points, options.sector_on_corner, gen()).value_or(phase) : phase;
   const double margin_x = options.margin * options.width, margin_y = options.margin * options.height;
-  std::vector<Camera> cams;
+  std::vector<std::function<Camera(double)>> places;
+  std::vector<double> distances;
   for (int i = 0; i < options.views; ++i) {
     const double el_draw = symmetric_uniform(gen);
     const double az_draw = symmetric_uniform(gen);
@@ -173,21 +176,37 @@ std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const Came
       // Street level: a fixed height above the lowest point, moved back horizontally until the building fits.
       const double z = lo.z() + options.min_camera_height_m + (options.max_camera_height_m - options.min_camera_height_m) * 0.5 * (el_draw + 1.0);
       const Vec3 dir(std::cos(az), std::sin(az), 0.0);
-      place = [&, z, dir](double d) {
+      place = [&, z, dir, target](double d) {
         Vec3 c = target + d * dir;
         c.z() = z;
         return look_at(c, target, K, options.width, options.height);
       };
+      if (options.straight_walk) {
+        // On the line at distance d in front of the side, where the ray at this azimuth meets it.
+        const double facing = sector_centre * kPi / 180.0;
+        const Vec3 normal(std::cos(facing), std::sin(facing), 0.0), along(-std::sin(facing), std::cos(facing), 0.0);
+        const double offset = std::tan(az - facing);
+        place = [&, z, normal, along, offset, target](double d) {
+          Vec3 c = centre + d * normal + d * offset * along;
+          c.z() = z;
+          return look_at(c, target, K, options.width, options.height);
+        };
+      }
     } else {
       const int ring = i % options.rings;
       const double base_el = options.rings == 1 ? 0.5 * (options.min_elevation_deg + options.max_elevation_deg)
                                                 : options.min_elevation_deg + (options.max_elevation_deg - options.min_elevation_deg) * ring / (options.rings - 1);
       const double el = std::clamp(base_el + options.elevation_jitter_deg * el_draw, options.min_elevation_deg, options.max_elevation_deg) * kPi / 180.0;
       const Vec3 dir(std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el));
-      place = [&, dir](double d) { return look_at(target + d * dir, target, K, options.width, options.height); };
+      place = [&, dir, target](double d) { return look_at(target + d * dir, target, K, options.width, options.height); };
     }
-    cams.push_back(closest_framing(place, points, size, margin_x, margin_y));
+    distances.push_back(closest_framing(place, points, size, margin_x, margin_y));
+    places.push_back(place);
   }
+  // A walk keeps its one line: every view steps back to the distance the farthest one needs.
+  if (options.straight_walk) std::fill(distances.begin(), distances.end(), *std::max_element(distances.begin(), distances.end()));
+  std::vector<Camera> cams;
+  for (int i = 0; i < options.views; ++i) cams.push_back(places[i](distances[i]));
   return cams;
 }
 

@@ -33,6 +33,10 @@ struct CameraRingOptions {
   // elevation ring, at the smallest horizontal distance that frames every point. Both 0: elevation rings.
   double min_camera_height_m = 0.0;
   double max_camera_height_m = 0.0;
+  // With camera heights and a sector of at most 150 degrees: the views stand on one straight line parallel to
+  // the side the sector faces (a walk along a street), where each view's azimuth meets it, all at the distance
+  // the farthest view needs to frame the building. Lines along the walk then lie in epipolar planes.
+  bool straight_walk = false;
   uint64_t seed = 0;
   void Check() const;
 };

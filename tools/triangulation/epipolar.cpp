@@ -51,4 +51,40 @@ std::optional<Eigen::Vector2d> ray_plane_depths(const Vec3& centre_a, const Vec3
   return Eigen::Vector2d(num / c1, num / c2);
 }
 
+namespace {
+
+// Depth along ray (ca, ra) of its closest approach to ray (cb, rb); empty when the rays are within
+// min_sin of parallel or the point lies behind either centre.
+std::optional<double> closest_approach_depth(const Vec3& ca, const Vec3& ra, const Vec3& cb, const Vec3& rb, double min_sin) {
+  const double c = ra.dot(rb), denom = 1.0 - c * c;
+  if (denom < std::max(min_sin * min_sin, 1e-24)) return std::nullopt;
+  const Vec3 w = ca - cb;
+  const double d = ra.dot(w), e = rb.dot(w);
+  const double la = (c * e - d) / denom, lb = (e - c * d) / denom;
+  if (la <= 0 || lb <= 0) return std::nullopt;
+  return la;
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector2d> endpoint_depths(const Vec3& centre_a, const Vec3& src1, const Vec3& src2, const Vec3& centre_b,
+                                               const Vec3& tgt1, const Vec3& tgt2, double min_sin) {
+  // The order along the line: the angle of a ray about the plane's normal, measured from the baseline.
+  const Vec3 base = centre_b - centre_a;
+  const Vec3 normal = src1.cross(src2);
+  if (normal.norm() <= 0 || base.norm() <= 0) return std::nullopt;
+  const Vec3 n = normal.normalized();
+  const Vec3 in_plane = base - base.dot(n) * n;
+  if (in_plane.norm() < 1e-12 * base.norm()) return std::nullopt;
+  const Vec3 e1 = in_plane.normalized(), e2 = n.cross(e1);
+  auto angle = [&](const Vec3& r) { return std::atan2(r.dot(e2), r.dot(e1)); };
+  const bool same_order = (angle(src1) < angle(src2)) == (angle(tgt1) < angle(tgt2));
+  const Vec3& partner1 = same_order ? tgt1 : tgt2;
+  const Vec3& partner2 = same_order ? tgt2 : tgt1;
+  const auto d1 = closest_approach_depth(centre_a, src1, centre_b, partner1, min_sin);
+  const auto d2 = closest_approach_depth(centre_a, src2, centre_b, partner2, min_sin);
+  if (!d1 || !d2) return std::nullopt;
+  return Eigen::Vector2d(*d1, *d2);
+}
+
 }  // namespace lc2wf

@@ -26,4 +26,12 @@ double epipolar_overlap(const Eigen::Matrix3d& F, const Segment2& source, const 
 std::optional<Eigen::Vector2d> ray_plane_depths(const Vec3& centre_a, const Vec3& ray1, const Vec3& ray2,
                                                 const Vec3& centre_b, const Vec3& normal, double min_sin);
 
+// Depths along the source rays src1/src2 (unit, from centre_a) of a segment whose 3D line lies in an
+// epipolar plane, where the two views' planes coincide and ray_plane_depths has no intersection: each
+// source endpoint ray is met with the target endpoint ray (unit, from centre_b) at the same place in the
+// order along the line (both cameras see such a line from one side), at the rays' closest approach.
+// Empty when a paired ray is within `min_sin` of parallel to its partner or a point lies behind a camera.
+std::optional<Eigen::Vector2d> endpoint_depths(const Vec3& centre_a, const Vec3& src1, const Vec3& src2, const Vec3& centre_b,
+                                               const Vec3& tgt1, const Vec3& tgt2, double min_sin);
+
 }  // namespace lc2wf

@@ -16,6 +16,8 @@ void TriangulatorOptions::Check() const {
     throw std::invalid_argument("TriangulatorOptions.min_ray_plane_angle_deg must be in [0, 90)");
   if (min_view_angle_deg < 0 || min_view_angle_deg >= 90)
     throw std::invalid_argument("TriangulatorOptions.min_view_angle_deg must be in [0, 90)");
+  if (endpoint_angle_deg < 0 || endpoint_angle_deg >= 90)
+    throw std::invalid_argument("TriangulatorOptions.endpoint_angle_deg must be in [0, 90)");
   if (sigma_p_px < 0.1) throw std::invalid_argument("TriangulatorOptions.sigma_p_px must be >= 0.1");
   if (sigma_a_deg <= 0 || sigma_a_deg > 90) throw std::invalid_argument("TriangulatorOptions.sigma_a_deg must be in (0, 90]");
   if (min_similarity <= 0 || min_similarity >= 1) throw std::invalid_argument("TriangulatorOptions.min_similarity must be in (0, 1)");

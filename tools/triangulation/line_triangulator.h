@@ -17,7 +17,13 @@ struct TriangulatorOptions {
   NeighbourOptions neighbours;
   double epipolar_overlap = 0.25;       // min intersection-over-union along the target line
   int knn = 10;                         // candidates kept per source segment and target view (<= 0: all)
-  double min_ray_plane_angle_deg = 1.0; // a source ray this close to the target plane gives unstable depth
+  double min_ray_plane_angle_deg = 1.0; // a source ray this close to the target plane (or, matched by
+                                        // endpoints, to the target's endpoint ray) gives unstable depth
+  // A target segment within this angle of the epipolar line through it lies in the epipolar plane, where
+  // the two segments' planes coincide (a facade's horizontals seen by cameras walking along it): such a
+  // pair is triangulated from its endpoints (endpoint_depths) when the target lies within 2 sigma_p_px of
+  // the source endpoints' epipolar lines. 0: never (Line3D++ loses these lines).
+  double endpoint_angle_deg = 2.0;
   double min_view_angle_deg = 5.625;    // 3D direction vs the ray through the source midpoint (pi/32)
   double sigma_p_px = 2.5;              // positional regulariser, pixels (depth adaptive)
   double sigma_a_deg = 10.0;            // angular regulariser

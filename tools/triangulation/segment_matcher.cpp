@@ -1,6 +1,7 @@
 // Directed epipolar matching of the segments of two views, with an exact angular prefilter: every
 // epipolar line in view b passes through the epipole, so a source segment can only overlap a target
 // segment if their pencils of lines through the epipole intersect.
+// A target segment along its epipolar line (the pair's planes coincide) is matched by its endpoints instead.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -83,6 +84,21 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
     }
   }
 
+  // Targets along their epipolar line: matched by endpoints (endpoint_depths), not by ray-plane depths.
+  const double along_sin = std::sin(options.endpoint_angle_deg * kPi / 180.0);
+  std::vector<char> along(tgt.size(), 0);
+  if (options.endpoint_angle_deg > 0) {
+    for (size_t t = 0; t < tgt.size(); ++t) {
+      const Vec2 d = tgt[t].b - tgt[t].a;
+      const Vec2 mid = 0.5 * (tgt[t].a + tgt[t].b);
+      const Vec3 l = eh.cross(Vec3(mid.x(), mid.y(), 1.0));
+      const double ln = l.head<2>().norm(), dn = d.norm();
+      along[t] = ln > 0 && dn > 0 && std::abs(l.head<2>().dot(d)) < along_sin * ln * dn;
+    }
+  }
+  const double band_px = 2.0 * options.sigma_p_px;
+  auto line_distance = [](const Vec3& l, const Vec2& q) { return std::abs(l.x() * q.x() + l.y() * q.y() + l.z()) / l.head<2>().norm(); };
+
   const double min_sin = std::sin(options.min_ray_plane_angle_deg * kPi / 180.0);
   const double max_cos_view = std::cos(options.min_view_angle_deg * kPi / 180.0);
   std::vector<LineHypothesis> out;
@@ -93,7 +109,30 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
     const Vec3 l1 = F * Vec3(src[s].a.x(), src[s].a.y(), 1.0);
     const Vec3 l2 = F * Vec3(src[s].b.x(), src[s].b.y(), 1.0);
     const double s1 = line_angle(l1), s2 = line_angle(l2);
+    auto add = [&](size_t t, double overlap, const Eigen::Vector2d& depths) {
+      LineHypothesis h;
+      h.source_segment = static_cast<int>(s);
+      h.target_view = b_index;
+      h.target_segment = static_cast<int>(t);
+      h.overlap = overlap;
+      h.depth1 = depths[0];
+      h.depth2 = depths[1];
+      cands.push_back(h);
+    };
     for (size_t t = 0; t < tgt.size(); ++t) {
+      if (along[t]) {
+        const Segment2& q = tgt[t];
+        if (l1.head<2>().isZero() || l2.head<2>().isZero() || line_distance(l1, q.a) > band_px || line_distance(l1, q.b) > band_px ||
+            line_distance(l2, q.a) > band_px || line_distance(l2, q.b) > band_px)
+          continue;
+        ++tests;
+        const double ls = src[s].length(), lt = q.length();
+        const double ov = std::min(ls, lt) / std::max(ls, lt);
+        if (!(ov > options.epipolar_overlap)) continue;
+        const auto ds = endpoint_depths(a.centre, a.ray_a[s], a.ray_b[s], b.centre, b.ray_a[t], b.ray_b[t], min_sin);
+        if (ds) add(t, ov, *ds);
+        continue;
+      }
       if (use_prefilter && !arcs[t].always_test) {
         const double b1 = wrap_pi(s1 - arcs[t].line_angle), b2 = wrap_pi(s2 - arcs[t].line_angle);
         constexpr double kTol = 1e-7;
@@ -107,14 +146,7 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
       if (!ds || (*ds)[0] <= 0 || (*ds)[1] <= 0) continue;
       const auto dt = ray_plane_depths(b.centre, b.ray_a[t], b.ray_b[t], a.centre, a.plane_normal[s], min_sin);
       if (!dt || (*dt)[0] <= 0 || (*dt)[1] <= 0) continue;
-      LineHypothesis h;
-      h.source_segment = static_cast<int>(s);
-      h.target_view = b_index;
-      h.target_segment = static_cast<int>(t);
-      h.overlap = ov;
-      h.depth1 = (*ds)[0];
-      h.depth2 = (*ds)[1];
-      cands.push_back(h);
+      add(t, ov, *ds);
     }
     if (options.knn > 0 && static_cast<int>(cands.size()) > options.knn) {
       std::partial_sort(cands.begin(), cands.begin() + options.knn, cands.end(), [](const LineHypothesis& x, const LineHypothesis& y) {
