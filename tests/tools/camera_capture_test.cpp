@@ -71,6 +71,13 @@ void expect_street_level(const Camera& c, const std::vector<Vec3>& points) {
   EXPECT_LT(c.R(2, 2), std::sin(20 * kDeg)) << "looks up steeply";
 }
 
+CameraRingOptions capture_options(const std::string& kind, int views, uint64_t seed) {
+  CameraRingOptions o = capture_ring(CameraRingOptions{}, kind);
+  o.views = views;
+  o.seed = seed;
+  return o;
+}
+
 TEST(CameraCapture, OrbitKeepsTheCamerasOfBefore) {
   // Centres and optical axes of the ring before street captures existed (house, 6 views, seed 11).
   const double before[6][6] = {
@@ -100,9 +107,7 @@ TEST(CameraCapture, StreetOneStaysInFrontOfOneLongFacade) {
   const Vec2 centre = footprint_centre(points);
   std::set<int> facades_used;
   for (uint64_t seed = 0; seed < 8; ++seed) {
-    CameraRingOptions o = capture_ring(CameraRingOptions{}, "street-1");
-    o.views = 12;
-    o.seed = seed;
+    const CameraRingOptions o = capture_options("street-1", 12, seed);
     const auto cams = make_camera_ring(points, o);
     ASSERT_EQ(cams.size(), 12u);
     // The facade every camera stands in front of, within the 90 degree sector around its normal.
@@ -136,9 +141,7 @@ TEST(CameraCapture, StreetTwoSpansTwoFacadesAroundACorner) {
   const Vec2 centre = footprint_centre(points);
   std::set<int> corners_used;
   for (uint64_t seed = 0; seed < 8; ++seed) {
-    CameraRingOptions o = capture_ring(CameraRingOptions{}, "street-2");
-    o.views = 16;
-    o.seed = seed;
+    const CameraRingOptions o = capture_options("street-2", 16, seed);
     const auto cams = make_camera_ring(points, o);
     ASSERT_EQ(cams.size(), 16u);
     // The corner (between sides k and k+1) whose 180 degree half-plane holds every camera.
@@ -171,9 +174,7 @@ TEST(CameraCapture, WalkStaysOnOneLineAlongALongFacade) {
   const std::vector<Vec3> points = turned_house();
   const std::vector<Side> sides = footprint_sides_of(points);
   for (uint64_t seed = 0; seed < 4; ++seed) {
-    CameraRingOptions o = capture_ring(CameraRingOptions{}, "walk");
-    o.views = 10;
-    o.seed = seed;
+    const CameraRingOptions o = capture_options("walk", 10, seed);
     const auto cams = make_camera_ring(points, o);
     ASSERT_EQ(cams.size(), 10u);
     int facade = -1;
