@@ -83,6 +83,13 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
       rep["up_evidence"]["statistics_distance"] = lu->distance, rep["up_evidence"]["runner_up_distance"] = lu->runner_up_distance;
       rep["up_evidence"]["uncertain"] = lu->uncertain;
     }
+    nlohmann::json tried = nlohmann::json::array();
+    for (const UpCandidate& c : lu->tried) {
+      nlohmann::json t = {{"direction", {c.direction.x(), c.direction.y(), c.direction.z()}}, {"perpendicular_share", c.perpendicular_share}};
+      if (c.distance >= 0) t["statistics_distance"] = c.distance;
+      tried.push_back(t);
+    }
+    rep["up_evidence"]["tried"] = tried;
   }
   std::string scale_text;
   if (f.frame.needs_scale_search) {
@@ -124,9 +131,12 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   f.summary = "up (" + format_number("%.3f", u.x()) + ", " + format_number("%.3f", u.y()) + ", " + format_number("%.3f", u.z()) +
               ") from " + rep["up_source"].get<std::string>() + "; " + scale_text;
   if (f.frame.line_up && f.frame.line_up->uncertain) {
+    const Vec3& r = f.frame.line_up->runner_up;
     const std::string why = "the up is uncertain: another direction's lines look almost as much like an upright building (" +
                             format_number("%.3g", f.frame.line_up->runner_up_distance) + " against " +
-                            format_number("%.3g", f.frame.line_up->distance) + "); look at the wireframe or give --up";
+                            format_number("%.3g", f.frame.line_up->distance) + "); look at the wireframe or give --up (that one: " +
+                            format_number("%.3f", r.x()) + "," + format_number("%.3f", r.y()) + "," + format_number("%.3f", r.z()) +
+                            " or its opposite)";
     f.warning = why;
     f.inference.notes.push_back(why);
   }

@@ -91,7 +91,8 @@ def main():
         true_height = frame["height_m"] / (found * s)  # the cloud's height in true metres
         row = {"name": name, "true_height_m": true_height, "map_units_per_metre": s, "found_height_m": frame["height_m"],
                "scale_error": found * s - 1, "up_error_deg": up_err, "ratio": search.get("best_over_runner_up", 0),
-               "scale_source": frame["scale_source"], "storeys": frame.get("storeys", {}).get("storeys", 0)}
+               "scale_source": frame["scale_source"], "storeys": frame.get("storeys", {}).get("storeys", 0),
+               "true_up": " ".join("%.6f" % x for x in true_up)}
         for measure in ("edge_evidence", "edge_confidence", "confident_junctions", "junction_mean"):
             if curve:
                 best = max(curve, key=lambda c: (c[measure], -c["height_m"]))

@@ -111,6 +111,7 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
   const std::vector<Vec3> candidates = up_candidates(dominant_directions(dirs));
   LineUp r;
   r.candidates = static_cast<int>(candidates.size());
+  for (const Vec3& c : candidates) r.tried.push_back({c, perpendicular_share(dirs, c), -1});
   Vec3 up = candidates.front();
   std::optional<LineStatistics> chosen;  // the lines' statistics with `up` as z
   if (model) {
@@ -119,6 +120,7 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
       try {
         LineStatistics st = line_statistics(turned_up(segments, candidates[c]));
         const double d = model->neighbour_distance(st);
+        r.tried[c].distance = d;
         scored.emplace_back(d, c, std::move(st));
       } catch (const std::invalid_argument&) {  // no height this way up (a flat map seen edge-on): not the up
       }
@@ -129,6 +131,7 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
       chosen = std::move(std::get<2>(scored[0]));
       if (scored.size() > 1) {
         r.runner_up_distance = std::get<0>(scored[1]);
+        r.runner_up = candidates[std::get<1>(scored[1])];
         r.uncertain = r.runner_up_distance - r.distance < kUncertainUpMargin * r.distance;
       }
     }

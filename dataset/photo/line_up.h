@@ -17,12 +17,20 @@
 
 namespace lc2wf {
 
+// One direction up_from_lines tried (unsigned: the ground's end is told afterwards).
+struct UpCandidate {
+  Vec3 direction = Vec3::UnitZ();
+  double perpendicular_share = 0;  // share of the line length perpendicular (within 10 deg) to it
+  double distance = -1;            // statistics distance to the model's clouds; -1 without a model or a height
+};
+
 struct LineUp {
   Vec3 up = Vec3::UnitZ();
   int candidates = 0;              // directions tried
   bool by_statistics = false;      // chosen by the height model's clouds, else by the perpendicular share
   double distance = 0;             // by_statistics: mean standardised distance to the model's k nearest clouds
   double runner_up_distance = 0;   // ... of the best other candidate (0 when there is none)
+  Vec3 runner_up = Vec3::Zero();   // that candidate's direction (either way up; zero when there is none)
   // by_statistics and the runner-up within kUncertainUpMargin of the chosen distance: another way up looks
   // almost as much like a building (on validation maps 10 of 12 wrong ups and 13 of 113 right ones).
   bool uncertain = false;
@@ -30,6 +38,7 @@ struct LineUp {
                                     // the end whose structure spreads widest
   double perpendicular_share = 0;  // share of the line length perpendicular (within 10 deg) to up
   double spread_ratio = 1;         // spread of the bottom end's structure over the top end's (>= 1)
+  std::vector<UpCandidate> tried;  // every candidate, in the order found
 };
 
 inline constexpr double kUncertainUpMargin = 0.4;

@@ -103,6 +103,17 @@ TEST(LineUp, ALatticeIsUncertainAFacadeIsNot) {
   EXPECT_TRUE(square.by_statistics);
   EXPECT_TRUE(square.uncertain);
   EXPECT_LT(square.runner_up_distance - square.distance, kUncertainUpMargin * square.distance);
+  // Every candidate is kept with its distance; the runner-up is the other axis of the lattice's plane.
+  ASSERT_EQ(square.tried.size(), static_cast<size_t>(square.candidates));
+  int at_best = 0, at_runner_up = 0;
+  for (const UpCandidate& c : square.tried) {
+    at_best += c.distance == square.distance && std::abs(c.direction.dot(square.up)) > 0.999;
+    at_runner_up += c.distance == square.runner_up_distance && std::abs(c.direction.dot(square.runner_up)) > 0.999;
+  }
+  EXPECT_EQ(at_best, 1);
+  EXPECT_EQ(at_runner_up, 1);
+  EXPECT_LT(std::abs(square.runner_up.dot(square.up)), 0.2);
+  EXPECT_LT(std::abs(square.runner_up.y()), 0.05);
   const LineUp facade = up_from_lines(street_facade(4, 3.0, 20, 8), &model);
   EXPECT_FALSE(facade.uncertain);
   EXPECT_FALSE(up_from_lines(lattice).uncertain);  // without a model nothing is compared

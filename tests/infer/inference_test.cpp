@@ -331,6 +331,15 @@ TEST_F(Inference, MapFrameFindsUpOfAFacadeFromTheStreet) {
                            (1 + kUncertainUpMargin) * f.report["up_evidence"]["statistics_distance"].get<double>());
   EXPECT_EQ(f.warning.empty(), !uncertain);
   EXPECT_EQ(std::count(f.inference.notes.begin(), f.inference.notes.end(), f.warning), uncertain ? 1 : 0);
+  // Every direction tried is listed with its statistics distance; the chosen one among them.
+  const auto& tried = f.report["up_evidence"]["tried"];
+  ASSERT_EQ(tried.size(), f.report["up_evidence"]["candidates"].get<size_t>());
+  int chosen = 0;
+  for (const auto& t : tried) {
+    const Vec3 d(t["direction"][0].get<double>(), t["direction"][1].get<double>(), t["direction"][2].get<double>());
+    chosen += std::abs(d.dot(up)) > 0.999 && t["statistics_distance"] == f.report["up_evidence"]["statistics_distance"];
+  }
+  EXPECT_EQ(chosen, 1);
   MapFrameOptions given = o;  // a direction the user knows (a survey's gravity) wins, made unit length
   given.up = "0.02,-2,0";
   const FramedInference g = infer_in_metric_frame(predictor, map, keep_every_junction(), given);

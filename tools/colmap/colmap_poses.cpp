@@ -50,11 +50,9 @@ Similarity similarity_of_poses(const std::vector<Camera>& reference, const std::
   if (!(by_centres.scale > 0) || !(camera_distance > 0)) return by_centres;
   std::vector<Vec3> src_poses, dst_poses;
   for (int k : ids)
-    for (int axis = 0; axis < 3; ++axis) {
-      const Vec3 off_est = axis == 0 ? Vec3::Zero() : Vec3(estimated[k]->R.row(axis == 1 ? 2 : 1).transpose());
-      const Vec3 off_ref = axis == 0 ? Vec3::Zero() : Vec3(reference[k].R.row(axis == 1 ? 2 : 1).transpose());
-      src_poses.push_back(src[k] + camera_distance / by_centres.scale * off_est);
-      dst_poses.push_back(dst[k] + camera_distance * off_ref);
+    for (const Vec3& axis : {Vec3::Zero().eval(), Vec3::UnitZ().eval(), Vec3::UnitY().eval()}) {  // centre, optical, image-down
+      src_poses.push_back(src[k] + camera_distance / by_centres.scale * (estimated[k]->R.transpose() * axis));
+      dst_poses.push_back(dst[k] + camera_distance * (reference[k].R.transpose() * axis));
     }
   std::vector<int> all(src_poses.size());
   for (size_t i = 0; i < all.size(); ++i) all[i] = static_cast<int>(i);
