@@ -39,6 +39,9 @@ TEST(ReconstructCli, HelpAndUsageErrors) {
   const auto negative = testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --min-confirming-views -1");
   EXPECT_EQ(negative.code, 2);
   EXPECT_THAT(negative.err, HasSubstr("--min-confirming-views")) << negative.err;
+  const auto angle = testing::run_cli(kBin + " " + dir.string() + " --weights w -o o --endpoint-angle -1");
+  EXPECT_EQ(angle.code, 2);
+  EXPECT_THAT(angle.err, HasSubstr("--endpoint-angle must be in [0, 90)")) << angle.err;
   fs::remove_all(dir);
 }
 

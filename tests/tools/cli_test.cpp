@@ -202,7 +202,7 @@ TEST(DatasetCli, ErrorsNameTheFlagTheUserTyped) {
   for (const auto& [args, flag] : std::vector<std::pair<std::string, std::string>>{
            {"--min-score -1", "--min-score"}, {"--views 0", "--views"}, {"--lsd-scale 2", "--lsd-scale"},
            {"--neighbour-max-angle 200", "--neighbour-max-angle"}, {"--label-min-views 0", "--label-min-views"},
-           {"--seed 12abc", "--seed"}}) {
+           {"--seed 12abc", "--seed"}, {"--endpoint-angle 90", "--endpoint-angle"}}) {
     const CliResult r = run(kDataset + " --meshes m -o o " + args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_THAT(r.out, HasSubstr(flag)) << args;
