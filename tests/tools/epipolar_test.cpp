@@ -65,6 +65,25 @@ TEST(Epipolar, RayPlaneDepthsReproduceTheEndpointsAndRespectTheAngleLimit) {
   EXPECT_FALSE(ray_plane_depths(b.center(), in_plane, in_plane, b.center(), n, 0.01).has_value());
 }
 
+// A line parallel to the baseline (both cameras walk along it): the planes coincide, the endpoints pair up by
+// their order along the line, whichever way round the target segment was detected.
+TEST(Epipolar, EndpointDepthsPairTheEndpointsAlongALineInTheEpipolarPlane) {
+  const Vec3 ca(-4, -20, 1.7), cb(3, -20, 1.7);
+  const Vec3 P(-6, 0, 1.7 + 4), Q(5, 0, 1.7 + 4);  // in the plane of both centres, parallel to the walk
+  auto ray = [](const Vec3& c, const Vec3& p) { return Vec3((p - c).normalized()); };
+  for (bool reversed : {false, true}) {
+    const Vec3 t1 = ray(cb, reversed ? Q : P), t2 = ray(cb, reversed ? P : Q);
+    const auto d = endpoint_depths(ca, ray(ca, P), ray(ca, Q), cb, t1, t2, std::sin(1.0 * M_PI / 180));
+    ASSERT_TRUE(d.has_value()) << reversed;
+    EXPECT_NEAR((*d)[0], (P - ca).norm(), 1e-9) << reversed;
+    EXPECT_NEAR((*d)[1], (Q - ca).norm(), 1e-9) << reversed;
+  }
+  // Rays within the angle limit of their partner give no depth; so does a point behind a camera.
+  const Vec3 far_p = P + Vec3(0, 1e5, 0), far_q = Q + Vec3(0, 1e5, 0);
+  EXPECT_FALSE(endpoint_depths(ca, ray(ca, far_p), ray(ca, far_q), cb, ray(cb, far_p), ray(cb, far_q), std::sin(1.0 * M_PI / 180)));
+  EXPECT_FALSE(endpoint_depths(ca, ray(ca, P), ray(ca, Q), cb, -ray(cb, P), -ray(cb, Q), 0.0));
+}
+
 TEST(ViewNeighbours, PreferTheTargetAngleInsideTheBand) {
   std::vector<Camera> cams;
   for (int i = 0; i < 12; ++i) {
