@@ -103,7 +103,8 @@
 #                 light2 mix's real and generated training clouds -> runs/height/height.json
 #   map-frame-val INFER WEIGHTS TAG [FLAGS...]  validation clouds as line OBJ maps in random frames (rotation,
 #                 scale, shift), up and scale found by the INFER binary with WEIGHTS: photo-look orbits (42),
-#                 street captures (42), every 20th clean real (21), every 3rd generated (20) -> runs/map-frame-val/TAG
+#                 street captures (42), walks along the street (42), every 20th clean real (21), every 3rd generated
+#                 (20) -> runs/map-frame-val/TAG
 # Photo benchmark runs with other flags (steps/photo_rerun.sh):
 #   photo-rerun RUN MESHES TAG [FLAGS...]  a run_buildings.sh run's reconstructions again with lc2wf-reconstruct
 #                 FLAGS on its renders and cameras (POSES=DIR: an earlier run's COLMAP poses), scored against

@@ -2,8 +2,9 @@
 # clouds and line maps nothing else scales. Its training clouds are the light2 mix's metric clouds of real and
 # generated training buildings, clean and photo-look, plus the other half of the photo-look real training
 # buildings and 40 more generated ones in the photo look, and street captures of real training buildings in
-# the photo look (two facades: the light2 photo half; one facade: every other of the other half), ≈ 50 min of
-# raster renders on two cores; the street captures of the photo-look validation buildings to validate on;
+# the photo look (two facades: the light2 photo half; one facade: every other of the other half; a walk along
+# the street: the rest of that half), ≈ 70 min of raster renders on two cores; the street captures and walks of
+# the photo-look validation buildings to validate on;
 # then lc2wf-fit-height (a second) -> runs/height/height.json, copied to models/general/height.json by hand
 # after validation (experiments/README.md, "Height from line statistics").
 
@@ -25,14 +26,18 @@ step_height_model() {
   [[ -s runs/height/realstreet2-names.txt ]] || cp runs/light2/realphoto-names.txt runs/height/realstreet2-names.txt
   [[ -s runs/height/realstreet1-names.txt ]] || awk 'NR % 2 == 0' runs/height/realphoto2-names.txt > runs/height/realstreet1-names.txt
   local part capture
-  for part in photoval-street2:street-2 realstreet2:street-2 realstreet1:street-1; do
+  # A walk along the street (one straight line at eye height): the other half of realphoto2, and the validation
+  # buildings (experiments/README.md, "Walks in the height model").
+  [[ -s runs/height/realwalk-names.txt ]] || awk 'NR % 2 == 1' runs/height/realphoto2-names.txt > runs/height/realwalk-names.txt
+  [[ -s runs/height/photoval-walk-names.txt ]] || cp runs/light2/photoval-names.txt runs/height/photoval-walk-names.txt
+  for part in photoval-street2:street-2 realstreet2:street-2 realstreet1:street-1 photoval-walk:walk realwalk:walk; do
     capture=${part#*:} part=${part%%:*}
     render_part height runs/general/lod2-photo "$part" --names "runs/height/$part-names.txt" --textures photo --views 20 --capture "$capture"
   done
   # k = 7: on the street captures of the validation buildings 7.3 % median error against 8.9 % with 5 (the
   # cross-validation's pick), the orbits within 0.2 points (experiments/README.md, "Height from line statistics").
   "$build_dir/train/lc2wf-fit-height" -o runs/height/height.json --ks 7 runs/light2/{realphoto,genphoto,real,gen}/clouds \
-    runs/height/{realphoto2,genphoto2,realstreet2,realstreet1}/clouds
+    runs/height/{realphoto2,genphoto2,realstreet2,realstreet1,realwalk}/clouds
 }
 
 # map-frame-val INFER WEIGHTS TAG [FLAGS...]: lc2wf-infer's frame for maps without cameras (up, ground and scale
@@ -45,9 +50,10 @@ step_map_frame_val() {
   shift 3
   local extra=()
   for a in "$@"; do extra+=("--infer-arg=$a"); done
-  declare -A clouds=([photo]="runs/light2/photoval/clouds/*.lcloud" [street]="runs/height/photoval-street2/clouds/*.lcloud")
+  declare -A clouds=([photo]="runs/light2/photoval/clouds/*.lcloud" [street]="runs/height/photoval-street2/clouds/*.lcloud"
+                      [walk]="runs/height/photoval-walk/clouds/*.lcloud")
   mkdir -p "runs/map-frame-val/$tag"
-  for part in photo street clean gen; do
+  for part in photo street walk clean gen; do
     local list
     case $part in
       clean) list=$(grep -v '^#' runs/s11-ss-clouds.txt) ;;
