@@ -1,7 +1,7 @@
 # Photo benchmark runs again with other lc2wf-reconstruct flags (experiments/README.md, "Lines along a street").
 
 # photo-rerun RUN MESHES TAG [FLAGS...]: the reconstructions of a bench/reconstruct/run_buildings.sh run RUN
-# again on its renders, with the render cameras (POSES=DIR: the COLMAP poses DIR/recon-photos/<name>/cameras.json
+# again on its renders with models/general, with the render cameras (POSES=DIR: the COLMAP poses DIR/recon-photos/<name>/cameras.json
 # of an earlier run, so COLMAP's run-to-run spread stays out of the comparison) and FLAGS, aligned to the render
 # cameras and scored against the GT in MESHES -> runs/photo-rerun/<RUN's name>-TAG (eval/metrics.md).
 step_photo_rerun() {
