@@ -29,9 +29,9 @@ every stage succeeded:
   cloud.lcloud, cloud.obj          the confirmed line cloud inference ran on (our format; OBJ for MeshLab)
   cameras.json                     the cameras in the output frame (null = not registered)
   preview.png                      cloud (grey) and wireframe (red)
-  report.json                      images registered, segments, 3D lines (and unconfirmed ones), junctions,
-                                   edges, the frame
-                                   and the seconds of every stage
+  report.json                      images registered, segments, 3D lines (those matched by their endpoints,
+                                   and the unconfirmed ones), junctions, edges, the frame and the seconds
+                                   of every stage
 
 Frame. COLMAP's frame has no metric scale and an arbitrary up axis; the networks expect metres, z up,
 ground at z = 0:

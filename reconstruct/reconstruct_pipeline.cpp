@@ -316,6 +316,7 @@ class ReconstructRun {
     TriangulationStats tstats;
     lines_ = triangulate_lines(views_, o_.triangulator, std::nullopt, &tstats);
     report_["lines_3d"] = lines_.size();
+    report_["lines_3d_from_endpoints"] = tstats.kept_by_endpoints;  // lines along the cameras' path (tools/README.md)
     if (lines_.empty())
       throw StageError("triangulation", "no 3D line from " + std::to_string(report_["segments_2d"].get<long long>()) + " 2D segments in " +
                                             std::to_string(views_.size()) + " views (too little overlap between the images, or poses too inaccurate: " + pose_origin() + ")");

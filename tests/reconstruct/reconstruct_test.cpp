@@ -118,6 +118,7 @@ TEST_F(Reconstruct, KnownCamerasGiveEveryOutputInTheirFrame) {
   const Json report = Json::parse(read_file(o.out / "report.json"));
   EXPECT_EQ(report["cameras"]["registered"], 12);
   EXPECT_GT(report["lines_3d"].get<int>(), 50);
+  EXPECT_LE(report["lines_3d_from_endpoints"].get<int>(), report["lines_3d"].get<int>());
   EXPECT_EQ(report["frame"]["up_source"], "input z");
   EXPECT_EQ(report["frame"]["scale_source"], "given");
   EXPECT_EQ(report["commit"], lc2wf_git_commit());

@@ -240,8 +240,15 @@ TEST(LineTriangulator, LinesAlongAStreetWalkAreTriangulatedFromTheirEndpoints) {
   const double tau = 1e-3 * bbox_diagonal(building);
   TriangulatorOptions planes_only;
   planes_only.endpoint_angle_deg = 0;
-  const auto before = triangulate_lines(views, planes_only);
-  const auto after = triangulate_lines(views, TriangulatorOptions{});
+  TriangulationStats stats_before, stats_after;
+  const auto before = triangulate_lines(views, planes_only, std::nullopt, &stats_before);
+  const auto after = triangulate_lines(views, TriangulatorOptions{}, std::nullopt, &stats_after);
+  // The lines the endpoints gave are counted, and are the ones the planes alone missed.
+  EXPECT_EQ(stats_before.kept_by_endpoints, 0);
+  EXPECT_GT(stats_after.kept_by_endpoints, 0);
+  EXPECT_EQ(static_cast<long long>(std::count_if(after.begin(), after.end(), [](const TriangulatedLine& l) { return l.by_endpoints; })),
+            stats_after.kept_by_endpoints);
+  EXPECT_EQ(static_cast<long long>(after.size()) - stats_after.kept_by_endpoints, static_cast<long long>(before.size()));
   const double lost = length_recall(wf, along_walk, before, tau), found = length_recall(wf, along_walk, after, tau);
   EXPECT_LT(lost, 0.05);
   EXPECT_GT(found, 0.9) << "ray-plane depths alone " << lost;

@@ -83,6 +83,7 @@ std::vector<TriangulatedLine> score_view(int view_index, int num_segments, const
     TriangulatedLine line;
     line.line = {h.p1, h.p2};
     line.score = best[s].score;
+    line.by_endpoints = h.by_endpoints;
     line.source = {view_index, s};
     line.support.push_back({{view_index, s}, 1.0});
     line.support.push_back({{h.target_view, h.target_segment}, 1.0});

@@ -76,7 +76,7 @@ std::vector<TriangulatedLine> triangulate_lines(const std::vector<TriangulationV
     stats->candidate_tests = 0;
     stats->hypotheses = 0;
     stats->segments = stats->segments_with_hypothesis = stats->segments_with_two_views = 0;
-    stats->segments_scored = stats->segments_kept = 0;
+    stats->segments_scored = stats->segments_kept = stats->kept_by_endpoints = 0;
     for (int a = 0; a < n; ++a) {
       stats->segments += static_cast<long long>(views[a].segments.size());
       stats->segments_with_hypothesis += counts[a].with_hypothesis;
@@ -87,6 +87,7 @@ std::vector<TriangulatedLine> triangulate_lines(const std::vector<TriangulationV
       stats->candidate_tests += tests[a];
       stats->hypotheses += static_cast<long long>(hyps[a].size());
     }
+    for (const auto& l : out) stats->kept_by_endpoints += l.by_endpoints;
     stats->seconds_matching = std::chrono::duration<double>(t1 - t0).count();
     stats->seconds_scoring = std::chrono::duration<double>(t2 - t1).count();
   }

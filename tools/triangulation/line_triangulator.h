@@ -58,6 +58,7 @@ struct SupportingSegment {
 struct TriangulatedLine {
   Segment3 line;       // endpoints on the source segment's rays
   double score = 0.0;  // sum of the best agreeing similarities over other views
+  bool by_endpoints = false;  // its best hypothesis came from endpoints (a line in the epipolar plane)
   SegmentRef source;
   // source first, then the best hypothesis's partner, then one segment per other agreeing view (view order).
   std::vector<SupportingSegment> support;
@@ -75,6 +76,7 @@ struct TriangulationStats {
   long long segments_with_two_views = 0;
   long long segments_scored = 0;
   long long segments_kept = 0;
+  long long kept_by_endpoints = 0;  // of the kept ones, those whose best hypothesis came from endpoints
   double seconds_matching = 0.0;
   double seconds_scoring = 0.0;
 };

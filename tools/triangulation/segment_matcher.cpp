@@ -109,8 +109,9 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
     const Vec3 l1 = F * Vec3(src[s].a.x(), src[s].a.y(), 1.0);
     const Vec3 l2 = F * Vec3(src[s].b.x(), src[s].b.y(), 1.0);
     const double s1 = line_angle(l1), s2 = line_angle(l2);
-    auto add = [&](size_t t, double overlap, const Eigen::Vector2d& depths) {
+    auto add = [&](size_t t, double overlap, const Eigen::Vector2d& depths, bool by_endpoints) {
       LineHypothesis h;
+      h.by_endpoints = by_endpoints;
       h.source_segment = static_cast<int>(s);
       h.target_view = b_index;
       h.target_segment = static_cast<int>(t);
@@ -130,7 +131,7 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
         const double ov = std::min(ls, lt) / std::max(ls, lt);
         if (!(ov > options.epipolar_overlap)) continue;
         const auto ds = endpoint_depths(a.centre, a.ray_a[s], a.ray_b[s], b.centre, b.ray_a[t], b.ray_b[t], min_sin);
-        if (ds) add(t, ov, *ds);
+        if (ds) add(t, ov, *ds, true);
         continue;
       }
       if (use_prefilter && !arcs[t].always_test) {
@@ -146,7 +147,7 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
       if (!ds || (*ds)[0] <= 0 || (*ds)[1] <= 0) continue;
       const auto dt = ray_plane_depths(b.centre, b.ray_a[t], b.ray_b[t], a.centre, a.plane_normal[s], min_sin);
       if (!dt || (*dt)[0] <= 0 || (*dt)[1] <= 0) continue;
-      add(t, ov, *ds);
+      add(t, ov, *ds, false);
     }
     if (options.knn > 0 && static_cast<int>(cands.size()) > options.knn) {
       std::partial_sort(cands.begin(), cands.begin() + options.knn, cands.end(), [](const LineHypothesis& x, const LineHypothesis& y) {

@@ -29,6 +29,7 @@ struct LineHypothesis {
   Vec3 p1 = Vec3::Zero(), p2 = Vec3::Zero();
   Vec3 direction = Vec3::UnitX();     // unit, p2 - p1
   double target_var1 = 0.0, target_var2 = 0.0;  // (sigma of the target view at p1/p2)^2
+  bool by_endpoints = false;  // the pair lies in an epipolar plane: depths from endpoint_depths
 };
 
 // Matches every segment of view a against view b (directed); results sorted by (source, rank).
