@@ -76,7 +76,7 @@ FramedInference infer_in_metric_frame(const WireframePredictor& predictor, const
   rep = {{"format", "lc2wf-map-frame"}, {"version", 1}};
   if (const std::optional<LineUp>& lu = f.frame.line_up) {
     rep["up_evidence"] = {{"rule", lu->by_statistics ? "nearest the height model's clouds" : "most line length perpendicular"},
-                          {"candidates", lu->candidates}, {"perpendicular_share", lu->perpendicular_share},
+                          {"candidates", lu->tried.size()}, {"perpendicular_share", lu->perpendicular_share},
                           {"ground", lu->sign_by_statistics ? "the end the nearest clouds' ends say" : "the end that spreads widest"},
                           {"bottom_over_top_spread", lu->spread_ratio}};
     if (lu->by_statistics) {

@@ -110,9 +110,8 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
   if (dirs.empty()) throw std::invalid_argument("up_from_lines: no line with a length");
   const std::vector<Vec3> candidates = up_candidates(dominant_directions(dirs));
   LineUp r;
-  r.candidates = static_cast<int>(candidates.size());
   for (const Vec3& c : candidates) r.tried.push_back({c, perpendicular_share(dirs, c), -1});
-  Vec3 up = candidates.front();
+  size_t pick = 0;  // the candidate taken as the (unsigned) up
   std::optional<LineStatistics> chosen;  // the lines' statistics with `up` as z
   if (model) {
     std::vector<std::tuple<double, size_t, LineStatistics>> scored;
@@ -127,7 +126,7 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
     }
     std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) { return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b)); });
     if (!scored.empty()) {
-      up = candidates[std::get<1>(scored[0])], r.by_statistics = true, r.distance = std::get<0>(scored[0]);
+      pick = std::get<1>(scored[0]), r.by_statistics = true, r.distance = std::get<0>(scored[0]);
       chosen = std::move(std::get<2>(scored[0]));
       if (scored.size() > 1) {
         r.runner_up_distance = std::get<0>(scored[1]);
@@ -136,14 +135,11 @@ LineUp up_from_lines(const std::vector<Segment3>& segments, const HeightModel* m
       }
     }
   }
-  if (!r.by_statistics) {
-    double best = -1;
-    for (const Vec3& c : candidates) {
-      const double share = perpendicular_share(dirs, c);
-      if (share > best) best = share, up = c;
-    }
-  }
-  r.perpendicular_share = perpendicular_share(dirs, up);
+  if (!r.by_statistics)
+    for (size_t c = 1; c < r.tried.size(); ++c)
+      if (r.tried[c].perpendicular_share > r.tried[pick].perpendicular_share) pick = c;
+  Vec3 up = candidates[pick];
+  r.perpendicular_share = r.tried[pick].perpendicular_share;
   // The sign: as the nearest training clouds' ends say, else the wider end at the bottom. The chosen
   // statistics already hold log(bottom / top spread); without them the map is turned once more to measure it.
   double log_spread_ratio = 0;

@@ -26,7 +26,6 @@ struct UpCandidate {
 
 struct LineUp {
   Vec3 up = Vec3::UnitZ();
-  int candidates = 0;              // directions tried
   bool by_statistics = false;      // chosen by the height model's clouds, else by the perpendicular share
   double distance = 0;             // by_statistics: mean standardised distance to the model's k nearest clouds
   double runner_up_distance = 0;   // ... of the best other candidate (0 when there is none)
@@ -38,7 +37,7 @@ struct LineUp {
                                     // the end whose structure spreads widest
   double perpendicular_share = 0;  // share of the line length perpendicular (within 10 deg) to up
   double spread_ratio = 1;         // spread of the bottom end's structure over the top end's (>= 1)
-  std::vector<UpCandidate> tried;  // every candidate, in the order found
+  std::vector<UpCandidate> tried;  // every direction tried, in the order found
 };
 
 inline constexpr double kUncertainUpMargin = 0.4;

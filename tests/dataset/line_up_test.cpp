@@ -56,7 +56,7 @@ TEST(LineUp, WithoutAModelByThePerpendicularShare) {
     const LineUp u = up_from_lines(turned(box, R, 0.3));
     EXPECT_LT(degrees_between(u.up, R * Vec3::UnitZ()), 3.0);  // the sign too: the ground lines at the bottom
     EXPECT_FALSE(u.by_statistics);
-    EXPECT_GE(u.candidates, 3);
+    EXPECT_GE(u.tried.size(), 3u);
     EXPECT_GT(u.perpendicular_share, 0.6);
   }
 }
@@ -104,7 +104,7 @@ TEST(LineUp, ALatticeIsUncertainAFacadeIsNot) {
   EXPECT_TRUE(square.uncertain);
   EXPECT_LT(square.runner_up_distance - square.distance, kUncertainUpMargin * square.distance);
   // Every candidate is kept with its distance; the runner-up is the other axis of the lattice's plane.
-  ASSERT_EQ(square.tried.size(), static_cast<size_t>(square.candidates));
+  ASSERT_GE(square.tried.size(), 2u);
   int at_best = 0, at_runner_up = 0;
   for (const UpCandidate& c : square.tried) {
     at_best += c.distance == square.distance && std::abs(c.direction.dot(square.up)) > 0.999;

@@ -175,23 +175,19 @@ std::vector<Camera> make_camera_ring(const std::vector<Vec3>& points, const Came
     if (by_height) {
       // Street level: a fixed height above the lowest point, moved back horizontally until the building fits.
       const double z = lo.z() + options.min_camera_height_m + (options.max_camera_height_m - options.min_camera_height_m) * 0.5 * (el_draw + 1.0);
-      const Vec3 dir(std::cos(az), std::sin(az), 0.0);
-      place = [&, z, dir, target](double d) {
-        Vec3 c = target + d * dir;
+      // On the arc: d along the azimuth from the aim point. On a walk: on the line d in front of the side,
+      // where the ray from the centre at this azimuth meets it.
+      Vec3 origin = target, dir(std::cos(az), std::sin(az), 0.0);
+      if (options.straight_walk) {
+        const double facing = sector_centre * kPi / 180.0;
+        origin = centre;
+        dir = Vec3(std::cos(facing), std::sin(facing), 0.0) + std::tan(az - facing) * Vec3(-std::sin(facing), std::cos(facing), 0.0);
+      }
+      place = [&, z, origin, dir, target](double d) {
+        Vec3 c = origin + d * dir;
         c.z() = z;
         return look_at(c, target, K, options.width, options.height);
       };
-      if (options.straight_walk) {
-        // On the line at distance d in front of the side, where the ray at this azimuth meets it.
-        const double facing = sector_centre * kPi / 180.0;
-        const Vec3 normal(std::cos(facing), std::sin(facing), 0.0), along(-std::sin(facing), std::cos(facing), 0.0);
-        const double offset = std::tan(az - facing);
-        place = [&, z, normal, along, offset, target](double d) {
-          Vec3 c = centre + d * normal + d * offset * along;
-          c.z() = z;
-          return look_at(c, target, K, options.width, options.height);
-        };
-      }
     } else {
       const int ring = i % options.rings;
       const double base_el = options.rings == 1 ? 0.5 * (options.min_elevation_deg + options.max_elevation_deg)

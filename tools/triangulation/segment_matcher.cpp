@@ -97,7 +97,6 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
     }
   }
   const double band_px = 2.0 * options.sigma_p_px;
-  auto line_distance = [](const Vec3& l, const Vec2& q) { return std::abs(l.x() * q.x() + l.y() * q.y() + l.z()) / l.head<2>().norm(); };
 
   const double min_sin = std::sin(options.min_ray_plane_angle_deg * kPi / 180.0);
   const double max_cos_view = std::cos(options.min_view_angle_deg * kPi / 180.0);
@@ -109,6 +108,11 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
     const Vec3 l1 = F * Vec3(src[s].a.x(), src[s].a.y(), 1.0);
     const Vec3 l2 = F * Vec3(src[s].b.x(), src[s].b.y(), 1.0);
     const double s1 = line_angle(l1), s2 = line_angle(l2);
+    // The source endpoints' epipolar lines scaled to pixel distances (zero when undefined), for targets along them.
+    const Vec3 e1 = l1.head<2>().norm() > 0 ? Vec3(l1 / l1.head<2>().norm()) : Vec3::Zero();
+    const Vec3 e2 = l2.head<2>().norm() > 0 ? Vec3(l2 / l2.head<2>().norm()) : Vec3::Zero();
+    auto off_lines = [&](const Vec2& q) { return std::max(std::abs(e1.dot(Vec3(q.x(), q.y(), 1.0))), std::abs(e2.dot(Vec3(q.x(), q.y(), 1.0)))); };
+    const double source_length = src[s].length();
     auto add = [&](size_t t, double overlap, const Eigen::Vector2d& depths, bool by_endpoints) {
       LineHypothesis h;
       h.by_endpoints = by_endpoints;
@@ -123,12 +127,10 @@ std::vector<LineHypothesis> match_view_pair(const ViewGeometry& a, const ViewGeo
     for (size_t t = 0; t < tgt.size(); ++t) {
       if (along[t]) {
         const Segment2& q = tgt[t];
-        if (l1.head<2>().isZero() || l2.head<2>().isZero() || line_distance(l1, q.a) > band_px || line_distance(l1, q.b) > band_px ||
-            line_distance(l2, q.a) > band_px || line_distance(l2, q.b) > band_px)
-          continue;
+        if (e1.isZero() || e2.isZero() || off_lines(q.a) > band_px || off_lines(q.b) > band_px) continue;
         ++tests;
-        const double ls = src[s].length(), lt = q.length();
-        const double ov = std::min(ls, lt) / std::max(ls, lt);
+        const double lt = q.length();
+        const double ov = std::min(source_length, lt) / std::max(source_length, lt);
         if (!(ov > options.epipolar_overlap)) continue;
         const auto ds = endpoint_depths(a.centre, a.ray_a[s], a.ray_b[s], b.centre, b.ray_a[t], b.ray_b[t], min_sin);
         if (ds) add(t, ov, *ds, true);
