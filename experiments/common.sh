@@ -140,7 +140,7 @@ general_list() {
   shift 2
   mkdir -p "runs/$mix/clouds"
   for part in "$@"; do
-    for f in runs/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/$mix/clouds/"; basename "$f" .lcloud; done
+    for f in runs/$part/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/$mix/clouds/$(basename "$f")"; basename "$f" .lcloud; done
   done | sort -u > "$list"
 }
 

@@ -98,6 +98,15 @@
 #                 training buildings, every 10th real validation building) -> runs/light2
 #   light2-train [FLAGS...]  experiments/configs/light2.json: light.json's schedule on it -> runs/light2-model
 #   light2-val WEIGHTS TAG [FLAGS...]  vAP / sAP / WED on its four validation parts -> runs/light2-val/TAG
+# Walks along the street in the mix (steps/street.sh):
+#   street-data    walks (eye height, along one facade) of light2's photo-look training buildings, light2's photo
+#                 orbits and every 3rd of its clean clouds; validation: light2's and the validation walks -> runs/street
+#   street-train [FLAGS...]  experiments/configs/street.json: light2's schedule on it -> runs/street-model
+#   street2-data   the street mix's walks and photo-look orbits beside all of light2's clean clouds -> runs/street2
+#   street2-train [FLAGS...]  experiments/configs/street2.json's edge stage beside models/general's junction model
+#                 -> runs/street2-model
+#   street-val WEIGHTS TAG [FLAGS...]  light2-val's parts and the validation walks (vAP / sAP / WED, the share of the
+#                 drawn length on the building) -> runs/light2-val/TAG and a row of runs/street/table.md
 # The height model that scales photo clouds and line maps nothing else scales (steps/height.sh):
 #   height-model  more photo-look raster clouds of training buildings, then lc2wf-fit-height on them and the
 #                 light2 mix's real and generated training clouds -> runs/height/height.json
@@ -107,7 +116,8 @@
 #                 (20) -> runs/map-frame-val/TAG
 # Photo benchmark runs with other flags (steps/photo_rerun.sh):
 #   photo-rerun RUN MESHES TAG [FLAGS...]  a run_buildings.sh run's reconstructions again with lc2wf-reconstruct
-#                 FLAGS on its renders and cameras (POSES=DIR: an earlier run's COLMAP poses), scored against
+#                 FLAGS on its renders and cameras (POSES=DIR: an earlier run's COLMAP poses; WEIGHTS=DIR: a model
+#                 other than models/general), scored against
 #                 MESHES -> runs/photo-rerun/<RUN's name>-TAG
 # Training state (steps/snapshots.sh):
 #   snapshot [RUN]  copy the training state of runs/RUN (default base: newest checkpoint of each stage,
@@ -128,7 +138,7 @@ usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//'; }
 # Every step and the function that runs it (step_<name>, dashes as underscores).
 steps=(dataset train select eval raster ship all local rotate rotate-edge loose-seeds junction-turns robust
        edge-sound merged-maps dense dense-eval dense-select dense-train edge-cheaper fast-check general-data
-       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val height-model map-frame-val photo-rerun snapshot restore)
+       general-train general-eval general2-data general2-train general2-val general4-data general4-train general4-val photo-data photo5-data photo5-train photo6-data photo6-train light-data light-train light-val light2-data light2-train light2-val street-data street-train street2-data street2-train street-val height-model map-frame-val photo-rerun snapshot restore)
 
 step=${1:-}
 case $step in

@@ -5,7 +5,10 @@ a GT edge, for captures that see only part of a building (vAP/sAP charge the uns
 GT edges come from the labelled line cloud lc2wf-dataset wrote (its header holds the GT wireframe in the frame of
 its cameras, the frame wireframe_aligned.obj of lc2wf-reconstruct --reference-cameras is written in).
 usage: edge_accuracy.py PRED.obj CLOUD.lcloud [TOLERANCE_M]   prints length_m, share_within
+       edge_accuracy.py PRED_DIR CLOUD_DIR [TOLERANCE_M]      every <name>.obj of PRED_DIR against CLOUD_DIR/<name>.lcloud:
+                                                              prints drawn length, pooled and median share, empty wireframes
 """
+import os
 import json
 import sys
 
@@ -67,7 +70,28 @@ def share_within(pred, gt, tolerance=0.5, step=0.05):
     return total, near / total if total > 0 else float("nan")
 
 
+def folder_shares(pred_dir, cloud_dir, tolerance):
+    """(drawn length, pooled share, median share over buildings with edges, buildings without an edge)."""
+    total = near = 0.0
+    shares, empty = [], 0
+    for name in sorted(f[:-4] for f in os.listdir(pred_dir) if f.endswith(".obj")):
+        length, share = share_within(read_obj_wireframe(os.path.join(pred_dir, name + ".obj")),
+                                     read_lcloud_wireframe(os.path.join(cloud_dir, name + ".lcloud")), tolerance)
+        if length <= 0:
+            empty += 1
+            continue
+        total += length
+        near += length * share
+        shares.append(share)
+    return total, near / total if total > 0 else float("nan"), float(np.median(shares)) if shares else float("nan"), empty
+
+
 if __name__ == "__main__":
     tolerance = float(sys.argv[3]) if len(sys.argv) > 3 else 0.5
-    length, share = share_within(read_obj_wireframe(sys.argv[1]), read_lcloud_wireframe(sys.argv[2]), tolerance)
-    print(f"{length:.3f} {share:.4f}")
+    if os.path.isdir(sys.argv[1]):
+        length, pooled, median, empty = folder_shares(sys.argv[1], sys.argv[2], tolerance)
+        print(f"{length:.1f} m drawn, {100 * pooled:.1f} % within {tolerance} m of a GT edge (median {100 * median:.1f} %), "
+              f"{empty} without an edge")
+    else:
+        length, share = share_within(read_obj_wireframe(sys.argv[1]), read_lcloud_wireframe(sys.argv[2]), tolerance)
+        print(f"{length:.3f} {share:.4f}")

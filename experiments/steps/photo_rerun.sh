@@ -1,7 +1,7 @@
 # Photo benchmark runs again with other lc2wf-reconstruct flags (experiments/README.md, "Lines along a street").
 
 # photo-rerun RUN MESHES TAG [FLAGS...]: the reconstructions of a bench/reconstruct/run_buildings.sh run RUN
-# again on its renders with models/general, with the render cameras (POSES=DIR: the COLMAP poses DIR/recon-photos/<name>/cameras.json
+# again on its renders with models/general (WEIGHTS=DIR: another model), with the render cameras (POSES=DIR: the COLMAP poses DIR/recon-photos/<name>/cameras.json
 # of an earlier run, so COLMAP's run-to-run spread stays out of the comparison) and FLAGS, aligned to the render
 # cameras and scored against the GT in MESHES -> runs/photo-rerun/<RUN's name>-TAG (eval/metrics.md).
 step_photo_rerun() {
@@ -18,7 +18,7 @@ step_photo_rerun() {
     [[ -n ${POSES:-} ]] && cams=$POSES/recon-photos/$n/cameras.json
     # A building COLMAP did not register in POSES has no cameras: it is scored as empty.
     [[ -f $cams ]] || continue
-    "$build_dir/reconstruct/lc2wf-reconstruct" "$run/photos/$n" --weights models/general -o "$out/recon/$n" --cameras "$cams" \
+    "$build_dir/reconstruct/lc2wf-reconstruct" "$run/photos/$n" --weights "${WEIGHTS:-models/general}" -o "$out/recon/$n" --cameras "$cams" \
       --reference-cameras "$views/cameras.json" -j 2 -q "$@" 2> "$out/$n.log" || true
     if [[ -f $out/recon/$n/wireframe_aligned.obj ]]; then
       cp "$out/recon/$n/wireframe_aligned.obj" "$out/pred/$n.obj"
