@@ -5,6 +5,16 @@
 # on two cores), beside light2's photo-look orbits and every 3rd cloud of its clean parts; validation: light2's
 # validation clouds and the walks of the photo-look validation buildings (runs/height/photoval-walk).
 
+# link_clouds FROM TO N PREFIX: every N-th cloud of FROM/clouds (the first, then every N-th after it) linked into
+# TO/clouds as PREFIX<name>, so general_list can take TO as a part.
+link_clouds() {
+  local from=$1 to=$2 n=$3 prefix=$4 f
+  mkdir -p "$to/clouds"
+  ls "$from/clouds" | awk -v n="$n" 'NR % n == 1 % n' | while read -r f; do
+    ln -sfn "$(realpath "$from/clouds/$f")" "$to/clouds/$prefix$f"
+  done
+}
+
 step_street_data() {
   need_binary "$build_dir/tools/lc2wf-dataset" lc2wf-dataset
   [[ -s runs/light2/train.txt ]] || step_light2_data
@@ -18,18 +28,14 @@ step_street_data() {
     > runs/street/walk-names.txt
   render_part street runs/street/meshes-walk walk --names runs/street/walk-names.txt --textures photo --views 20 --capture walk
   [[ -d runs/height/photoval-walk/clouds ]] || step_height_model
-  local clean=()
+  local clean=() part
   for part in real gen riaug ri ri-blender; do
-    mkdir -p "runs/street/light2-$part/clouds"
-    ls "runs/light2/$part/clouds" | awk 'NR % 3 == 1' | while read -r f; do
-      ln -sfn "$(realpath "runs/light2/$part/clouds/$f")" "runs/street/light2-$part/clouds/$f"
-    done
+    link_clouds "runs/light2/$part" "runs/street/light2-$part" 3 ""
     clean+=("street/light2-$part")
   done
   general_list street runs/street/train.txt street/walk light2/{realphoto,genphoto} "${clean[@]}"
   # The validation walks are named as the same buildings' photo-look orbits: linked again as walk_*.
-  mkdir -p runs/street/walkval/clouds
-  for f in runs/height/photoval-walk/clouds/*.lcloud; do ln -sfn "$(realpath "$f")" "runs/street/walkval/clouds/walk_$(basename "$f")"; done
+  link_clouds runs/height/photoval-walk runs/street/walkval 1 walk_
   general_list street runs/street/val.txt general/rival-blender light2/{realval,genval,photoval} street/walkval
   echo "street-data: $(wc -l < runs/street/train.txt) training and $(wc -l < runs/street/val.txt) validation clouds in runs/street/clouds"
 }
