@@ -1,8 +1,9 @@
 // Flat fragments of a photo cloud's wireframe: a building is a solid, so the parts of its wireframe span three
 // dimensions, while the networks also draw small groups of edges around window frames, doors and a neighbour's
 // face - flat, and apart from the building's own edges. After the edge-support rule, every connected part but
-// the largest that has fewer than `max_edges` edges and whose junctions all lie within `plane_tolerance_m` of
-// one plane is dropped. The largest part always stays (a single facade seen from the street is flat too).
+// the largest (by drawn length) that has fewer than `max_edges` edges and whose junctions all lie within
+// `plane_tolerance_m` of one plane is dropped. The largest part always stays (a single facade seen from the
+// street is flat too).
 // Off by default; lc2wf-reconstruct turns it on for its partial captures (infer/README.md, "Flat fragments").
 #pragma once
 

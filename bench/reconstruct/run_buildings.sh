@@ -18,6 +18,7 @@
 # POSES_FROM=DIR reuses the poses of an earlier run (DIR/recon-photos/<name>/cameras.json, already in the
 # output frame) instead of running COLMAP again: same cloud and frame, new weights, no COLMAP seconds.
 # RECONSTRUCT_FLAGS="--max-features 1000" adds options to every lc2wf-reconstruct run.
+# MODES="given-cameras" runs only the render cameras' reconstruction (no COLMAP; default "photos given-cameras").
 # The COLMAP-pose run gets the renders' focal length (--focal-35mm), as real photos' EXIF gives it;
 # GUESS_FOCAL=1 leaves it out (the default 35 mm, refined by COLMAP: photos without EXIF).
 # GPS_NOISE_M=1.5 gives the photos a drone's GPS: JPEGs whose EXIF holds each render camera's centre with that
@@ -45,7 +46,12 @@ fi
   --textures "${TEXTURES:-sfm}" --capture "${CAPTURE:-orbit}" --keep-views -j 1 -q > /dev/null \
   || [ $? -eq 1 ]  # 1: some buildings failed (named on stderr); the others go on
 
-mkdir -p "$out/pred-photos" "$out/pred-given-cameras" "$out/logs"
+read -r -a modes <<< "${MODES:-photos given-cameras}"
+for mode in "${modes[@]}"; do
+  [ "$mode" = photos ] || [ "$mode" = given-cameras ] || { echo "MODES: unknown mode '$mode' (photos, given-cameras)" >&2; exit 2; }
+done
+mkdir -p "$out/logs"
+for mode in "${modes[@]}"; do mkdir -p "$out/pred-$mode"; done
 while read -r n; do
   [ -n "$n" ] || continue
   views="$out/dataset/views/$n"
@@ -61,7 +67,7 @@ while read -r n; do
   fi
   # The renders' focal length, as a real photo's EXIF gives it (GUESS_FOCAL=1: left out, COLMAP refines a guess).
   focal=$(/usr/bin/python3 -c 'import json,sys; c=json.load(open(sys.argv[1]))[0]; print(c["K"][0] * 36 / max(c["width"], c["height"]))' "$views/cameras.json")
-  for mode in photos given-cameras; do
+  for mode in "${modes[@]}"; do
     extra=()
     [ "$mode" = given-cameras ] && extra=(--cameras "$views/cameras.json")
     [ "$mode" = photos ] && [ "${GUESS_FOCAL:-0}" != 1 ] && extra=(--focal-35mm "$focal")
@@ -80,7 +86,7 @@ done < "$names"
 
 "$bin/infer/lc2wf-eval" --weights "$weights" --data "$out/dataset/clouds" --split "$names" --out "$out/eval-known-clouds" \
   --method "known-camera clouds" --quiet > /dev/null || [ $? -eq 1 ]
-for mode in photos given-cameras; do
+for mode in "${modes[@]}"; do
   code=0
   rm -rf "$out/eval-$mode"
   "$bin/infer/lc2wf-eval" --pred "$out/pred-$mode" --gt "$gt" --split "$names" --out "$out/eval-$mode" \

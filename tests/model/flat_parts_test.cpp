@@ -56,6 +56,24 @@ TEST(FlatParts, TheLargestPartStaysEvenWhenFlat) {
   EXPECT_EQ(drop_flat_parts(w, o).wireframe.wireframe.edges.size(), 4u);
 }
 
+TEST(FlatParts, TheLongestPartStaysNotTheOneWithMostEdges) {
+  // A walk past a house: the gable's outline (3 long edges, flat) and a zigzag of 4 short edges on a bush in
+  // front (flat too). The house is the larger thing in view; counting edges would keep the bush.
+  ScoredWireframe w;
+  w.wireframe.junctions = {Vec3(0, 0, 4), Vec3(0, 4, 7), Vec3(0, 8, 4), Vec3(0, 8, 0),                      // gable
+                           Vec3(-3, 1, 0.5), Vec3(-3, 1.5, 1.2), Vec3(-3, 2, 0.6), Vec3(-3, 2.6, 1.1), Vec3(-3, 3, 0.4)};  // bush
+  w.wireframe.edges = {{0, 1}, {1, 2}, {2, 3}, {4, 5}, {5, 6}, {6, 7}, {7, 8}};
+  w.junction_scores.assign(9, 0.9);
+  w.edge_scores.assign(7, 0.9);
+  FlatPartOptions o;
+  o.max_edges = 10;
+  const FlatPartsDropped r = drop_flat_parts(w, o);
+  EXPECT_EQ(r.dropped_parts, 1);
+  EXPECT_EQ(r.dropped_edges, 4);
+  ASSERT_EQ(r.wireframe.wireframe.edges.size(), 3u);
+  for (const Vec3& j : r.wireframe.wireframe.junctions) EXPECT_EQ(j.x(), 0.0) << "a bush corner kept";
+}
+
 TEST(FlatParts, OffOrLooseSettingsKeepEverything) {
   EXPECT_EQ(drop_flat_parts(scene(), FlatPartOptions{}).wireframe.wireframe.edges.size(), 23u);  // off by default
   FlatPartOptions few;
