@@ -12,6 +12,8 @@
 #include "dataset/formats/cloud_input.h"
 #include "dataset/formats/errors.h"
 #include "dataset/formats/mesh_io.h"
+#include "model/edge_support.h"
+#include "model/edge_visibility.h"
 
 namespace lc2wf {
 namespace fs = std::filesystem;
@@ -69,6 +71,10 @@ GroundTruth load_ground_truth(const GroundTruthSource& source, const fs::path& p
     if (cloud.wireframe.junctions.empty())
       throw DataError(path.string(), "line cloud has no ground-truth wireframe");
     gt.wireframe = std::move(cloud.wireframe);
+    if (source.seen_by_cameras > 0) {
+      if (cloud.cameras.empty()) throw DataError(path.string(), "line cloud has no cameras, so --gt-seen-by cannot tell what they saw");
+      gt.wireframe = seen_part(gt.wireframe, cloud.cameras, source.seen_by_cameras, EdgeSupportOptions{}.occlusion_tolerance_m);
+    }
     gt.units = cloud.units;
     gt.cloud_segments = std::move(cloud.segments);
   } else if (path.extension() == ".polyshape" || is_city_model_file_name(path)) {

@@ -23,6 +23,9 @@ struct GroundTruthSource {
   bool obj_y_up = false;        // GT OBJs exported Y-up (Roof-Image res_obj, LC2WF house/): swap to Z-up
   double raw_per_metre = kRawUnitsPerMetre;  // raw units per metre of GT .obj files and release JSON
   std::string lod;              // city-model GT: the LoD 2.x to read (empty: each building's highest)
+  // Line-cloud GT only: keep the GT edges at least this many of the cloud's cameras had in view (0: the whole
+  // wireframe), so a street capture is scored on what it saw (model/edge_visibility.h, seen_part).
+  int seen_by_cameras = 0;
 };
 
 struct GroundTruth {

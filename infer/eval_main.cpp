@@ -102,6 +102,8 @@ scored against the GT mesh faces: roof-facet precision / recall, labels, valid c
                   building's highest)
   --data DIR      line-cloud files (one per building, file stem = name) holding the ground truth;
                   with --weights and --gt, only the clouds to run on
+  --gt-seen-by N  with the ground truth of --data clouds: score against the GT edges at least N of the
+                  cloud's cameras had in view (a street capture's seen part; 0 = the whole GT, default)
   --split FILE    building names, one per line (default: every ground-truth building in the folder)
   -o, --out OUT   writes metrics.md, metrics.json and per_building.csv there (created after the
                   arguments and inputs are checked)
@@ -136,6 +138,7 @@ struct Args {
   CoordinateUnits units = CoordinateUnits::kMetres;
   bool gt_y_up = false, strict_wed = false, quiet = false;
   std::string lod;  // --lod
+  int gt_seen_by = 0;  // --gt-seen-by
   ApTieRule ties = ApTieRule::kListOrder;
   std::string method;
   int threads = 0;                     // -j, with --weights
@@ -163,6 +166,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--method") a.method = value(i);
     else if (f == "--gt-y-up") a.gt_y_up = true;
     else if (f == "--lod") a.lod = value(i);
+    else if (f == "--gt-seen-by") a.gt_seen_by = static_cast<int>(parse_count_flag(f, value(i)));
     else if (f == "--strict-wed") a.strict_wed = true;
     else if (f == "-q" || f == "--quiet") a.quiet = true;
     else if (f == "--html") a.html = true;
@@ -203,6 +207,7 @@ Args parse_args(int argc, char** argv) {
   if (a.weights.empty() && a.gt.empty() == a.data.empty()) throw UsageError("give exactly one of --gt DIR and --data DIR");
   if (a.gt.empty() && a.data.empty()) throw UsageError("give --gt DIR or --data DIR");
   if (!a.html_compare.empty() && !a.html) throw UsageError("--html-compare only applies with --html");
+  if (a.gt_seen_by > 0 && !a.gt.empty()) throw UsageError("--gt-seen-by needs the ground truth of --data line clouds (they carry the cameras), not --gt");
   if (a.out.empty()) throw UsageError("-o OUT is required");
   for (const fs::path& d : a.html_compare) {
     const fs::path metrics = d / "metrics.json";
@@ -240,6 +245,7 @@ int run(const Args& a) {
   source.obj_units = a.units;
   source.obj_y_up = a.gt_y_up;
   source.lod = a.lod;
+  source.seen_by_cameras = a.gt_seen_by;
 
   const std::vector<std::string> names = a.split.empty() ? list_ground_truth_names(source) : read_name_list(a.split);
   if (names.empty())

@@ -1,6 +1,7 @@
 #include "model/edge_visibility.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 
@@ -91,6 +92,22 @@ int cameras_seeing(const Vec3& u, const Vec3& v, const std::vector<Camera>& came
     seeing += sees;
   }
   return seeing;
+}
+
+Wireframe seen_part(const Wireframe& wireframe, const std::vector<Camera>& cameras, int min_cameras, double tolerance_m) {
+  const FootprintOccluder occluder(wireframe);
+  std::vector<int> index(wireframe.junctions.size(), -1);
+  Wireframe seen;
+  for (const auto& e : wireframe.edges) {
+    if (cameras_seeing(wireframe.junctions[e[0]], wireframe.junctions[e[1]], cameras, occluder, tolerance_m) < min_cameras) continue;
+    std::array<int, 2> kept{};
+    for (int k = 0; k < 2; ++k) {
+      if (index[e[k]] < 0) index[e[k]] = static_cast<int>(seen.junctions.size()), seen.junctions.push_back(wireframe.junctions[e[k]]);
+      kept[k] = index[e[k]];
+    }
+    seen.edges.push_back(kept);
+  }
+  return seen;
 }
 
 }  // namespace lc2wf

@@ -34,4 +34,10 @@ class FootprintOccluder {
 int cameras_seeing(const Vec3& u, const Vec3& v, const std::vector<Camera>& cameras, const FootprintOccluder& occluder,
                    double tolerance_m);
 
+// The part of a wireframe that a capture saw: the edges at least `min_cameras` of `cameras` had in view, with
+// the wireframe itself as the occluder, and the junctions they use. Scoring a street capture against this
+// part asks for what was seen, not for the sides nobody photographed (lc2wf-eval --gt-seen-by). The block
+// over the footprint also hides what a roof rises to inside it (a ridge seen from eye level counts unseen).
+Wireframe seen_part(const Wireframe& wireframe, const std::vector<Camera>& cameras, int min_cameras, double tolerance_m);
+
 }  // namespace lc2wf

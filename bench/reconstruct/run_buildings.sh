@@ -4,8 +4,9 @@
 #      known cameras are the baseline;
 #   2. the images alone -> lc2wf-reconstruct (COLMAP poses), and the same with the render cameras given
 #      (--cameras), each aligned to the render cameras by a similarity for scoring;
-#   3. lc2wf-eval of the three against the GT, the share of predicted edge length near a GT edge, the scale
-#      error and the per-stage seconds of every run (summarise.py).
+#   3. lc2wf-eval of the three against the GT and against the part of it the cameras saw (--gt-seen-by 2), the
+#      share of predicted edge length near a GT edge, the scale error and the per-stage seconds of every run
+#      (summarise.py).
 # usage: bench/reconstruct/run_buildings.sh WEIGHTS NAMES_FILE OUT [MESHES]
 # e.g.   bench/reconstruct/run_buildings.sh models/base bench/reconstruct/test-buildings.txt runs/recon-bench
 #        CAPTURE=street-2 TEXTURES=photo bench/reconstruct/run_buildings.sh models/dense \
@@ -92,6 +93,18 @@ for mode in "${modes[@]}"; do
   "$bin/infer/lc2wf-eval" --pred "$out/pred-$mode" --gt "$gt" --split "$names" --out "$out/eval-$mode" \
     --method "reconstruct ($mode)" --quiet > /dev/null || code=$?
   # 1: failed reconstructions, scored as empty; 3: every one failed, nothing to score (the summary says so).
+  [ $code -eq 0 ] || [ $code -eq 1 ] || [ $code -eq 3 ] || exit $code
+done
+# The same against the part of the GT the capture saw (edges >= 2 render cameras had in view; lc2wf-eval
+# --gt-seen-by): a street capture is then scored on its facades, not on the sides nobody photographed.
+for run in known-clouds "${modes[@]}"; do
+  pred=$out/pred-$run
+  [ "$run" = known-clouds ] && pred=$out/eval-known-clouds/predictions
+  [ -d "$pred" ] || continue
+  code=0
+  rm -rf "$out/eval-$run-seen"
+  "$bin/infer/lc2wf-eval" --pred "$pred" --data "$out/dataset/clouds" --gt-seen-by 2 --split "$names" --out "$out/eval-$run-seen" \
+    --method "$run, seen part" --quiet > /dev/null || code=$?
   [ $code -eq 0 ] || [ $code -eq 1 ] || [ $code -eq 3 ] || exit $code
 done
 /usr/bin/python3 "$(dirname "$0")/summarise.py" "$out" "$names" | tee "$out/summary.md"

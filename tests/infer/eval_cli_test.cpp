@@ -9,6 +9,7 @@
 
 #include "dataset/geometry/building.h"
 #include "dataset/formats/line_cloud_io.h"
+#include "dataset/synthetic/synthetic_line_cloud.h"
 #include "infer/prediction_io.h"
 #include "test_files.h"
 #include "tests/common/run_cli.h"
@@ -127,6 +128,51 @@ TEST(EvalCli, LineCloudGroundTruthWithScores) {
   EXPECT_NEAR(j["vertex"][2]["ap"].get<double>(), 1.0, 1e-12);        // 0.3 m < 0.35 m
   EXPECT_NEAR(j["edge"][0]["ap"].get<double>(), 1.0 / 3.0, 1e-12);    // 0.25 m: only the exact edge, TP FP FP
   EXPECT_NEAR(j["edge"][2]["ap"].get<double>(), 1.0, 1e-12);          // 0.50 m: the 0.3 m-off edges count
+}
+
+// A 10 x 6 x 4 m box photographed from one side only (a street capture): scored against the part its cameras
+// saw, the four front edges it drew are most of what was there to find; against the whole box, a third.
+TEST(EvalCli, GroundTruthSeenByTheCloudsCameras) {
+  testing::ScratchDir dir("cli_seen");
+  const fs::path data = dir.path() / "data", bare = dir.path() / "bare", pred = dir.path() / "pred";
+  LineCloud cloud;
+  cloud.name = "front";
+  cloud.segments = {{{-5, 3, 0}, {5, 3, 0}}};
+  Wireframe& w = cloud.wireframe;
+  for (double z : {0.0, 4.0})
+    for (auto [x, y] : {std::pair{-5.0, -3.0}, {5.0, -3.0}, {5.0, 3.0}, {-5.0, 3.0}}) w.junctions.push_back(Vec3(x, y, z));
+  for (int k = 0; k < 4; ++k) w.edges.push_back({k, (k + 1) % 4}), w.edges.push_back({4 + k, 4 + (k + 1) % 4}), w.edges.push_back({k, 4 + k});
+  Building b;
+  b.mesh.vertices = w.junctions;
+  CameraRingOptions ring;
+  ring.num_views = 16;
+  ring.elevation_deg = 5;
+  const std::vector<Camera> all = make_camera_ring(b, ring);
+  cloud.cameras.assign(all.begin() + 2, all.begin() + 7);  // azimuths 45-135 degrees: the +y side
+  fs::create_directories(data);
+  write_line_cloud(data / "front.lcl", cloud);
+  testing::write_text(pred / "front.obj", "v -5 3 0\nv 5 3 0\nv 5 3 4\nv -5 3 4\nl 1 2 3 4 1\n");
+  auto recall = [&](const std::string& extra, const std::string& tag) {
+    const fs::path out = dir.path() / tag;
+    const CliResult r = run_eval(dir.path(), "--pred " + pred.string() + " --data " + data.string() + " -o " + out.string() + extra);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(testing::read_text(out / "metrics.json"))["edge"][0]["recall"].get<double>();
+  };
+  const double whole = recall("", "whole"), seen = recall(" --gt-seen-by 2", "seen");
+  EXPECT_NEAR(whole, 4.0 / 12.0, 1e-12);
+  EXPECT_GT(seen, whole);
+  EXPECT_LT(seen, 1.0);  // the side walls' edges were in view too (along them, from the end cameras)
+  // A cloud without cameras cannot say what was seen; the ground truth of meshes carries no cameras.
+  cloud.cameras.clear();
+  fs::create_directories(bare);
+  write_line_cloud(bare / "front.lcl", cloud);
+  const CliResult no_cameras = run_eval(dir.path(), "--pred " + pred.string() + " --data " + bare.string() + " -o " +
+                                                        (dir.path() / "bare-out").string() + " --gt-seen-by 2");
+  EXPECT_EQ(no_cameras.code, 3);
+  EXPECT_THAT(no_cameras.err, HasSubstr("no cameras"));
+  const CliResult with_meshes = run_eval(dir.path(), "--pred " + pred.string() + " --gt " + data.string() + " -o x --gt-seen-by 2");
+  EXPECT_EQ(with_meshes.code, 2);
+  EXPECT_THAT(with_meshes.err, HasSubstr("--gt-seen-by"));
 }
 
 TEST(EvalCli, BadInputsAreDataErrorsNamingTheProblem) {

@@ -109,6 +109,28 @@ TEST(EdgeVisibility, TheFrontIsSeenTheBackIsHidden) {
   EXPECT_EQ(cameras_seeing(Vec3(-5, -3, 0), Vec3(5, -3, 0), f.cameras, occ, 0.5), 0);  // back ground edge
 }
 
+TEST(EdgeVisibility, TheSeenPartKeepsTheFrontAndDropsTheBack) {
+  const FrontView f = front_view();
+  const Wireframe seen = seen_part(f.box.wireframe, f.cameras, 2, 0.5);
+  ASSERT_FALSE(seen.edges.empty());
+  EXPECT_LT(seen.edges.size(), f.box.wireframe.edges.size());
+  std::vector<int> used(seen.junctions.size(), 0);
+  bool front_ground = false, front_roof = false;
+  for (const auto& e : seen.edges) {
+    const Vec3 &u = seen.junctions[e[0]], &v = seen.junctions[e[1]];
+    ++used[e[0]], ++used[e[1]];
+    EXPECT_FALSE(u.y() < -2.9 && v.y() < -2.9 && u.z() == v.z()) << "back edge seen: " << u.transpose() << " - " << v.transpose();
+    front_ground |= u.y() > 2.9 && v.y() > 2.9 && u.z() == 0 && v.z() == 0;
+    front_roof |= u.y() > 2.9 && v.y() > 2.9 && u.z() == 4 && v.z() == 4;
+  }
+  EXPECT_TRUE(front_ground);
+  EXPECT_TRUE(front_roof);
+  for (int n : used) EXPECT_GT(n, 0) << "a junction without a seen edge kept";
+  // Every camera sees the front, none more: asking for more cameras than there are leaves nothing.
+  EXPECT_TRUE(seen_part(f.box.wireframe, f.cameras, 6, 0.5).edges.empty());
+  EXPECT_TRUE(seen_part(f.box.wireframe, {}, 1, 0.5).junctions.empty());
+}
+
 TEST(EdgeSupport, CamerasKeepAnUnlinedEdgeInViewAndNotOneOnTheHiddenSide) {
   const FrontView f = front_view();
   const std::vector<Segment3> none;
