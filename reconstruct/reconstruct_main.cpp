@@ -127,7 +127,8 @@ Options:
   --metres-per-pass M    at least one pass per M metres of the cloud's longer side (default 40; 0 = off)
   --density-seeds S      which endpoints seed the sample points: loose (default), release or
                          MIN_COUNT,MIN_RATIO,NMS_M (see lc2wf-infer --help)
-  --test-time-views N    the junction model's mean over N views of each patch (default 1; see lc2wf-infer --help)
+  --test-time-views N    the junction model's mean over N views of each patch (default 4 here: photo clouds;
+                         see lc2wf-infer --help)
   --edge-test-time-views N  the edge model's mean over N views of the pairs (default 1; see lc2wf-infer --help)
   --max-segment-length M|auto  cut segments longer than M metres into pieces first (default auto: merged
                          Line3D++/LIMAP maps only; our triangulation's clouds are not cut; see lc2wf-infer --help)

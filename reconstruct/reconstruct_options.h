@@ -80,12 +80,15 @@ struct ReconstructOptions {
   ScaleSearchOptions scale_search;  // when nothing else gives the scale
 
   // Photo clouds are judged by their lines on every capture, full orbits too, and their small flat parts
-  // apart from the largest go: the networks draw edges between the corners of windows and texture on every
-  // side (infer/README.md, "Drawing only what was seen" and "Flat fragments").
+  // apart from the longest go: the networks draw edges between the corners of windows and texture on every
+  // side (infer/README.md, "Drawing only what was seen" and "Flat fragments"). The junction model averages 4
+  // views of each patch: photo clutter makes single votes noisy, and COLMAP's seconds dwarf the cost
+  // (reconstruct/README.md, "Test-time views of photo clouds").
   PostProcessOptions post = [] {
     PostProcessOptions p;
     p.edge_support.partial_captures_only = false;
     p.flat_parts.max_edges = 10;
+    p.selection.test_time_views = 4;
     return p;
   }();
   bool surfaces = true;  // also write wireframe.city.json + wireframe.faces.obj (infer/surfaces/); --no-surfaces
