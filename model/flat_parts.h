@@ -4,7 +4,7 @@
 // the largest (by drawn length) that has fewer than `max_edges` edges and whose junctions all lie within
 // `plane_tolerance_m` of one plane is dropped. The largest part always stays (a single facade seen from the
 // street is flat too).
-// Off by default; lc2wf-reconstruct turns it on for its partial captures (infer/README.md, "Flat fragments").
+// Off by default; lc2wf-reconstruct turns it on for every capture (infer/README.md, "Flat fragments").
 #pragma once
 
 #include "model/scored_wireframe.h"

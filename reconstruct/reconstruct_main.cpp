@@ -108,9 +108,9 @@ Options:
   --edge-cameras N       also keep an edge without line support that N cameras had in view (default 0: the
                          lines alone decide)
   --edge-support-everywhere  the default here: photo clouds are judged on every capture
-  --drop-flat-parts N    where the cameras leave a side unseen, drop the parts of the wireframe other than the
-                         longest that have fewer than N edges and lie within 0.5 m of one plane: window
-                         frames, doors, a neighbour's face (default 10; 0 = keep them)
+  --drop-flat-parts N    drop the parts of the wireframe other than the longest that have fewer than N edges
+                         and lie within 0.5 m of one plane: window frames, doors, a neighbour's face (default
+                         10, on every capture here; 0 = keep them)
   --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
   --crossing-distance M  of two edges crossing within M metres, keep the higher-scoring one (default 0.25;
                          0 = keep both; see lc2wf-infer --help)

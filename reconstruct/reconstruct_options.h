@@ -79,8 +79,8 @@ struct ReconstructOptions {
   std::string height_model;
   ScaleSearchOptions scale_search;  // when nothing else gives the scale
 
-  // Photo clouds are judged by their lines on every capture, full orbits too, and their small flat parts
-  // apart from the longest go: the networks draw edges between the corners of windows and texture on every
+  // Photo clouds are judged by their lines on every capture, full orbits too, and so are their small flat
+  // parts apart from the longest: the networks draw edges between the corners of windows and texture on every
   // side (infer/README.md, "Drawing only what was seen" and "Flat fragments"). The junction model averages 4
   // views of each patch: photo clutter makes single votes noisy, and COLMAP's seconds dwarf the cost
   // (reconstruct/README.md, "Test-time views of photo clouds").
@@ -88,6 +88,7 @@ struct ReconstructOptions {
     PostProcessOptions p;
     p.edge_support.partial_captures_only = false;
     p.flat_parts.max_edges = 10;
+    p.flat_parts.partial_captures_only = false;
     p.selection.test_time_views = 4;
     return p;
   }();
