@@ -166,7 +166,7 @@ Args parse_args(int argc, char** argv) {
     else if (f == "--method") a.method = value(i);
     else if (f == "--gt-y-up") a.gt_y_up = true;
     else if (f == "--lod") a.lod = value(i);
-    else if (f == "--gt-seen-by") a.gt_seen_by = static_cast<int>(parse_count_flag(f, value(i)));
+    else if (f == "--gt-seen-by") a.gt_seen_by = static_cast<int>(std::min<long long>(parse_count_flag(f, value(i)), 1 << 20));  // more cameras than any cloud has: nothing seen
     else if (f == "--strict-wed") a.strict_wed = true;
     else if (f == "-q" || f == "--quiet") a.quiet = true;
     else if (f == "--html") a.html = true;
