@@ -52,7 +52,7 @@ wireframe and a note, never a failure.
                       building's edges meet only at junctions), keep the higher-scoring one (default 0.25;
                       0 = keep both)
   --drop-flat-parts N where the cloud's cameras leave a side unseen, drop the parts of the wireframe other
-                      than the longest that have fewer than N edges and lie within 0.5 m of one plane:
+                      than the longest that have fewer than N edges and lie within 0.75 m of one plane:
                       window frames, doors, a neighbour's face in photo clouds (default 0 = keep them;
                       lc2wf-reconstruct: 10)
   --edge-cameras N    also keep an edge without line support when N cameras had it in view (in front,

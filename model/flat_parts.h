@@ -13,7 +13,7 @@ namespace lc2wf {
 
 struct FlatPartOptions {
   int max_edges = 0;               // parts with fewer edges may go; 0 = off
-  double plane_tolerance_m = 0.5;  // every junction this close to the part's best-fitting plane: flat
+  double plane_tolerance_m = 0.75;  // every junction this close to the part's best-fitting plane: flat
   // Only where the cloud's cameras leave a side unseen (as EdgeSupportOptions): on full photo orbits it cost
   // the known-camera clouds 4 points of vAP (infer/README.md). false: every cloud.
   bool partial_captures_only = true;

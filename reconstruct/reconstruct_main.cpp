@@ -109,7 +109,7 @@ Options:
                          lines alone decide)
   --edge-support-everywhere  the default here: photo clouds are judged on every capture
   --drop-flat-parts N    drop the parts of the wireframe other than the longest that have fewer than N edges
-                         and lie within 0.5 m of one plane: window frames, doors, a neighbour's face (default
+                         and lie within 0.75 m of one plane: window frames, doors, a neighbour's face (default
                          10, on every capture here; 0 = keep them)
   --judge-degree-above N  otherwise still to the edges of junctions with more than N edges (see lc2wf-infer --help)
   --crossing-distance M  of two edges crossing within M metres, keep the higher-scoring one (default 0.25;
