@@ -1,9 +1,11 @@
 #include "model/edge_visibility.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <deque>
+#include <utility>
+
+#include "model/scored_wireframe.h"
 
 namespace lc2wf {
 
@@ -96,18 +98,12 @@ int cameras_seeing(const Vec3& u, const Vec3& v, const std::vector<Camera>& came
 
 Wireframe seen_part(const Wireframe& wireframe, const std::vector<Camera>& cameras, int min_cameras, double tolerance_m) {
   const FootprintOccluder occluder(wireframe);
-  std::vector<int> index(wireframe.junctions.size(), -1);
   Wireframe seen;
-  for (const auto& e : wireframe.edges) {
-    if (cameras_seeing(wireframe.junctions[e[0]], wireframe.junctions[e[1]], cameras, occluder, tolerance_m) < min_cameras) continue;
-    std::array<int, 2> kept{};
-    for (int k = 0; k < 2; ++k) {
-      if (index[e[k]] < 0) index[e[k]] = static_cast<int>(seen.junctions.size()), seen.junctions.push_back(wireframe.junctions[e[k]]);
-      kept[k] = index[e[k]];
-    }
-    seen.edges.push_back(kept);
-  }
-  return seen;
+  seen.junctions = wireframe.junctions;
+  for (const auto& e : wireframe.edges)
+    if (cameras_seeing(wireframe.junctions[e[0]], wireframe.junctions[e[1]], cameras, occluder, tolerance_m) >= min_cameras)
+      seen.edges.push_back(e);
+  return referenced_junctions_only(ScoredWireframe::with_unit_scores(std::move(seen))).wireframe;
 }
 
 }  // namespace lc2wf

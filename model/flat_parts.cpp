@@ -40,7 +40,10 @@ FlatPartsDropped drop_flat_parts(const ScoredWireframe& in, const FlatPartOption
   const int parts = part.empty() ? 0 : *std::max_element(part.begin(), part.end()) + 1;
   std::vector<int> edges_of_part(parts, 0);
   std::vector<double> length_of_part(parts, 0.0);
-  for (const auto& e : w.edges) ++edges_of_part[part[e[0]]], length_of_part[part[e[0]]] += (w.junctions[e[1]] - w.junctions[e[0]]).norm();
+  for (const auto& e : w.edges) {
+    ++edges_of_part[part[e[0]]];
+    length_of_part[part[e[0]]] += (w.junctions[e[1]] - w.junctions[e[0]]).norm();
+  }
   // The largest part by drawn length, not by edges: a tree's zigzag of short edges outnumbers a gable's three long
   // ones (the lowest numbered on ties: deterministic).
   const int largest = static_cast<int>(std::max_element(length_of_part.begin(), length_of_part.end()) - length_of_part.begin());

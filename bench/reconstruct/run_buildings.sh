@@ -87,24 +87,22 @@ done < "$names"
 
 "$bin/infer/lc2wf-eval" --weights "$weights" --data "$out/dataset/clouds" --split "$names" --out "$out/eval-known-clouds" \
   --method "known-camera clouds" --quiet > /dev/null || [ $? -eq 1 ]
+# score PRED EVAL METHOD GT_ARGS...: lc2wf-eval of a folder of predictions into OUT/EVAL. Exit 1: failed
+# reconstructions, scored as empty; 3: every one failed, nothing to score (the summary says so).
+score() {
+  local pred=$1 eval=$2 method=$3 code=0
+  shift 3
+  rm -rf "${out:?}/$eval"
+  "$bin/infer/lc2wf-eval" --pred "$pred" "$@" --split "$names" --out "$out/$eval" --method "$method" --quiet > /dev/null || code=$?
+  [ $code -eq 0 ] || [ $code -eq 1 ] || [ $code -eq 3 ] || exit $code
+}
+# Each run against the whole GT and against the part of it the capture saw (edges >= 2 render cameras had in
+# view; lc2wf-eval --gt-seen-by): a street capture is then scored on its facades, not on the sides nobody
+# photographed.
+seen=(--data "$out/dataset/clouds" --gt-seen-by 2)
+score "$out/eval-known-clouds/predictions" eval-known-clouds-seen "known-clouds, seen part" "${seen[@]}"
 for mode in "${modes[@]}"; do
-  code=0
-  rm -rf "$out/eval-$mode"
-  "$bin/infer/lc2wf-eval" --pred "$out/pred-$mode" --gt "$gt" --split "$names" --out "$out/eval-$mode" \
-    --method "reconstruct ($mode)" --quiet > /dev/null || code=$?
-  # 1: failed reconstructions, scored as empty; 3: every one failed, nothing to score (the summary says so).
-  [ $code -eq 0 ] || [ $code -eq 1 ] || [ $code -eq 3 ] || exit $code
-done
-# The same against the part of the GT the capture saw (edges >= 2 render cameras had in view; lc2wf-eval
-# --gt-seen-by): a street capture is then scored on its facades, not on the sides nobody photographed.
-for run in known-clouds "${modes[@]}"; do
-  pred=$out/pred-$run
-  [ "$run" = known-clouds ] && pred=$out/eval-known-clouds/predictions
-  [ -d "$pred" ] || continue
-  code=0
-  rm -rf "$out/eval-$run-seen"
-  "$bin/infer/lc2wf-eval" --pred "$pred" --data "$out/dataset/clouds" --gt-seen-by 2 --split "$names" --out "$out/eval-$run-seen" \
-    --method "$run, seen part" --quiet > /dev/null || code=$?
-  [ $code -eq 0 ] || [ $code -eq 1 ] || [ $code -eq 3 ] || exit $code
+  score "$out/pred-$mode" "eval-$mode" "reconstruct ($mode)" --gt "$gt"
+  score "$out/pred-$mode" "eval-$mode-seen" "reconstruct ($mode), seen part" "${seen[@]}"
 done
 /usr/bin/python3 "$(dirname "$0")/summarise.py" "$out" "$names" | tee "$out/summary.md"
